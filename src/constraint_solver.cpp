@@ -1,0 +1,77 @@
+#include "constraint_solver.hpp"
+
+namespace particles {
+
+ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView& s,
+                                             const ConstraintList& constraints, ForceAccumulator& acc) {
+  const int m = int(constraints.size());
+  ConstraintSolveStats stats;
+  stats.rows = m;
+  if (m == 0) return stats;
+  const int cols = 2 * model.layout.numParticles;
+
+  rows_.resize(size_t(m));
+  rhs_.resize(m);
+  jwTriplets_.clear();
+  jTriplets_.clear();
+  diagTriplets_.clear();
+  std::vector<double> diag(size_t(m), 0.0);
+  double diagSum = 0.0;
+  for (int i = 0; i < m; ++i) {
+    const Constraint& c = *constraints[size_t(i)];
+    ConstraintRow& row = rows_[size_t(i)] = c.evaluate(s);
+    double jdotQdot = 0.0, jwq = 0.0;
+    for (int k = 0; k < row.count; ++k) {
+      const int p = row.particle[size_t(k)];
+      const Vec2& jk = row.J[size_t(k)];
+      const double w = model.invMass[p];
+      jdotQdot += row.Jdot[size_t(k)].dot(s.vel(p));
+      jwq += w * jk.dot(acc.forceOn(p));
+      diag[size_t(i)] += w * jk.squaredNorm();
+      for (int d = 0; d < 2; ++d) {
+        jTriplets_.emplace_back(i, 2 * p + d, jk[d]);
+        if (w != 0.0) jwTriplets_.emplace_back(i, 2 * p + d, w * jk[d]);
+      }
+    }
+    rhs_[i] = -jdotQdot - jwq - c.feedback().ks * row.C - c.feedback().kd * row.Cdot;
+    diagSum += diag[size_t(i)];
+  }
+
+  const double epsilon = options_.regularization * diagSum / m;
+  for (int i = 0; i < m; ++i) {
+    if (diag[size_t(i)] == 0.0) {
+      // Only fixed particles: nothing can move, so no force is needed.
+      diagTriplets_.emplace_back(i, i, 1.0);
+      rhs_[i] = 0.0;
+    } else {
+      diagTriplets_.emplace_back(i, i, epsilon);
+    }
+  }
+
+  jw_.resize(m, cols);
+  jw_.setFromTriplets(jwTriplets_.begin(), jwTriplets_.end());
+  j_.resize(m, cols);
+  j_.setFromTriplets(jTriplets_.begin(), jTriplets_.end());
+  Eigen::SparseMatrix<double> regularizer(m, m);
+  regularizer.setFromTriplets(diagTriplets_.begin(), diagTriplets_.end());
+  a_ = Eigen::SparseMatrix<double>(jw_ * j_.transpose()) + regularizer;
+
+  // A local solver: it keeps a reference to a_, which must not outlive a move of this object.
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
+  if (options_.maxIterations > 0) cg.setMaxIterations(options_.maxIterations);
+  cg.setTolerance(options_.tolerance);
+  cg.compute(a_);
+  if (lambda_.size() != m) lambda_.setZero(m);
+  lambda_ = cg.solveWithGuess(rhs_, lambda_);
+  stats.iterations = int(cg.iterations());
+  stats.relativeResidual = cg.error();
+
+  // Q̂ = Jᵀ λ
+  for (int i = 0; i < m; ++i) {
+    const ConstraintRow& row = rows_[size_t(i)];
+    for (int k = 0; k < row.count; ++k) acc.addForce(row.particle[size_t(k)], lambda_[i] * row.J[size_t(k)]);
+  }
+  return stats;
+}
+
+}  // namespace particles

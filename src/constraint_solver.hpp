@@ -1,0 +1,57 @@
+#pragma once
+// Lagrange-multiplier constraint forces (DESIGN §5, Witkin & Baraff "Constrained dynamics"):
+//   J W Jᵀ λ = −J̇ q̇ − J W Q − k_s C − k_d Ċ,     Q̂ = Jᵀ λ
+// q are the particles' positions, W their inverse masses and Q the forces accumulated so far.
+// J W Jᵀ is assembled as an Eigen sparse matrix and solved with Eigen's ConjugateGradient
+// (Jacobi preconditioned), warm-started from the previous λ: between two evaluations the
+// multipliers change little, so CG usually needs only a few iterations.
+//
+// J W Jᵀ is only positive semi-definite. Two cases make it singular and are handled:
+//  - a row that touches only fixed particles (W = 0) has an all-zero row; it gets λ = 0;
+//  - redundant rows (two constraints on one degree of freedom) make it rank deficient; a small
+//    Tikhonov term ε·mean(diag) on the diagonal keeps λ finite even when their right-hand sides
+//    disagree. Its effect on consistent systems is a relative 1e-10, far below CG's tolerance.
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+
+#include "constraint.hpp"
+#include "force_accumulator.hpp"
+#include "model.hpp"
+
+namespace particles {
+
+struct ConstraintSolverOptions {
+  double tolerance = 1e-10;      // CG stops at |r| ≤ tolerance·|b|
+  int maxIterations = 0;         // 0: Eigen's default, twice the number of rows
+  double regularization = 1e-10;  // ε above, relative to the mean diagonal
+};
+
+struct ConstraintSolveStats {
+  int rows = 0;
+  int iterations = 0;
+  double relativeResidual = 0.0;
+};
+
+using ConstraintList = std::vector<std::unique_ptr<Constraint>>;
+
+class ConstraintSolver {
+ public:
+  explicit ConstraintSolver(ConstraintSolverOptions options = {}) : options_(options) {}
+  // Adds the constraint force Q̂ = Jᵀλ to acc (which must already hold every other force).
+  ConstraintSolveStats solve(const Model& model, const StateView& s, const ConstraintList& constraints,
+                             ForceAccumulator& acc);
+  const Eigen::VectorXd& lambda() const { return lambda_; }
+
+ private:
+  ConstraintSolverOptions options_;
+  std::vector<ConstraintRow> rows_;
+  std::vector<Eigen::Triplet<double>> jwTriplets_, jTriplets_, diagTriplets_;
+  Eigen::SparseMatrix<double> jw_, j_, a_;
+  Eigen::VectorXd rhs_, lambda_;
+};
+
+}  // namespace particles
