@@ -1,0 +1,207 @@
+// Constraints by numbers: Jacobians against finite differences, drift bounds over long runs,
+// and singular systems that must stay finite.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "circular_wire_constraint.hpp"
+#include "horizontal_line_constraint.hpp"
+#include "rod_constraint.hpp"
+#include "support.hpp"
+
+using namespace particles;
+using namespace particles::test;
+
+namespace {
+
+// A state of three particles with arbitrary (fixed, so reproducible) positions and velocities.
+Eigen::VectorXd sampleState(const StateLayout& layout) {
+  Eigen::VectorXd y(layout.size());
+  for (Eigen::Index i = 0; i < y.size(); ++i) y[i] = std::sin(1.7 * double(i) + 0.3) * (1.0 + 0.1 * double(i));
+  return y;
+}
+
+// Checks J = ∂C/∂q and J̇ = d/dt J along q̇ against central differences, and Ċ = J q̇.
+void checkJacobians(const Constraint& c, const StateLayout& layout) {
+  const double eps = 1e-6;
+  const Eigen::VectorXd y = sampleState(layout);
+  const ConstraintRow row = c.evaluate(StateView(layout, y));
+  const Eigen::Index v = layout.velocityOffset();
+
+  double jqdot = 0.0;
+  for (int k = 0; k < row.count; ++k) {
+    const int p = row.particle[size_t(k)];
+    for (int d = 0; d < 2; ++d) {
+      Eigen::VectorXd plus = y, minus = y;
+      plus[2 * p + d] += eps;
+      minus[2 * p + d] -= eps;
+      const double fd = (c.evaluate(StateView(layout, plus)).C - c.evaluate(StateView(layout, minus)).C) / (2 * eps);
+      CAPTURE(k);
+      CAPTURE(d);
+      CHECK(std::abs(row.J[size_t(k)][d] - fd) < 1e-6);
+      jqdot += row.J[size_t(k)][d] * y[v + 2 * p + d];
+    }
+  }
+  CHECK(std::abs(row.Cdot - jqdot) < 1e-12);
+
+  // J̇: move positions along q̇ by ±eps and difference J.
+  Eigen::VectorXd plus = y, minus = y;
+  plus.head(v) += eps * y.segment(v, v);
+  minus.head(v) -= eps * y.segment(v, v);
+  const ConstraintRow rp = c.evaluate(StateView(layout, plus));
+  const ConstraintRow rm = c.evaluate(StateView(layout, minus));
+  for (int k = 0; k < row.count; ++k) {
+    const Vec2 fd = (rp.J[size_t(k)] - rm.J[size_t(k)]) / (2 * eps);
+    CHECK((row.Jdot[size_t(k)] - fd).norm() < 1e-6);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("constraint Jacobians J and J-dot match finite differences of C") {
+  const StateLayout layout{3, 0};
+  SUBCASE("circular wire") { checkJacobians(CircularWireConstraint(1, Vec2(0.2, -0.4), 0.8), layout); }
+  SUBCASE("rod") { checkJacobians(RodConstraint(0, 2, 1.3), layout); }
+  SUBCASE("horizontal line") { checkJacobians(HorizontalLineConstraint(2, 0.5), layout); }
+}
+
+TEST_CASE("bead on a circular wire under gravity stays on the wire") {
+  const double r = 1.0;
+  SystemBuilder b;
+  ParticleSpec bead = particleAt(r, 0.0);
+  bead.vel = Vec2(0.0, 0.5);
+  const int i = b.addParticle(bead);
+  b.emplaceForce<GravityForce>(Vec2(0, -9.81));
+  b.addConstraint(std::make_unique<CircularWireConstraint>(i, Vec2(0, 0), r));
+  System sys = b.build();
+  Solver solver(Integrator::Rk4);
+  double worst = 0.0;
+  for (int s = 0; s < 1000; ++s) {  // h = 0.01, 10 s
+    solver.doStep(sys, 0.01);
+    worst = std::max(worst, sys.constraintError(sys.state()));
+  }
+  CAPTURE(worst);
+  CHECK(worst < 1e-4 * r);
+  // It really swung: the bead went through the bottom of the wire.
+  CHECK(sys.energy().kinetic > 0.0);
+}
+
+TEST_CASE("rod pendulum keeps its length and conserves energy") {
+  const double length = 1.0;
+  SystemBuilder b;
+  const int pivot = b.addParticle(particleAt(0, 0, 1.0, true));
+  const int bob = b.addParticle(particleAt(length * std::sin(1.0), -length * std::cos(1.0)));
+  b.emplaceForce<GravityForce>(Vec2(0, -9.81));
+  b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, length));
+  System sys = b.build();
+  Solver solver(Integrator::Rk4);
+  const double e0 = sys.energy().total();
+  double worst = 0.0;
+  for (int s = 0; s < 1000; ++s) {
+    solver.doStep(sys, 0.01);
+    worst = std::max(worst, sys.constraintError(sys.state()) / length);
+  }
+  CAPTURE(worst);
+  CHECK(worst < 1e-4);
+  // The constraint force does no work: energy stays within 1e-4 of its start (the drift feedback
+  // only removes the integrator's small error).
+  CHECK(std::abs(sys.energy().total() - e0) < 1e-4 * std::abs(e0));
+}
+
+TEST_CASE("a 25-particle row on a horizontal line stays on the line") {
+  SystemBuilder b;
+  auto& springs = b.emplaceForce<DampedSpringForce>();
+  std::vector<int> row;
+  for (int c = 0; c < 25; ++c) row.push_back(b.addParticle(particleAt(0.08 * c, 1.0, 0.05)));
+  // A hanging particle under every other one so the line carries real load.
+  for (int c = 0; c < 25; c += 2) {
+    const int hanging = b.addParticle(particleAt(0.08 * c + 0.05, 0.9, 0.05));
+    springs.add({Endpoint::ofParticle(row[size_t(c)]), Endpoint::ofParticle(hanging), 0.1, 25.0, 0.2});
+  }
+  for (int c = 0; c + 1 < 25; ++c) {
+    springs.add({Endpoint::ofParticle(row[size_t(c)]), Endpoint::ofParticle(row[size_t(c + 1)]), 0.08, 25.0, 0.2});
+  }
+  b.emplaceForce<GravityForce>(Vec2(0, -9.81));
+  for (int i : row) b.addConstraint(std::make_unique<HorizontalLineConstraint>(i, 1.0));
+  System sys = b.build();
+  Solver solver(Integrator::Rk4);
+  double worst = 0.0;
+  for (int s = 0; s < 1000; ++s) {
+    solver.doStep(sys, 0.01);
+    worst = std::max(worst, sys.constraintError(sys.state()));
+  }
+  CAPTURE(worst);
+  CHECK(worst < 1e-4);
+}
+
+TEST_CASE("singular constraint systems stay finite") {
+  SUBCASE("a fixed particle on a line it is not on") {
+    SystemBuilder b;
+    const int fixed = b.addParticle(particleAt(0, 0.3, 1.0, true));
+    const int free = b.addParticle(particleAt(1, 0));
+    b.emplaceForce<GravityForce>(Vec2(0, -9.81));
+    b.addConstraint(std::make_unique<HorizontalLineConstraint>(fixed, 0.0));
+    b.addConstraint(std::make_unique<RodConstraint>(fixed, free, 1.1));
+    System sys = b.build();
+    Solver solver(Integrator::Rk4);
+    advance(sys, solver, 0.01, 500);
+    CHECK(sys.state().allFinite());
+    CHECK(sys.view().pos(fixed) == Vec2(0, 0.3));
+    // The other constraint still holds.
+    const double rodError = std::abs((sys.view().pos(free) - sys.view().pos(fixed)).norm() - 1.1);
+    CHECK(rodError < 1e-4);
+  }
+  SUBCASE("two identical rods on the same pair") {
+    SystemBuilder b;
+    const int pivot = b.addParticle(particleAt(0, 0, 1.0, true));
+    const int bob = b.addParticle(particleAt(1, 0));
+    b.emplaceForce<GravityForce>(Vec2(0, -9.81));
+    b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, 1.0));
+    b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, 1.0));
+    System sys = b.build();
+    Solver solver(Integrator::Rk4);
+    advance(sys, solver, 0.01, 500);
+    CHECK(sys.state().allFinite());
+    CHECK(sys.constraintError(sys.state()) < 1e-4);
+  }
+  SUBCASE("two contradicting rods on the same pair") {
+    SystemBuilder b;
+    const int pivot = b.addParticle(particleAt(0, 0, 1.0, true));
+    const int bob = b.addParticle(particleAt(1, 0));
+    b.emplaceForce<GravityForce>(Vec2(0, -9.81));
+    b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, 1.0));
+    b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, 1.2));
+    System sys = b.build();
+    Solver solver(Integrator::Rk4);
+    advance(sys, solver, 0.01, 500);
+    CHECK(sys.state().allFinite());
+    // No length can satisfy both; it settles between them rather than flying off.
+    const double len = sys.view().pos(bob).norm();
+    CHECK(len > 0.95);
+    CHECK(len < 1.25);
+  }
+}
+
+TEST_CASE("constraint solver warm start cuts CG iterations") {
+  // A hanging chain of 50 rods: the second evaluation starts from the first λ.
+  SystemBuilder b;
+  int prev = b.addParticle(particleAt(0, 0, 1.0, true));
+  for (int i = 1; i <= 50; ++i) {
+    const int next = b.addParticle(particleAt(0.1 * i, 0.0, 0.1));
+    b.addConstraint(std::make_unique<RodConstraint>(prev, next, 0.1));
+    prev = next;
+  }
+  b.emplaceForce<GravityForce>(Vec2(0, -9.81));
+  System sys = b.build();
+  Eigen::VectorXd dydt;
+  sys.derivEval(sys.state(), 0.0, dydt);
+  const int cold = sys.lastConstraintSolve().iterations;
+  sys.derivEval(sys.state(), 0.0, dydt);
+  const int warm = sys.lastConstraintSolve().iterations;
+  CAPTURE(cold);
+  CAPTURE(warm);
+  CHECK(cold > 5);
+  CHECK(warm < cold);
+  CHECK(sys.lastConstraintSolve().relativeResidual < 1e-9);
+}

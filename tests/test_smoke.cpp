@@ -1,3 +1,0 @@
-#include <doctest/doctest.h>
-#include "system.hpp"
-TEST_CASE("empty") { particles::SystemBuilder b; auto s = b.build(); CHECK(s.state().size() == 0); }
