@@ -1,0 +1,89 @@
+#pragma once
+// The time-step stability study (the report's headline table): for each integrator, the largest
+// dt at which a scenario stays stable over its duration, and the largest at which it also runs
+// smoothly, found by bracketing and bisection. Simulation only. docs/stability.md defines the
+// criteria; in short, a run at dt is
+//   exploded   when the state becomes non-finite or the solver's explosion guard trips,
+//   runaway    when the total energy ever exceeds its bound by more than energyTolerance × S:
+//              a passive system's energy never rises above E(0); the scripted mouse adds the work
+//              W(t) its moving target does, so the bound is E(0) + W(t). S is the system's energy
+//              scale (System::energyScale), which makes the tolerance independent of units,
+//   overstretched when any spring ever exceeds stretchFactor × its rest length,
+//   shaking    when, over the second half of the run, the second difference of the velocities,
+//              ¼|v[n+1] − 2v[n] + v[n−1]|, exceeds shakeThreshold of their RMS. For motion at a
+//              single frequency ω the ratio is sin²(ωh/2): 0.5 means the motion that carries the
+//              velocity repeats every 4 steps or faster — a sustained high-frequency jitter at the
+//              step rate that a converged simulation (ωh ≪ 1) does not show,
+//   stable     otherwise.
+// "Stable" below means not exploded, runaway or overstretched; "smooth" means stable and not shaking.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "integrators.hpp"
+#include "system.hpp"
+
+namespace particles {
+
+struct StabilityCriteria {
+  double energyTolerance = 0.1;  // of the energy scale S
+  double stretchFactor = 3.0;    // × rest length
+  double shakeThreshold = 0.5;   // sin²(ωh/2) = 0.5 at ωh = π/2: four steps per period
+};
+
+enum class RunVerdict { Stable, Shaking, Exploded, Runaway, Overstretched };
+std::string_view verdictName(RunVerdict verdict);
+
+struct RunAssessment {
+  RunVerdict verdict = RunVerdict::Stable;
+  long steps = 0;             // steps taken (fewer than planned when the run stopped early)
+  double maxEnergyExcess = 0; // max (E − E(0) − W) / S
+  double maxStretch = 0;      // max |l| / rest over all springs
+  double shakingIndex = 0;    // see above
+  std::string detail;         // for exploded runs, the solver's message
+  bool stable() const { return verdict == RunVerdict::Stable || verdict == RunVerdict::Shaking; }
+  bool smooth() const { return verdict == RunVerdict::Stable; }
+};
+
+using SystemFactory = std::function<System()>;
+
+// Runs a fresh system for `duration` seconds at step dt and judges it.
+RunAssessment assessRun(const SystemFactory& make, Integrator integrator, double dt, double duration,
+                        const StabilityCriteria& criteria);
+
+struct StabilityOptions {
+  StabilityCriteria criteria;
+  double startDt = 0.01;          // where bracketing starts (e.g. the scenario's dt)
+  double minDt = 1e-6;            // below this the search gives up: nothing is stable
+  double maxDt = 10.0;            // above this the search stops growing: stable beyond measure
+  double relativePrecision = 0.005;  // bisection stops when (hi − lo) ≤ this × lo: 2 significant digits
+  int threads = 0;                // 0: one per integrator, up to the hardware's cores
+};
+
+struct StabilityResult {
+  Integrator integrator;
+  int evalsPerStep = 0;
+  double maxStableDt = 0;    // 0 when nothing down to minDt was stable
+  double maxSmoothDt = 0;
+  double evalsPerSimSecond = 0;  // evalsPerStep / maxStableDt
+  double speedVsEuler = 0;       // Euler's evals per simulated second / this one's
+  int runs = 0;                  // simulations the search needed
+  RunAssessment firstUnstable;   // the run just above maxStableDt (why it failed)
+  RunAssessment firstShaking;    // the run just above maxSmoothDt
+};
+
+// Largest dt in [minDt, maxDt] for which `ok` holds, assuming it holds below some threshold and
+// fails above (bracketing by factors of 2, then bisection). Returns 0 when even minDt fails.
+// `last_fail` receives the assessment of the smallest failing dt tried.
+double findLargestDt(const std::function<RunAssessment(double)>& run, const std::function<bool(const RunAssessment&)>& ok,
+                     const StabilityOptions& options, int& runs, RunAssessment& lastFail);
+
+// Rounds down to two significant digits (0.0137 → 0.013): the precision the search guarantees.
+double roundDownTwoDigits(double x);
+
+std::vector<StabilityResult> findStabilityLimits(const SystemFactory& make, double duration,
+                                                 const std::vector<Integrator>& integrators,
+                                                 const StabilityOptions& options);
+
+}  // namespace particles

@@ -1,0 +1,89 @@
+// The stability search against cases with a closed-form limit.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "stability.hpp"
+#include "support.hpp"
+
+using namespace particles;
+using namespace particles::test;
+
+TEST_CASE("two-significant-digit rounding") {
+  CHECK(roundDownTwoDigits(0.0137) == doctest::Approx(0.013));
+  CHECK(roundDownTwoDigits(0.013) == doctest::Approx(0.013));
+  CHECK(roundDownTwoDigits(2.83) == doctest::Approx(2.8));
+  CHECK(roundDownTwoDigits(150.0) == doctest::Approx(150.0));
+  CHECK(roundDownTwoDigits(0.0) == 0.0);
+}
+
+namespace {
+
+// A linear oscillator: rest length 10 m against amplitudes well below it, so the spring never
+// folds through its anchor (which would make it nonlinear) while the search probes unstable steps.
+System linearOscillator(double k, double kd) {
+  SystemBuilder b;
+  const int anchor = b.addParticle(particleAt(0, 0, 1.0, true));
+  const int bob = b.addParticle(particleAt(10.5, 0));
+  b.emplaceForce<DampedSpringForce>().add({Endpoint::ofParticle(bob), Endpoint::ofParticle(anchor), 10.0, k, kd});
+  return b.build();
+}
+
+}  // namespace
+
+TEST_CASE("RK4 on an undamped oscillator is stable up to h·omega = 2*sqrt(2)") {
+  // |R(iy)| = 1 at y = 2√2 for RK4's stability polynomial R(z) = 1 + z + z²/2 + z³/6 + z⁴/24;
+  // just above it the energy grows 30 % per step, just below it decays.
+  const double omega = 1.0;  // k = 1, m = 1
+  const SystemFactory make = [] { return linearOscillator(1.0, 0.0); };
+  StabilityOptions options;
+  options.startDt = 0.1;
+  const auto results = findStabilityLimits(make, 300.0, {Integrator::Rk4}, options);
+  REQUIRE(results.size() == 1);
+  const double limit = 2.0 * std::sqrt(2.0) / omega;
+  CAPTURE(results[0].maxStableDt);
+  CHECK(results[0].maxStableDt == doctest::Approx(limit).epsilon(0.02));
+  CHECK(results[0].maxStableDt <= limit * 1.005);
+  CHECK(results[0].firstUnstable.verdict != RunVerdict::Stable);
+  CHECK(results[0].maxSmoothDt <= results[0].maxStableDt);
+}
+
+TEST_CASE("explicit Euler on a damped oscillator is stable up to h = c / omega^2") {
+  // Eigenvalues λ = −c/2 ± i√(ω² − c²/4); |1 + hλ|² = 1 + h (h ω² − c) ≤ 1  ⇔  h ≤ c/ω².
+  // k = 100 N/m, m = 1 kg, k_d = 2 N·s/m: ω² = 100, c = 2, h_max = 0.02 s.
+  const SystemFactory make = [] { return linearOscillator(100.0, 2.0); };
+  StabilityOptions options;
+  options.startDt = 0.001;
+  const auto results = findStabilityLimits(make, 400.0, {Integrator::Euler, Integrator::Midpoint}, options);
+  REQUIRE(results.size() == 2);
+  CAPTURE(results[0].maxStableDt);
+  CHECK(results[0].maxStableDt == doctest::Approx(0.02).epsilon(0.02));
+  CHECK(results[0].evalsPerStep == 1);
+  CHECK(results[0].evalsPerSimSecond == doctest::Approx(1.0 / results[0].maxStableDt));
+  CHECK(results[0].speedVsEuler == doctest::Approx(1.0));
+  // Midpoint survives a larger step on the same problem and reports its cost relative to Euler.
+  CHECK(results[1].maxStableDt > results[0].maxStableDt);
+  CHECK(results[1].speedVsEuler == doctest::Approx(results[0].evalsPerSimSecond / results[1].evalsPerSimSecond));
+}
+
+TEST_CASE("a run that explodes, overstretches or shakes is classified as such") {
+  const SystemFactory make = [] { return linearOscillator(100.0, 0.0); };  // ω = 10
+  StabilityCriteria criteria;
+  const RunAssessment smooth = assessRun(make, Integrator::Rk4, 0.001, 5.0, criteria);
+  CHECK(smooth.verdict == RunVerdict::Stable);
+  CHECK(smooth.shakingIndex == doctest::Approx(std::pow(std::sin(0.01 / 2), 2)).epsilon(0.01));
+  CHECK(smooth.maxStretch == doctest::Approx(1.05).epsilon(1e-3));
+  // ωh = 1: coarse but resolved, sin²(½) = 0.23 < 0.5.
+  const RunAssessment coarse = assessRun(make, Integrator::Rk4, 0.1, 20.0, criteria);
+  CHECK(coarse.verdict == RunVerdict::Stable);
+  CHECK(coarse.shakingIndex == doctest::Approx(std::pow(std::sin(0.5), 2)).epsilon(0.02));
+  const RunAssessment blown = assessRun(make, Integrator::Euler, 0.05, 50.0, criteria);
+  CHECK_FALSE(blown.stable());
+  // Just inside RK4's limit (ωh = 2.7) the oscillator survives but alternates step by step.
+  const RunAssessment shaking = assessRun(make, Integrator::Rk4, 0.27, 20.0, criteria);
+  CAPTURE(shaking.shakingIndex);
+  CHECK(shaking.verdict == RunVerdict::Shaking);
+  StabilityCriteria strict = criteria;
+  strict.stretchFactor = 1.04;
+  CHECK(assessRun(make, Integrator::Rk4, 0.001, 5.0, strict).verdict == RunVerdict::Overstretched);
+}
