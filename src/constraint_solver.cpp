@@ -8,7 +8,8 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
   ConstraintSolveStats stats;
   stats.rows = m;
   if (m == 0) return stats;
-  const int cols = 2 * model.layout.numParticles;
+  if (columnOf_.size() != size_t(model.layout.numParticles)) columnOf_.assign(size_t(model.layout.numParticles), -1);
+  touched_.clear();
 
   rows_.resize(size_t(m));
   rhs_.resize(m);
@@ -28,9 +29,14 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
       jdotQdot += row.Jdot[size_t(k)].dot(s.vel(p));
       jwq += w * jk.dot(acc.forceOn(p));
       diag[size_t(i)] += w * jk.squaredNorm();
+      int& column = columnOf_[size_t(p)];
+      if (column < 0) {
+        column = int(touched_.size());
+        touched_.push_back(p);
+      }
       for (int d = 0; d < 2; ++d) {
-        jTriplets_.emplace_back(i, 2 * p + d, jk[d]);
-        if (w != 0.0) jwTriplets_.emplace_back(i, 2 * p + d, w * jk[d]);
+        jTriplets_.emplace_back(i, 2 * column + d, jk[d]);
+        if (w != 0.0) jwTriplets_.emplace_back(i, 2 * column + d, w * jk[d]);
       }
     }
     rhs_[i] = -jdotQdot - jwq - c.feedback().ks * row.C - c.feedback().kd * row.Cdot;
@@ -48,6 +54,8 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
     }
   }
 
+  const int cols = 2 * int(touched_.size());
+  for (int p : touched_) columnOf_[size_t(p)] = -1;
   jw_.resize(m, cols);
   jw_.setFromTriplets(jwTriplets_.begin(), jwTriplets_.end());
   j_.resize(m, cols);

@@ -49,6 +49,10 @@ class ConstraintSolver {
  private:
   ConstraintSolverOptions options_;
   std::vector<ConstraintRow> rows_;
+  // Compact column numbering: only particles some constraint touches get columns, so a few
+  // constraints on a large cloth cost per constraint, not per particle.
+  std::vector<int> columnOf_;  // per particle: compact column block, or -1
+  std::vector<int> touched_;
   std::vector<Eigen::Triplet<double>> jwTriplets_, jTriplets_, diagTriplets_;
   Eigen::SparseMatrix<double> jw_, j_, a_;
   Eigen::VectorXd rhs_, lambda_;
