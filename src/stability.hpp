@@ -8,7 +8,10 @@
 //              a passive system's energy never rises above E(0); the scripted mouse adds the work
 //              W(t) its moving target does, so the bound is E(0) + W(t). S is the system's energy
 //              scale (System::energyScale), which makes the tolerance independent of units,
-//   overstretched when any spring ever exceeds stretchFactor × its rest length,
+//   overstretched when any spring's length over rest length ever exceeds maxStretch. The study
+//              sets maxStretch to stretchFactor × the largest such ratio of a reference run (RK4
+//              at a quarter of the scenario's dt): a scripted drag may stretch a soft spring a lot
+//              in a correct simulation, so the bound must come from one,
 //   shaking    when, over the second half of the run, the second difference of the velocities,
 //              ¼|v[n+1] − 2v[n] + v[n−1]|, exceeds shakeThreshold of their RMS. For motion at a
 //              single frequency ω the ratio is sin²(ωh/2): 0.5 means the motion that carries the
@@ -28,7 +31,7 @@ namespace particles {
 
 struct StabilityCriteria {
   double energyTolerance = 0.1;  // of the energy scale S
-  double stretchFactor = 3.0;    // × rest length
+  double maxStretch = 1e300;     // spring length / rest length; the study derives it (see above)
   double shakeThreshold = 0.5;   // sin²(ωh/2) = 0.5 at ωh = π/2: four steps per period
 };
 
@@ -53,7 +56,9 @@ RunAssessment assessRun(const SystemFactory& make, Integrator integrator, double
                         const StabilityCriteria& criteria);
 
 struct StabilityOptions {
-  StabilityCriteria criteria;
+  StabilityCriteria criteria;      // maxStretch is replaced by stretchFactor × the reference's
+  double stretchFactor = 1.5;      // × the reference run's largest stretch
+  double referenceDt = 0.0025;     // RK4 step of the reference run (e.g. the scenario's dt / 4)
   double startDt = 0.01;          // where bracketing starts (e.g. the scenario's dt)
   double minDt = 1e-6;            // below this the search gives up: nothing is stable
   double maxDt = 10.0;            // above this the search stops growing: stable beyond measure
@@ -66,11 +71,17 @@ struct StabilityResult {
   int evalsPerStep = 0;
   double maxStableDt = 0;    // 0 when nothing down to minDt was stable
   double maxSmoothDt = 0;
-  double evalsPerSimSecond = 0;  // evalsPerStep / maxStableDt
+  double evalsPerSimSecond = 0;  // evalsPerStep / maxSmoothDt: the cost at the largest usable step
   double speedVsEuler = 0;       // Euler's evals per simulated second / this one's
   int runs = 0;                  // simulations the search needed
   RunAssessment firstUnstable;   // the run just above maxStableDt (why it failed)
   RunAssessment firstShaking;    // the run just above maxSmoothDt
+};
+
+struct StabilityStudy {
+  RunAssessment reference;  // the RK4 run at referenceDt the stretch bound comes from
+  double maxStretch = 0;    // the bound used: stretchFactor × reference.maxStretch
+  std::vector<StabilityResult> results;
 };
 
 // Largest dt in [minDt, maxDt] for which `ok` holds, assuming it holds below some threshold and
@@ -82,8 +93,8 @@ double findLargestDt(const std::function<RunAssessment(double)>& run, const std:
 // Rounds down to two significant digits (0.0137 → 0.013): the precision the search guarantees.
 double roundDownTwoDigits(double x);
 
-std::vector<StabilityResult> findStabilityLimits(const SystemFactory& make, double duration,
-                                                 const std::vector<Integrator>& integrators,
-                                                 const StabilityOptions& options);
+// Throws std::runtime_error when the reference run itself is not stable (its dt is too large).
+StabilityStudy findStabilityLimits(const SystemFactory& make, double duration, const std::vector<Integrator>& integrators,
+                                   const StabilityOptions& options);
 
 }  // namespace particles

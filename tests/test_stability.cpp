@@ -38,7 +38,8 @@ TEST_CASE("RK4 on an undamped oscillator is stable up to h·omega = 2*sqrt(2)") 
   const SystemFactory make = [] { return linearOscillator(1.0, 0.0); };
   StabilityOptions options;
   options.startDt = 0.1;
-  const auto results = findStabilityLimits(make, 300.0, {Integrator::Rk4}, options);
+  options.referenceDt = 0.01;
+  const auto results = findStabilityLimits(make, 300.0, {Integrator::Rk4}, options).results;
   REQUIRE(results.size() == 1);
   const double limit = 2.0 * std::sqrt(2.0) / omega;
   CAPTURE(results[0].maxStableDt);
@@ -54,12 +55,13 @@ TEST_CASE("explicit Euler on a damped oscillator is stable up to h = c / omega^2
   const SystemFactory make = [] { return linearOscillator(100.0, 2.0); };
   StabilityOptions options;
   options.startDt = 0.001;
-  const auto results = findStabilityLimits(make, 400.0, {Integrator::Euler, Integrator::Midpoint}, options);
+  options.referenceDt = 0.001;
+  const auto results = findStabilityLimits(make, 400.0, {Integrator::Euler, Integrator::Midpoint}, options).results;
   REQUIRE(results.size() == 2);
   CAPTURE(results[0].maxStableDt);
   CHECK(results[0].maxStableDt == doctest::Approx(0.02).epsilon(0.02));
   CHECK(results[0].evalsPerStep == 1);
-  CHECK(results[0].evalsPerSimSecond == doctest::Approx(1.0 / results[0].maxStableDt));
+  CHECK(results[0].evalsPerSimSecond == doctest::Approx(1.0 / results[0].maxSmoothDt));
   CHECK(results[0].speedVsEuler == doctest::Approx(1.0));
   // Midpoint survives a larger step on the same problem and reports its cost relative to Euler.
   CHECK(results[1].maxStableDt > results[0].maxStableDt);
@@ -84,6 +86,18 @@ TEST_CASE("a run that explodes, overstretches or shakes is classified as such") 
   CAPTURE(shaking.shakingIndex);
   CHECK(shaking.verdict == RunVerdict::Shaking);
   StabilityCriteria strict = criteria;
-  strict.stretchFactor = 1.04;
+  strict.maxStretch = 1.04;
   CHECK(assessRun(make, Integrator::Rk4, 0.001, 5.0, strict).verdict == RunVerdict::Overstretched);
+}
+
+TEST_CASE("the stretch bound comes from a reference run, and an unstable reference is an error") {
+  const SystemFactory make = [] { return linearOscillator(100.0, 0.0); };
+  StabilityOptions options;
+  options.referenceDt = 0.001;
+  options.startDt = 0.01;
+  const StabilityStudy study = findStabilityLimits(make, 5.0, {Integrator::Rk4}, options);
+  CHECK(study.reference.maxStretch == doctest::Approx(1.05).epsilon(1e-3));
+  CHECK(study.maxStretch == doctest::Approx(1.5 * 1.05).epsilon(1e-3));
+  options.referenceDt = 0.5;  // ωh = 5: RK4 blows up
+  CHECK_THROWS_AS(findStabilityLimits(make, 5.0, {Integrator::Rk4}, options), std::runtime_error);
 }

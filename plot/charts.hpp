@@ -1,0 +1,36 @@
+#pragma once
+// The two kinds of chart, drawn onto a canvas the size of the figure. Internal to plot/: users call
+// writeFigure or renderFigure (figure.hpp).
+
+#include "plot/canvas.hpp"
+#include "plot/figure.hpp"
+
+namespace particles::plot {
+
+void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& chart);
+void drawBarChart(const Canvas& canvas, const Figure& figure, const BarChart& chart);
+
+// Shared by both: the title centred above the chart, and the height it takes from the top.
+double drawTitle(const Canvas& canvas, const Figure& figure);
+
+// The y axis of one panel: ticks on the left edge of `plot`, their labels, and the rotated axis
+// label at `labelX` (its left edge). Grid lines at the major ticks go across the plot.
+struct YAxis {
+  AxisScale scale;
+  AxisTicks ticks;
+  // Data value to pixel row inside `plot`.
+  double toPixel(double v, const Rect& plot) const;
+};
+void drawYAxis(const Canvas& canvas, const YAxis& axis, const Rect& plot, const std::string& label, double labelX);
+void drawYGrid(const Canvas& canvas, const YAxis& axis, const Rect& plot);
+// Widest tick label of the axis, for the left margin.
+double tickLabelWidth(const Canvas& canvas, const AxisTicks& ticks);
+
+// Layout constants shared by the charts, in pixels.
+inline constexpr double kOuterPadPx = 20;  // figure edge to the nearest text
+inline constexpr double kTickLengthPx = 6;
+inline constexpr double kMinorTickLengthPx = 3;
+inline constexpr double kTickLabelGapPx = 6;   // tick end to its label
+inline constexpr double kAxisLabelGapPx = 12;  // tick labels to the axis label
+
+}  // namespace particles::plot

@@ -1,0 +1,26 @@
+#pragma once
+// The figure of the time-step stability study (`particles stability --plot`, DESIGN §12): per
+// integrator, the largest stable dt and the largest dt without shaking, as bars on a log axis.
+
+#include <string>
+#include <vector>
+
+#include "plot/figure.hpp"
+
+namespace particles::plot {
+
+// One row of `stability --csv`, whose header is
+// integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler
+struct StabilityRow {
+  std::string integrator;        // euler, midpoint, rk4, …
+  int evalsPerStep = 0;          // derivative evaluations per step
+  double maxStableDt = 0;        // [s]
+  double maxSmoothDt = 0;        // [s], stable and not shaking
+  double evalsPerSimSecond = 0;  // evalsPerStep / maxSmoothDt
+  double speedVsEuler = 0;       // Euler's evalsPerSimSecond / this one's
+};
+
+// Categories in the rows' order; a dt ≤ 0 (nothing stable) shows as "n/a".
+Figure stabilityFigure(const std::vector<StabilityRow>& rows);
+
+}  // namespace particles::plot

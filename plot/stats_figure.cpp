@@ -1,0 +1,126 @@
+#include "plot/stats_figure.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <string_view>
+
+#include "plot/errors.hpp"
+
+namespace particles::plot {
+
+namespace {
+
+constexpr std::array<std::string_view, 6> kColumns = {"t",     "kinetic",          "potential",
+                                                      "total", "constraint_error", "penetration"};
+
+// One field as a finite double, all of it: "1e-3" yes; " 1", "1x", "", "nan", "inf" no.
+double parseNumber(std::string_view field, const std::filesystem::path& file, std::size_t line, std::size_t column,
+                   std::string_view columnName) {
+  double value = 0;
+  const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
+  if (field.empty() || ec == std::errc::invalid_argument || end != field.data() + field.size()) {
+    throw CsvError(file, line, column,
+                   "column '" + std::string(columnName) + "': expected a number, found '" + std::string(field) + "'");
+  }
+  if (ec == std::errc::result_out_of_range || !std::isfinite(value)) {
+    throw CsvError(file, line, column,
+                   "column '" + std::string(columnName) + "': '" + std::string(field) + "' is not a finite number");
+  }
+  return value;
+}
+
+StatsTable parseStatsCsv(std::string_view text, const std::filesystem::path& file) {
+  StatsTable table;
+  std::array<std::vector<double>*, 6> columns = {&table.t,     &table.kinetic,         &table.potential,
+                                                 &table.total, &table.constraintError, &table.penetration};
+  std::size_t lineNumber = 0, pos = 0;
+  while (pos < text.size()) {
+    std::size_t eol = text.find('\n', pos);
+    if (eol == std::string_view::npos) eol = text.size();
+    std::string_view line = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    ++lineNumber;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+
+    if (lineNumber == 1) {
+      if (line != kStatsCsvHeader) {
+        const std::string_view expected = kStatsCsvHeader;
+        const auto mismatch = std::mismatch(line.begin(), line.end(), expected.begin(), expected.end());
+        throw CsvError(file, 1, static_cast<std::size_t>(mismatch.first - line.begin()) + 1,
+                       "the header must be exactly '" + std::string(expected) + "'");
+      }
+      continue;
+    }
+    if (line.empty()) throw CsvError(file, lineNumber, 1, "empty line");
+    std::size_t fieldStart = 0;
+    for (std::size_t c = 0; c < kColumns.size(); ++c) {
+      if (fieldStart > line.size()) {
+        throw CsvError(
+            file, lineNumber, line.size() + 1,
+            "expected 6 fields, found " + std::to_string(c) + " (missing '" + std::string(kColumns[c]) + "')");
+      }
+      std::size_t fieldEnd = line.find(',', fieldStart);
+      if (fieldEnd == std::string_view::npos) fieldEnd = line.size();
+      if (c + 1 == kColumns.size() && fieldEnd != line.size()) {
+        throw CsvError(file, lineNumber, fieldEnd + 2, "expected 6 fields, found more");
+      }
+      columns[c]->push_back(
+          parseNumber(line.substr(fieldStart, fieldEnd - fieldStart), file, lineNumber, fieldStart + 1, kColumns[c]));
+      fieldStart = fieldEnd + 1;
+    }
+  }
+  if (lineNumber == 0)
+    throw CsvError(file, 1, 1, "empty file: expected the header '" + std::string(kStatsCsvHeader) + "'");
+  return table;
+}
+
+// Whether the positive values of the columns span at least two decades.
+bool spansDecades(std::initializer_list<const std::vector<double>*> columns) {
+  double lo = INFINITY, hi = 0;
+  for (const auto* column : columns) {
+    for (double v : *column) {
+      if (v > 0 && std::isfinite(v)) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    }
+  }
+  return hi > 0 && hi >= 100 * lo;
+}
+
+}  // namespace
+
+StatsTable readStatsCsv(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw CsvError(file, 0, 0, "cannot open for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw CsvError(file, 0, 0, "read error");
+  return parseStatsCsv(text.str(), file);
+}
+
+Figure statsFigure(const StatsTable& table) {
+  const std::size_t n = table.t.size();
+  for (const auto* column :
+       {&table.kinetic, &table.potential, &table.total, &table.constraintError, &table.penetration}) {
+    if (column->size() != n) throw FigureError("stats table: columns of different lengths");
+  }
+  Panel energy{
+      "energy [J]",
+      AxisScale::Linear,
+      {{"kinetic", table.t, table.kinetic}, {"potential", table.t, table.potential}, {"total", table.t, table.total}}};
+  Panel error{"error [m]",
+              spansDecades({&table.constraintError, &table.penetration}) ? AxisScale::Log : AxisScale::Linear,
+              {{"constraint error", table.t, table.constraintError}, {"penetration", table.t, table.penetration}}};
+  Figure figure;
+  figure.title = "Energy and constraint error";
+  figure.chart = LineChart{"t [s]", {std::move(energy), std::move(error)}};
+  return figure;
+}
+
+}  // namespace particles::plot

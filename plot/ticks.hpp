@@ -1,0 +1,48 @@
+#pragma once
+// Axis ticks and number labels. Linear axes use "nice" steps of 1, 2 or 5 × 10^k (Heckbert,
+// "Nice numbers for graph labels", Graphics Gems, 1990); log axes put major ticks on decades
+// (every k-th decade when there are too many to label) and minor ticks at 2…9 × 10^k.
+
+#include <string>
+#include <vector>
+
+namespace particles::plot {
+
+// A label that may end in a superscript: {"10", "−3"} is 10⁻³, {"2.5×10", "−7"} is 2.5×10⁻⁷.
+// Minus signs are U+2212, as typeset, not the hyphen.
+struct Label {
+  std::string text;
+  std::string superscript;
+  bool operator==(const Label&) const = default;
+};
+
+struct Tick {
+  double value;
+  Label label;
+};
+
+struct AxisTicks {
+  double lo = 0, hi = 1;      // the axis range, in data units
+  std::vector<Tick> major;    // labelled
+  std::vector<double> minor;  // unlabelled (log axes only)
+};
+
+// Smallest 1, 2 or 5 × 10^k that is ≥ rawStep (> 0).
+double niceStep(double rawStep);
+
+// Ticks for data in [dataLo, dataHi] on a linear axis, about `targetCount` of them. With
+// widenToTicks the range grows outward to whole steps (for y axes); otherwise it stays the data
+// range (for a time axis that should start and end with the data). A constant value c gets the
+// range c ± 10 % (0 gets [0, 1]); a non-finite range falls back to [0, 1].
+AxisTicks linearTicks(double dataLo, double dataHi, int targetCount, bool widenToTicks);
+
+// Ticks for positive data in [dataLo, dataHi] on a log axis: the range is widened to whole decades
+// (at least one), with at most `maxMajor` labelled decades. Non-positive or non-finite input falls
+// back to [1, 10].
+AxisTicks logTicks(double dataLo, double dataHi, int maxMajor);
+
+// A value with `significantDigits` significant digits, trailing zeros dropped: plain for
+// 10⁻⁴ ≤ |v| < 10⁵ ("0.00052", "340"), otherwise in scientific form ({"3.2×10", "−5"}).
+Label formatValue(double v, int significantDigits);
+
+}  // namespace particles::plot

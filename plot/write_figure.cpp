@@ -1,0 +1,229 @@
+// From a Figure to bytes (a cairo SVG or image surface) and from bytes to a file (a temporary name
+// beside the destination, renamed when complete).
+
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "plot/canvas.hpp"
+#include "plot/charts.hpp"
+#include "plot/errors.hpp"
+#include "plot/figure.hpp"
+#include "plot/font.hpp"
+
+namespace particles::plot {
+
+namespace {
+
+struct SurfaceDeleter {
+  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
+};
+struct ContextDeleter {
+  void operator()(cairo_t* cr) const { cairo_destroy(cr); }
+};
+using SurfacePtr = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
+using ContextPtr = std::unique_ptr<cairo_t, ContextDeleter>;
+
+// cairo's write callback: appends to a byte vector. Must not throw into C.
+cairo_status_t appendBytes(void* closure, const unsigned char* data, unsigned int length) {
+  try {
+    auto* out = static_cast<std::vector<std::uint8_t>*>(closure);
+    out->insert(out->end(), data, data + length);
+    return CAIRO_STATUS_SUCCESS;
+  } catch (...) {
+    return CAIRO_STATUS_WRITE_ERROR;
+  }
+}
+
+void check(cairo_status_t status, const char* call) {
+  if (status != CAIRO_STATUS_SUCCESS) {
+    throw FigureError(std::string("cannot draw figure: ") + call + ": " + cairo_status_to_string(status));
+  }
+}
+
+void validate(const Figure& figure) {
+  if (figure.widthPx < 200 || figure.heightPx < 150 || figure.widthPx > 20000 || figure.heightPx > 20000) {
+    throw FigureError("figure size " + std::to_string(figure.widthPx) + "x" + std::to_string(figure.heightPx) +
+                      " px is outside 200x150 to 20000x20000");
+  }
+  if (const auto* line = std::get_if<LineChart>(&figure.chart)) {
+    for (const Panel& p : line->panels) {
+      for (const Series& s : p.series) {
+        if (s.x.size() != s.y.size()) {
+          throw FigureError("series '" + s.name + "' has " + std::to_string(s.x.size()) + " x values but " +
+                            std::to_string(s.y.size()) + " y values");
+        }
+      }
+    }
+  }
+  if (const auto* bars = std::get_if<BarChart>(&figure.chart)) {
+    for (const BarGroup& g : bars->groups) {
+      if (g.values.size() != bars->categories.size()) {
+        throw FigureError("bar group '" + g.name + "' has " + std::to_string(g.values.size()) + " values for " +
+                          std::to_string(bars->categories.size()) + " categories");
+      }
+    }
+  }
+}
+
+void draw(cairo_t* cr, const FontFace& font, const Figure& figure) {
+  cairo_set_source_rgb(cr, kBackground.r, kBackground.g, kBackground.b);
+  cairo_paint(cr);
+  const Canvas canvas(cr, font.get());
+  std::visit(
+      [&](const auto& chart) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(chart)>, LineChart>) {
+          drawLineChart(canvas, figure, chart);
+        } else {
+          drawBarChart(canvas, figure, chart);
+        }
+      },
+      figure.chart);
+  check(cairo_status(cr), "drawing");
+}
+
+std::string escapeXml(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// cairo names the SVG's top group after the surface's process-wide serial number
+// (<g id="surface42">), so the same figure drawn twice in one process would differ in that id.
+// Every other id cairo writes (glyphs, clip paths) counts from zero within the document. The
+// surface ids are renumbered in order of appearance, and the figure's title becomes the SVG's
+// <title>, for screen readers and file browsers.
+std::vector<std::uint8_t> normaliseSvg(const std::vector<std::uint8_t>& bytes, const std::string& title) {
+  const std::string svg(bytes.begin(), bytes.end());
+  std::vector<std::string> seen;  // serial numbers in order of first appearance
+  std::string out;
+  std::size_t copied = 0;
+  for (std::size_t at = svg.find("surface"); at != std::string::npos; at = svg.find("surface", at + 1)) {
+    std::size_t end = at + 7;
+    while (end < svg.size() && std::isdigit(static_cast<unsigned char>(svg[end]))) ++end;
+    if (end == at + 7) continue;  // "surface" not followed by a number
+    const std::string serial = svg.substr(at + 7, end - at - 7);
+    auto found = std::find(seen.begin(), seen.end(), serial);
+    if (found == seen.end()) found = seen.insert(seen.end(), serial);
+    out.append(svg, copied, at + 7 - copied);
+    out += std::to_string(found - seen.begin() + 1);
+    copied = end;
+  }
+  out.append(svg, copied);
+  if (!title.empty()) {
+    const std::size_t svgTag = out.find("<svg");
+    const std::size_t tagEnd = svgTag == std::string::npos ? svgTag : out.find('>', svgTag);
+    if (tagEnd != std::string::npos) out.insert(tagEnd + 1, "\n<title>" + escapeXml(title) + "</title>");
+  }
+  return {out.begin(), out.end()};
+}
+
+std::string lowerExtension(const std::filesystem::path& p) {
+  std::string ext = p.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+std::atomic<unsigned> temporaryCounter{0};
+
+// Writes all of `bytes` to `out` through "<out>.partial-<pid>-<n>", renamed over `out` when
+// complete. The temporary is removed on every failure path.
+void writeFileAtomically(const std::filesystem::path& out, const std::vector<std::uint8_t>& bytes) {
+  std::filesystem::path temporary = out;
+  temporary += ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(temporaryCounter++);
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    throw FigureError("cannot write figure " + out.string() + ": cannot create " + temporary.string() + ": " +
+                      std::strerror(errno));
+  }
+  const auto fail = [&](const std::string& what, int error) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw FigureError("cannot write figure " + out.string() + ": " + what + ": " + std::strerror(error));
+  };
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int error = errno;
+      ::close(fd);
+      fail("write to " + temporary.string(), error);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  if (::close(fd) != 0) fail("close " + temporary.string(), errno);
+  if (::rename(temporary.c_str(), out.c_str()) != 0) fail("rename " + temporary.string(), errno);
+}
+
+}  // namespace
+
+ImageFormat formatForPath(const std::filesystem::path& out) {
+  const std::string ext = lowerExtension(out);
+  if (ext == ".svg") return ImageFormat::Svg;
+  if (ext == ".png") return ImageFormat::Png;
+  throw FigureError("cannot write figure " + out.string() + ": unknown format '" + out.extension().string() +
+                    "' (use .svg or .png)");
+}
+
+std::vector<std::uint8_t> renderFigure(const Figure& figure, ImageFormat format) {
+  validate(figure);
+  const FontFace font(figure.fontFile);
+  std::vector<std::uint8_t> bytes;
+  if (format == ImageFormat::Svg) {
+    SurfacePtr surface(cairo_svg_surface_create_for_stream(appendBytes, &bytes, figure.widthPx, figure.heightPx));
+    check(cairo_surface_status(surface.get()), "cairo_svg_surface_create_for_stream");
+    // Sizes in px, as the PNG: without this cairo declares points and the SVG shows 4/3 larger.
+    cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
+    {
+      ContextPtr cr(cairo_create(surface.get()));
+      draw(cr.get(), font, figure);
+    }
+    cairo_surface_finish(surface.get());  // writes the document
+    check(cairo_surface_status(surface.get()), "cairo_surface_finish (SVG)");
+    return normaliseSvg(bytes, figure.title);
+  }
+  // RGB24: the figure is opaque, and a PNG without alpha is smaller and shows the same everywhere.
+  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, figure.widthPx, figure.heightPx));
+  check(cairo_surface_status(surface.get()), "cairo_image_surface_create");
+  {
+    ContextPtr cr(cairo_create(surface.get()));
+    draw(cr.get(), font, figure);
+  }
+  cairo_surface_flush(surface.get());
+  check(cairo_surface_write_to_png_stream(surface.get(), appendBytes, &bytes), "cairo_surface_write_to_png_stream");
+  return bytes;
+}
+
+void writeFigure(const Figure& figure, const std::filesystem::path& out) {
+  const ImageFormat format = formatForPath(out);
+  std::vector<std::uint8_t> bytes;
+  try {
+    bytes = renderFigure(figure, format);
+  } catch (const FigureError& e) {
+    throw FigureError("cannot write figure " + out.string() + ": " + e.what());
+  }
+  writeFileAtomically(out, bytes);
+}
+
+}  // namespace particles::plot

@@ -1,0 +1,23 @@
+#pragma once
+// Errors at the rendering boundary. Both name the failing call and the library's own message
+// (OSMesa/OpenGL, libavcodec/libavformat, libpng, the file system). The command line maps both
+// to exit code 3 ("output failure", DESIGN §12).
+
+#include <stdexcept>
+#include <string>
+
+namespace particles::render {
+
+// The off-screen GL context or its framebuffers could not be made, or GL reported an error.
+class RenderError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A PNG or MP4 output could not be opened, encoded or written. The partial file is removed.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace particles::render

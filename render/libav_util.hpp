@@ -1,0 +1,55 @@
+#pragma once
+// Internal to render/: ownership of libav* objects (one deleter each, as FFmpeg's examples free
+// them) and libav error codes as text.
+
+extern "C" {
+#include <libavcodec/avcodec.h>
+#include <libavformat/avformat.h>
+#include <libavutil/error.h>
+#include <libswscale/swscale.h>
+}
+
+#include <memory>
+#include <string>
+
+namespace particles::render::libav {
+
+// "avcodec_open2(libx264): Invalid argument" from a call name and a negative AVERROR code.
+inline std::string describe(const std::string& call, int err) {
+  char buf[AV_ERROR_MAX_STRING_SIZE] = {};
+  av_strerror(err, buf, sizeof buf);
+  return call + ": " + buf;
+}
+
+struct CodecContextDeleter {
+  void operator()(AVCodecContext* c) const { avcodec_free_context(&c); }
+};
+struct FrameDeleter {
+  void operator()(AVFrame* f) const { av_frame_free(&f); }
+};
+struct PacketDeleter {
+  void operator()(AVPacket* p) const { av_packet_free(&p); }
+};
+struct SwsDeleter {
+  void operator()(SwsContext* s) const { sws_freeContext(s); }
+};
+// An output context: closes its file (if one is open) and frees it.
+struct OutputFormatDeleter {
+  void operator()(AVFormatContext* s) const {
+    if (s->pb && !(s->oformat->flags & AVFMT_NOFILE)) avio_closep(&s->pb);
+    avformat_free_context(s);
+  }
+};
+// An input context from avformat_open_input.
+struct InputFormatDeleter {
+  void operator()(AVFormatContext* s) const { avformat_close_input(&s); }
+};
+
+using CodecContextPtr = std::unique_ptr<AVCodecContext, CodecContextDeleter>;
+using FramePtr = std::unique_ptr<AVFrame, FrameDeleter>;
+using PacketPtr = std::unique_ptr<AVPacket, PacketDeleter>;
+using SwsPtr = std::unique_ptr<SwsContext, SwsDeleter>;
+using OutputFormatPtr = std::unique_ptr<AVFormatContext, OutputFormatDeleter>;
+using InputFormatPtr = std::unique_ptr<AVFormatContext, InputFormatDeleter>;
+
+}  // namespace particles::render::libav

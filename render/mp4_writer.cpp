@@ -1,0 +1,211 @@
+#include "render/mp4_writer.hpp"
+
+#include <string>
+
+#include "render/errors.hpp"
+#include "render/libav_util.hpp"
+
+extern "C" {
+#include <libavutil/opt.h>
+}
+
+namespace particles::render {
+
+using libav::describe;
+
+namespace {
+
+void check(int err, const std::string& call) {
+  if (err < 0) throw OutputError(describe(call, err));
+}
+
+}  // namespace
+
+// Everything libav. Touched by the pipeline's worker while it runs (encodeFrame) and by the
+// calling thread before it starts and after it has stopped (open, flush): never by both at once.
+struct Mp4Writer::Encoder {
+  libav::OutputFormatPtr format;
+  libav::CodecContextPtr codec;
+  libav::FramePtr frame;
+  libav::PacketPtr packet;
+  libav::SwsPtr sws;
+  AVStream* stream = nullptr;  // owned by format
+  std::string path;            // for messages
+
+  // Sends one frame (nullptr: the end, flushing the encoder) and writes every packet it yields.
+  void send(const AVFrame* f) {
+    check(avcodec_send_frame(codec.get(), f), f ? "avcodec_send_frame" : "avcodec_send_frame(flush)");
+    for (;;) {
+      const int ret = avcodec_receive_packet(codec.get(), packet.get());
+      if (ret == AVERROR(EAGAIN) || ret == AVERROR_EOF) return;
+      check(ret, "avcodec_receive_packet");
+      av_packet_rescale_ts(packet.get(), codec->time_base, stream->time_base);
+      packet->stream_index = stream->index;
+      // Takes the packet's reference (the packet is left blank), also on failure.
+      check(av_interleaved_write_frame(format.get(), packet.get()), "av_interleaved_write_frame(" + path + ")");
+    }
+  }
+
+  void encodeFrame(const Image& image, long index) {
+    check(av_frame_make_writable(frame.get()), "av_frame_make_writable");
+    const uint8_t* src[1] = {image.rgba.data()};
+    const int srcStride[1] = {int(image.stride())};
+    const int rows = sws_scale(sws.get(), src, srcStride, 0, image.height, frame->data, frame->linesize);
+    if (rows != image.height) throw OutputError("sws_scale(RGBA → yuv420p) converted " + std::to_string(rows) + " rows");
+    frame->pts = index;
+    send(frame.get());
+  }
+};
+
+namespace {
+
+std::string evenHint(int w, int h) {
+  return std::to_string(w + (w & 1)) + "x" + std::to_string(h + (h & 1));
+}
+
+void validate(const FrameWriterOptions& o) {
+  if (o.width < 2 || o.height < 2 || (o.width & 1) || (o.height & 1)) {
+    throw std::invalid_argument("MP4 (H.264, yuv420p) needs an even width and height; " + std::to_string(o.width) +
+                                "x" + std::to_string(o.height) + " is not (try " + evenHint(o.width, o.height) +
+                                ", or write PNG frames)");
+  }
+  if (o.video.fps < 1 || o.video.fps > 1000) {
+    throw std::invalid_argument("fps " + std::to_string(o.video.fps) + " is out of range (1 to 1000)");
+  }
+  if (o.video.crf < 0 || o.video.crf > 51) {
+    throw std::invalid_argument("crf " + std::to_string(o.video.crf) + " is out of range (0 to 51)");
+  }
+  if (!isX264Preset(o.video.preset)) {
+    throw std::invalid_argument("unknown x264 preset '" + o.video.preset +
+                                "' (ultrafast, superfast, veryfast, faster, fast, medium, slow, slower, veryslow, "
+                                "placebo)");
+  }
+  static const char* const tunes[] = {"", "film", "animation", "grain", "stillimage", "psnr", "ssim", "fastdecode",
+                                      "zerolatency"};
+  bool tuneOk = false;
+  for (const char* t : tunes) tuneOk = tuneOk || o.video.tune == t;
+  if (!tuneOk) throw std::invalid_argument("unknown x264 tune '" + o.video.tune + "'");
+}
+
+}  // namespace
+
+Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions& options)
+    : out_(path), width_(options.width), height_(options.height) {
+  validate(options);
+  auto enc = std::make_unique<Encoder>();
+  enc->path = path.string();
+  const std::string temp = out_.temporary().string();
+
+  // The temporary name does not end in .mp4, so the muxer is named, not guessed.
+  AVFormatContext* fmt = nullptr;
+  check(avformat_alloc_output_context2(&fmt, nullptr, "mp4", temp.c_str()), "avformat_alloc_output_context2(mp4)");
+  enc->format.reset(fmt);
+
+  const AVCodec* codec = avcodec_find_encoder_by_name("libx264");
+  if (!codec) throw OutputError("avcodec_find_encoder_by_name(libx264): this libavcodec was built without libx264");
+  enc->stream = avformat_new_stream(fmt, nullptr);
+  if (!enc->stream) throw OutputError("avformat_new_stream: out of memory");
+  enc->codec.reset(avcodec_alloc_context3(codec));
+  if (!enc->codec) throw OutputError("avcodec_alloc_context3(libx264): out of memory");
+
+  AVCodecContext* c = enc->codec.get();
+  c->width = options.width;
+  c->height = options.height;
+  c->time_base = AVRational{1, options.video.fps};
+  c->framerate = AVRational{options.video.fps, 1};
+  c->pix_fmt = AV_PIX_FMT_YUV420P;
+  c->colorspace = AVCOL_SPC_BT709;
+  c->color_primaries = AVCOL_PRI_BT709;
+  c->color_trc = AVCOL_TRC_BT709;
+  c->color_range = AVCOL_RANGE_MPEG;
+  if (fmt->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
+  check(av_opt_set(c->priv_data, "preset", options.video.preset.c_str(), 0), "av_opt_set(preset)");
+  if (!options.video.tune.empty()) {
+    check(av_opt_set(c->priv_data, "tune", options.video.tune.c_str(), 0), "av_opt_set(tune)");
+  }
+  check(av_opt_set_double(c->priv_data, "crf", options.video.crf, 0), "av_opt_set_double(crf)");
+  check(avcodec_open2(c, codec, nullptr), "avcodec_open2(libx264)");
+
+  check(avcodec_parameters_from_context(enc->stream->codecpar, c), "avcodec_parameters_from_context");
+  enc->stream->time_base = c->time_base;  // a hint: the muxer may pick a finer one in write_header
+  enc->stream->avg_frame_rate = c->framerate;
+
+  check(avio_open(&fmt->pb, temp.c_str(), AVIO_FLAG_WRITE), "avio_open(" + temp + ")");
+  AVDictionary* muxOptions = nullptr;
+  check(av_dict_set(&muxOptions, "movflags", "+faststart", 0), "av_dict_set(movflags)");
+  const int headerResult = avformat_write_header(fmt, &muxOptions);
+  const bool optionIgnored = av_dict_count(muxOptions) > 0;  // an entry left over was not recognised
+  av_dict_free(&muxOptions);
+  check(headerResult, "avformat_write_header(" + path.string() + ")");
+  if (optionIgnored) throw OutputError("avformat_write_header: the mp4 muxer did not accept movflags=+faststart");
+
+  enc->frame.reset(av_frame_alloc());
+  enc->packet.reset(av_packet_alloc());
+  if (!enc->frame || !enc->packet) throw OutputError("av_frame_alloc/av_packet_alloc: out of memory");
+  enc->frame->format = c->pix_fmt;
+  enc->frame->width = c->width;
+  enc->frame->height = c->height;
+  check(av_frame_get_buffer(enc->frame.get(), 0), "av_frame_get_buffer");
+
+  // Same size, so the filter only matters for chroma: ACCURATE_RND and full chroma input keep thin
+  // coloured lines from shifting hue; 4:2:0 is then averaged from all four pixels.
+  enc->sws.reset(sws_getContext(c->width, c->height, AV_PIX_FMT_RGBA, c->width, c->height, AV_PIX_FMT_YUV420P,
+                                SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INP, nullptr, nullptr, nullptr));
+  if (!enc->sws) throw OutputError("sws_getContext(RGBA → yuv420p): unsupported conversion");
+  // Full-range RGB in, BT.709 limited-range YUV out, matching the stream's colour tags.
+  if (sws_setColorspaceDetails(enc->sws.get(), sws_getCoefficients(SWS_CS_ITU709), 1,
+                               sws_getCoefficients(SWS_CS_ITU709), 0, 0, 1 << 16, 1 << 16) < 0) {
+    throw OutputError("sws_setColorspaceDetails(BT.709): not supported");
+  }
+
+  encoder_ = std::move(enc);
+  Encoder* e = encoder_.get();
+  pipeline_ = std::make_unique<FramePipeline>(options.queueFrames,
+                                              [e](const Image& image, long index) { e->encodeFrame(image, index); });
+}
+
+Mp4Writer::~Mp4Writer() {
+  if (!finished_) abort();
+}
+
+void Mp4Writer::write(const Image& frame) {
+  if (finished_ || aborted_) throw std::logic_error("Mp4Writer::write after finish or abort");
+  if (frame.width != width_ || frame.height != height_) {
+    throw std::invalid_argument("frame is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                ", the video " + std::to_string(width_) + "x" + std::to_string(height_));
+  }
+  try {
+    pipeline_->push(frame);
+  } catch (...) {
+    abort();
+    throw;
+  }
+  ++frames_;
+}
+
+void Mp4Writer::finish() {
+  if (finished_ || aborted_) throw std::logic_error("Mp4Writer::finish called twice or after abort");
+  try {
+    pipeline_->close();  // the worker has stopped: libav is ours again
+    encoder_->send(nullptr);
+    AVFormatContext* fmt = encoder_->format.get();
+    check(av_write_trailer(fmt), "av_write_trailer(" + out_.destination().string() + ")");
+    check(avio_closep(&fmt->pb), "avio_closep(" + out_.temporary().string() + ")");
+    encoder_.reset();
+    out_.commit();
+  } catch (...) {
+    abort();
+    throw;
+  }
+  finished_ = true;
+}
+
+void Mp4Writer::abort() noexcept {
+  if (aborted_ || finished_) return;
+  aborted_ = true;
+  if (pipeline_) pipeline_->cancel();
+  encoder_.reset();  // closes the file
+  out_.discard();
+}
+
+}  // namespace particles::render

@@ -1,0 +1,42 @@
+#pragma once
+// H.264 MP4 output (DESIGN §9) through libavcodec (libx264), libswscale and libavformat, encoded
+// in-process frame by frame: RGBA → yuv420p (BT.709, limited range, tagged as such), the
+// send-frame / receive-packet loop of FFmpeg's encode_video.c, muxed as in mux.c with
+// "+faststart" (the index moves to the front at the end so players can start before the whole
+// file has arrived). Frame i has pts i in a 1/fps time base: the video has exactly as many frames
+// as were written and lasts frames / fps.
+//
+// Odd sizes are an error, not padded: yuv420p stores colour at half resolution, so x264 needs an
+// even width and height. Padding would silently change the size the user asked for (and the
+// camera's framing); an error names the nearest even size instead.
+
+#include "render/frame_pipeline.hpp"
+#include "render/frame_writer.hpp"
+#include "render/pending_output.hpp"
+
+namespace particles::render {
+
+class Mp4Writer final : public FrameWriter {
+ public:
+  // Opens the encoder and the temporary file and writes the header. Throws std::invalid_argument
+  // for bad options, OutputError naming the failing libav call and its message.
+  Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions& options);
+  ~Mp4Writer() override;  // abort() unless finished
+
+  void write(const Image& frame) override;
+  void finish() override;
+  void abort() noexcept override;
+  const std::filesystem::path& destination() const override { return out_.destination(); }
+  long framesWritten() const override { return frames_; }
+
+ private:
+  struct Encoder;
+  PendingOutput out_;  // first: the temporary file is removed after the encoder has closed it
+  std::unique_ptr<Encoder> encoder_;
+  std::unique_ptr<FramePipeline> pipeline_;
+  int width_, height_;
+  long frames_ = 0;
+  bool finished_ = false, aborted_ = false;
+};
+
+}  // namespace particles::render

@@ -1,0 +1,170 @@
+#include "render/png_io.hpp"
+
+#include <png.h>
+
+#include <cerrno>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/errors.hpp"
+#include "render/pending_output.hpp"
+
+namespace particles::render {
+
+namespace {
+
+// libpng reports errors by longjmp. The calls that can fail sit in small functions below that hold
+// nothing with a destructor between setjmp and the calls, so no C++ object is skipped by the jump;
+// everything that needs freeing is owned by the callers.
+struct PngErrorSink {
+  char message[256] = "unknown libpng error";
+};
+
+[[noreturn]] void onPngError(png_structp png, png_const_charp msg) {
+  auto* sink = static_cast<PngErrorSink*>(png_get_error_ptr(png));
+  std::snprintf(sink->message, sizeof sink->message, "%s", msg);
+  png_longjmp(png, 1);
+}
+void onPngWarning(png_structp, png_const_charp) {}  // e.g. unknown ancillary chunks: harmless
+
+struct FileCloser {
+  void operator()(std::FILE* f) const { std::fclose(f); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
+struct PngWriteDeleter {
+  void operator()(png_struct* p) const { png_destroy_write_struct(&p, nullptr); }
+};
+struct PngReadDeleter {
+  void operator()(png_struct* p) const { png_destroy_read_struct(&p, nullptr, nullptr); }
+};
+struct PngInfoDeleter {  // the info struct is freed through its png_struct, which must outlive it
+  png_struct* png;
+  void operator()(png_info* i) const { png_destroy_info_struct(png, &i); }
+};
+using PngWritePtr = std::unique_ptr<png_struct, PngWriteDeleter>;
+using PngReadPtr = std::unique_ptr<png_struct, PngReadDeleter>;
+using PngInfoPtr = std::unique_ptr<png_info, PngInfoDeleter>;
+
+bool writeRows(png_structp png, png_infop info, std::FILE* file, const Image& image, int level, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_init_io(png, file);
+  png_set_compression_level(png, level);
+  png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8, PNG_COLOR_TYPE_RGB,
+               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  png_set_filler(png, 0, PNG_FILLER_AFTER);  // input rows are RGBA: drop the A byte
+  png_write_image(png, rows);
+  png_write_end(png, nullptr);
+  return true;
+}
+
+struct PngHeader {
+  png_uint_32 width = 0, height = 0;
+  size_t rowBytes = 0;
+};
+
+bool readHeader(png_structp png, png_infop info, std::FILE* file, PngHeader* header) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_init_io(png, file);
+  png_read_info(png, info);
+  const int colorType = png_get_color_type(png, info);
+  png_set_expand(png);  // palette → RGB, grey < 8 bits → 8 bits, tRNS → alpha
+  png_set_strip_16(png);
+  if (colorType == PNG_COLOR_TYPE_GRAY || colorType == PNG_COLOR_TYPE_GRAY_ALPHA) png_set_gray_to_rgb(png);
+  if (!(colorType & PNG_COLOR_MASK_ALPHA) && !png_get_valid(png, info, PNG_INFO_tRNS)) {
+    png_set_add_alpha(png, 0xff, PNG_FILLER_AFTER);
+  }
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+  header->width = png_get_image_width(png, info);
+  header->height = png_get_image_height(png, info);
+  header->rowBytes = png_get_rowbytes(png, info);
+  return true;
+}
+
+bool readRows(png_structp png, png_bytepp rows) {
+  if (setjmp(png_jmpbuf(png))) return false;
+  png_read_image(png, rows);
+  png_read_end(png, nullptr);
+  return true;
+}
+
+std::vector<png_bytep> rowPointers(Image& image) {
+  std::vector<png_bytep> rows(size_t(image.height));
+  for (int y = 0; y < image.height; ++y) rows[size_t(y)] = image.pixel(0, y);
+  return rows;
+}
+
+}  // namespace
+
+void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+  if (options.compressionLevel < 0 || options.compressionLevel > 9) {
+    throw std::invalid_argument("PNG compression level " + std::to_string(options.compressionLevel) +
+                                " is out of range 0–9");
+  }
+  if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * size_t(image.height) * 4) {
+    throw std::invalid_argument("writePng: image is empty or its buffer does not match its size");
+  }
+  FilePtr file(std::fopen(path.c_str(), "wb"));
+  if (!file) throw OutputError("cannot open " + path.string() + " for writing: " + std::strerror(errno));
+
+  PngErrorSink sink;
+  PngWritePtr png(png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
+  if (!png) throw OutputError("png_create_write_struct failed for " + path.string());
+  PngInfoPtr info(png_create_info_struct(png.get()), PngInfoDeleter{png.get()});
+  if (!info) throw OutputError("png_create_info_struct failed for " + path.string());
+
+  // libpng takes non-const rows; it only reads them when writing.
+  std::vector<png_bytep> rows(size_t(image.height));
+  for (int y = 0; y < image.height; ++y) rows[size_t(y)] = const_cast<png_bytep>(image.pixel(0, y));
+  if (!writeRows(png.get(), info.get(), file.get(), image, options.compressionLevel, rows.data())) {
+    throw OutputError("libpng could not write " + path.string() + ": " + sink.message);
+  }
+  // fclose flushes: a full disk shows up here, so its result counts.
+  if (std::fclose(file.release()) != 0) {
+    throw OutputError("cannot finish writing " + path.string() + ": " + std::strerror(errno));
+  }
+}
+
+void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+  PendingOutput out(path);
+  writePngDirect(out.temporary(), image, options);
+  out.commit();
+}
+
+Image readPng(const std::filesystem::path& path) {
+  FilePtr file(std::fopen(path.c_str(), "rb"));
+  if (!file) throw OutputError("cannot open " + path.string() + ": " + std::strerror(errno));
+  png_byte signature[8];
+  if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
+    throw OutputError(path.string() + " is not a PNG file");
+  }
+  std::rewind(file.get());
+
+  PngErrorSink sink;
+  PngReadPtr png(png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
+  if (!png) throw OutputError("png_create_read_struct failed for " + path.string());
+  PngInfoPtr info(png_create_info_struct(png.get()), PngInfoDeleter{png.get()});
+  if (!info) throw OutputError("png_create_info_struct failed for " + path.string());
+
+  PngHeader header;
+  if (!readHeader(png.get(), info.get(), file.get(), &header)) {
+    throw OutputError("libpng could not read " + path.string() + ": " + sink.message);
+  }
+  if (header.rowBytes != size_t(header.width) * 4) {
+    throw OutputError(path.string() + ": unexpected PNG layout after conversion to RGBA8");
+  }
+  Image image(int(header.width), int(header.height));
+  std::vector<png_bytep> rows = rowPointers(image);
+  if (!readRows(png.get(), rows.data())) {
+    throw OutputError("libpng could not read " + path.string() + ": " + sink.message);
+  }
+  return image;
+}
+
+}  // namespace particles::render

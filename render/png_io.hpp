@@ -1,0 +1,31 @@
+#pragma once
+// PNG files through libpng: a single frame (`particles render … -o file.png --at T`), reading one
+// back (tests, the golden-frame comparison), and numbered frame sequences (PngSequenceWriter in
+// frame_writer.hpp).
+//
+// Frames are written as 8-bit RGB (the renderer's frames are opaque; alpha is dropped).
+
+#include <filesystem>
+
+#include "render/image.hpp"
+
+namespace particles::render {
+
+struct PngOptions {
+  // zlib level 0 (store) to 9 (smallest). 6 is zlib's own default: on flat-colour line art it is
+  // within a few per cent of 9's size at a fraction of its time.
+  int compressionLevel = 6;
+};
+
+// Writes the image to `path` (under a temporary name, renamed on success; an existing file is
+// replaced only then). Throws OutputError naming the failing call; no file is left on failure.
+void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options = {});
+
+// Writes to exactly `path`, no temporary name (for writers that manage their own temporaries).
+void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options);
+
+// Reads any 8-bit or 16-bit PNG as RGBA8 (grey, palette and 16-bit converted; alpha 255 if absent).
+// Throws OutputError naming the file and libpng's message.
+Image readPng(const std::filesystem::path& path);
+
+}  // namespace particles::render

@@ -1,0 +1,99 @@
+#include "render/png_sequence_writer.hpp"
+
+#include <cstdio>
+#include <regex>
+#include <string>
+#include <system_error>
+
+#include "render/errors.hpp"
+
+namespace particles::render {
+
+namespace fs = std::filesystem;
+
+std::string sequenceFrameName(long index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%06ld.png", index);
+  return name;
+}
+
+PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWriterOptions& options)
+    : directory_(directory), width_(options.width), height_(options.height) {
+  if (options.png.compressionLevel < 0 || options.png.compressionLevel > 9) {
+    throw std::invalid_argument("PNG compression level " + std::to_string(options.png.compressionLevel) +
+                                " is out of range 0–9");
+  }
+  std::error_code ec;
+  if (fs::exists(directory_, ec)) {
+    if (!fs::is_directory(directory_, ec)) throw OutputError(directory_.string() + " exists and is not a directory");
+  } else {
+    createdDirectory_ = fs::create_directory(directory_, ec);
+    if (ec) throw OutputError("cannot create directory " + directory_.string() + ": " + ec.message());
+  }
+  staging_ = std::make_unique<PendingOutput>(directory_ / "frames");
+  fs::create_directory(staging_->temporary(), ec);
+  if (ec) {
+    abort();
+    throw OutputError("cannot create " + staging_->temporary().string() + ": " + ec.message());
+  }
+  const fs::path staging = staging_->temporary();
+  const PngOptions png = options.png;
+  pipeline_ = std::make_unique<FramePipeline>(options.queueFrames, [staging, png](const Image& image, long index) {
+    writePngDirect(staging / sequenceFrameName(index), image, png);
+  });
+}
+
+PngSequenceWriter::~PngSequenceWriter() {
+  if (!finished_) abort();
+}
+
+void PngSequenceWriter::write(const Image& frame) {
+  if (finished_ || aborted_) throw std::logic_error("PngSequenceWriter::write after finish or abort");
+  if (frame.width != width_ || frame.height != height_) {
+    throw std::invalid_argument("frame is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
+                                ", the sequence " + std::to_string(width_) + "x" + std::to_string(height_));
+  }
+  try {
+    pipeline_->push(frame);
+  } catch (...) {
+    abort();
+    throw;
+  }
+  ++frames_;
+}
+
+void PngSequenceWriter::finish() {
+  if (finished_ || aborted_) throw std::logic_error("PngSequenceWriter::finish called twice or after abort");
+  try {
+    pipeline_->close();
+    std::error_code ec;
+    for (long i = 0; i < frames_; ++i) {
+      const std::string name = sequenceFrameName(i);
+      fs::rename(staging_->temporary() / name, directory_ / name, ec);
+      if (ec) throw OutputError("cannot move " + name + " into " + directory_.string() + ": " + ec.message());
+    }
+    // Frames beyond this run's last, left by an earlier run.
+    static const std::regex framePattern(R"(frame_(\d{6,})\.png)");
+    for (const fs::directory_entry& entry : fs::directory_iterator(directory_, ec)) {
+      std::smatch m;
+      const std::string name = entry.path().filename().string();
+      if (std::regex_match(name, m, framePattern) && std::stol(m[1].str()) >= frames_) fs::remove(entry.path(), ec);
+    }
+    staging_->discard();
+  } catch (...) {
+    abort();
+    throw;
+  }
+  finished_ = true;
+}
+
+void PngSequenceWriter::abort() noexcept {
+  if (aborted_ || finished_) return;
+  aborted_ = true;
+  if (pipeline_) pipeline_->cancel();
+  if (staging_) staging_->discard();
+  std::error_code ec;
+  if (createdDirectory_ && fs::is_empty(directory_, ec)) fs::remove(directory_, ec);
+}
+
+}  // namespace particles::render

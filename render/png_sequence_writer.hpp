@@ -1,0 +1,41 @@
+#pragma once
+// A directory of numbered PNGs, frame_000000.png, frame_000001.png, … (frame i at t = i / fps).
+//
+// Frames are written into a temporary subdirectory "<dir>/frames.partial-<pid>-<n>" and moved
+// into <dir> by finish(); frame_NNNNNN.png files there from an earlier, longer run are removed
+// then, so the directory holds exactly this run. Other files in <dir> are never touched. The
+// directory is created if missing (its parent must exist) and removed again on abort if it was
+// created here and is empty.
+
+#include "render/frame_pipeline.hpp"
+#include "render/frame_writer.hpp"
+#include "render/pending_output.hpp"
+
+namespace particles::render {
+
+// "frame_000042.png"
+std::string sequenceFrameName(long index);
+
+class PngSequenceWriter final : public FrameWriter {
+ public:
+  // Throws OutputError if the directory cannot be created or is not a directory.
+  PngSequenceWriter(const std::filesystem::path& directory, const FrameWriterOptions& options);
+  ~PngSequenceWriter() override;  // abort() unless finished
+
+  void write(const Image& frame) override;
+  void finish() override;
+  void abort() noexcept override;
+  const std::filesystem::path& destination() const override { return directory_; }
+  long framesWritten() const override { return frames_; }
+
+ private:
+  std::filesystem::path directory_;
+  bool createdDirectory_ = false;
+  std::unique_ptr<PendingOutput> staging_;  // the temporary subdirectory
+  std::unique_ptr<FramePipeline> pipeline_;
+  int width_, height_;
+  long frames_ = 0;
+  bool finished_ = false, aborted_ = false;
+};
+
+}  // namespace particles::render

@@ -1,0 +1,99 @@
+#include "render/video_probe.hpp"
+
+#include "render/errors.hpp"
+#include "render/libav_util.hpp"
+
+extern "C" {
+#include <libavutil/pixdesc.h>
+}
+
+namespace particles::render {
+
+using libav::describe;
+
+namespace {
+
+void check(int err, const std::string& call) {
+  if (err < 0) throw OutputError(describe(call, err));
+}
+
+Image toRgba(const AVFrame* f) {
+  Image image(f->width, f->height);
+  libav::SwsPtr sws(sws_getContext(f->width, f->height, AVPixelFormat(f->format), f->width, f->height,
+                                   AV_PIX_FMT_RGBA, SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT, nullptr,
+                                   nullptr, nullptr));
+  if (!sws) throw OutputError("sws_getContext(→ RGBA): unsupported conversion");
+  const int space = f->colorspace == AVCOL_SPC_BT709 ? SWS_CS_ITU709 : SWS_CS_DEFAULT;
+  const int fullRange = f->color_range == AVCOL_RANGE_JPEG ? 1 : 0;
+  if (sws_setColorspaceDetails(sws.get(), sws_getCoefficients(space), fullRange, sws_getCoefficients(space), 1, 0,
+                               1 << 16, 1 << 16) < 0) {
+    throw OutputError("sws_setColorspaceDetails: not supported");
+  }
+  uint8_t* dst[1] = {image.rgba.data()};
+  const int dstStride[1] = {int(image.stride())};
+  if (sws_scale(sws.get(), f->data, f->linesize, 0, f->height, dst, dstStride) != f->height) {
+    throw OutputError("sws_scale(→ RGBA) failed");
+  }
+  return image;
+}
+
+}  // namespace
+
+VideoInfo probeVideo(const std::filesystem::path& path, long sampleFrame) {
+  const std::string name = path.string();
+  AVFormatContext* raw = nullptr;
+  check(avformat_open_input(&raw, name.c_str(), nullptr, nullptr), "avformat_open_input(" + name + ")");
+  libav::InputFormatPtr format(raw);
+  check(avformat_find_stream_info(raw, nullptr), "avformat_find_stream_info(" + name + ")");
+  const AVCodec* decoder = nullptr;
+  const int streamIndex = av_find_best_stream(raw, AVMEDIA_TYPE_VIDEO, -1, -1, &decoder, 0);
+  check(streamIndex, "av_find_best_stream(video, " + name + ")");
+  const AVStream* stream = raw->streams[streamIndex];
+
+  VideoInfo info;
+  info.codec = avcodec_get_name(stream->codecpar->codec_id);
+  const char* pix = av_get_pix_fmt_name(AVPixelFormat(stream->codecpar->format));
+  info.pixelFormat = pix ? pix : "none";
+  info.width = stream->codecpar->width;
+  info.height = stream->codecpar->height;
+  info.fps = av_q2d(stream->avg_frame_rate);
+  info.durationSeconds = stream->duration != AV_NOPTS_VALUE ? double(stream->duration) * av_q2d(stream->time_base)
+                                                            : double(raw->duration) / AV_TIME_BASE;
+
+  libav::CodecContextPtr codec(avcodec_alloc_context3(decoder));
+  if (!codec) throw OutputError("avcodec_alloc_context3: out of memory");
+  check(avcodec_parameters_to_context(codec.get(), stream->codecpar), "avcodec_parameters_to_context");
+  check(avcodec_open2(codec.get(), decoder, nullptr), std::string("avcodec_open2(") + decoder->name + ")");
+  libav::PacketPtr packet(av_packet_alloc());
+  libav::FramePtr frame(av_frame_alloc());
+  if (!packet || !frame) throw OutputError("av_packet_alloc/av_frame_alloc: out of memory");
+
+  auto receiveAll = [&] {
+    for (;;) {
+      const int ret = avcodec_receive_frame(codec.get(), frame.get());
+      if (ret == AVERROR(EAGAIN) || ret == AVERROR_EOF) return;
+      check(ret, "avcodec_receive_frame");
+      if (info.frames == sampleFrame) info.sample = toRgba(frame.get());
+      ++info.frames;
+      av_frame_unref(frame.get());
+    }
+  };
+  for (;;) {
+    const int ret = av_read_frame(raw, packet.get());
+    if (ret == AVERROR_EOF) break;
+    check(ret, "av_read_frame(" + name + ")");
+    if (packet->stream_index == streamIndex) {
+      const int sent = avcodec_send_packet(codec.get(), packet.get());
+      av_packet_unref(packet.get());
+      check(sent, "avcodec_send_packet");
+      receiveAll();
+    } else {
+      av_packet_unref(packet.get());
+    }
+  }
+  check(avcodec_send_packet(codec.get(), nullptr), "avcodec_send_packet(flush)");
+  receiveAll();
+  return info;
+}
+
+}  // namespace particles::render

@@ -1,0 +1,656 @@
+// The scenario loader: one reader per top-level section of DESIGN §11, in the order the sections
+// depend on each other (things that have names before the references to them). Keys, defaults and
+// ranges here and in docs/scenarios.md change together.
+#include "scenario.hpp"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "circular_wire_constraint.hpp"
+#include "damped_spring_force.hpp"
+#include "disk_collider.hpp"
+#include "drag_force.hpp"
+#include "gravity_force.hpp"
+#include "grid.hpp"
+#include "half_plane_collider.hpp"
+#include "horizontal_line_constraint.hpp"
+#include "mouse_spring_force.hpp"
+#include "references.hpp"
+#include "rod_constraint.hpp"
+#include "yaml_reader.hpp"
+
+namespace particles::scenario {
+
+namespace {
+
+using detail::MapReader;
+using detail::NameTable;
+using detail::PointKind;
+using detail::Value;
+
+constexpr long kMaxSteps = 1'000'000'000;  // a run longer than this is a typo, not a plan
+constexpr long long kMaxGridSide = 10'000;
+constexpr long long kMaxGridParticles = 1'000'000;
+constexpr long long kMaxImageSide = 16'384;  // px
+
+// The type key of a list entry, checked against the kinds the section knows.
+std::string readType(const Value& entry, const std::vector<std::string>& types) {
+  if (!entry.isMap()) entry.fail(fmt::format("expected a map with a 'type' key, {}", entry.found()));
+  const YAML::Node typeNode = entry.node()["type"];
+  const Value type = entry.child(typeNode, entry.path() + ".type", entry.node().Mark());
+  if (!typeNode.IsDefined()) {
+    entry.child(entry.node(), entry.path() + ".type", YAML::Mark::null_mark())
+        .fail(fmt::format("missing required key 'type' (one of {})", fmt::join(types, ", ")));
+  }
+  const std::string name = type.string();
+  if (std::find(types.begin(), types.end(), name) == types.end()) {
+    const std::string suggestion = detail::closestName(name, types);
+    type.fail(fmt::format("unknown type '{}'{}; expected one of {}", name,
+                          suggestion.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", suggestion),
+                          fmt::join(types, ", ")));
+  }
+  return name;
+}
+
+int lineOf(const Value& v) {
+  return v.node().Mark().is_null() ? 0 : v.node().Mark().line + 1;
+}
+
+class Loader {
+ public:
+  explicit Loader(detail::Source source) : source_(std::move(source)) {}
+
+  Scenario load(const YAML::Node& document) {
+    const Value root(source_, document, "", document.Mark());
+    const MapReader top(root, {"name", "description", "simulation", "render", "particles", "grids", "rigid_bodies",
+                               "forces", "constraints", "colliders", "mouse"});
+    std::string name = top.required("name").string();
+    std::string description = top.optional("description") ? top.optional("description")->string() : "";
+    const SimulationSettings simulation = readSimulation(top.optional("simulation"));
+    const RenderSettings render = readRender(top.optional("render"));
+
+    if (auto v = top.optional("particles")) readParticles(*v);
+    if (auto v = top.optional("grids")) readGrids(*v);
+    if (auto v = top.optional("rigid_bodies")) readBodies(*v);
+    if (auto v = top.optional("forces")) readForces(*v);
+    if (auto v = top.optional("constraints")) readConstraints(*v);
+    if (auto v = top.optional("colliders")) readColliders(*v);
+    if (auto v = top.optional("mouse")) readMouse(*v);
+
+    try {
+      return Scenario{std::move(name), std::move(description), source_.file, simulation, render, builder_.build()};
+    } catch (const std::invalid_argument& e) {
+      // The checks above should have caught everything the builder checks; say so if not.
+      throw ScenarioError(source_.file, 0, 0, "", fmt::format("the scenario is inconsistent: {}", e.what()));
+    }
+  }
+
+ private:
+  // --- settings ----------------------------------------------------------------------------------
+  SimulationSettings readSimulation(const std::optional<Value>& v) {
+    SimulationSettings s;
+    if (!v) return s;
+    const MapReader m(*v, {"integrator", "dt", "duration"});
+    if (auto i = m.optional("integrator")) {
+      const std::string name = i->string();
+      const auto integrator = integratorFromName(name);
+      if (!integrator) {
+        std::vector<std::string> known;
+        for (Integrator k : allIntegrators()) known.emplace_back(integratorName(k));
+        const std::string suggestion = detail::closestName(name, known);
+        i->fail(fmt::format("unknown integrator '{}'{}; expected one of {}", name,
+                            suggestion.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", suggestion),
+                            fmt::join(known, ", ")));
+      }
+      s.integrator = *integrator;
+    }
+    if (auto dt = m.optional("dt")) s.dt = dt->positive();
+    if (auto d = m.optional("duration")) s.duration = d->positive();
+    if (double(s.duration) / s.dt > double(kMaxSteps)) {
+      const Value at = m.optional("dt") ? *m.optional("dt") : m.self();
+      at.fail(fmt::format("dt = {} s over duration = {} s makes more than {} steps", detail::formatNumber(s.dt),
+                          detail::formatNumber(s.duration), kMaxSteps));
+    }
+    return s;
+  }
+
+  RenderSettings readRender(const std::optional<Value>& v) {
+    RenderSettings r;
+    if (!v) return r;
+    const MapReader m(*v, {"size", "fps", "view"});
+    if (auto size = m.optional("size")) {
+      if (!size->isSequence() || size->node().size() != 2) {
+        size->fail(fmt::format("expected [width, height] in pixels, {}", size->found()));
+      }
+      r.width = int(size->item(0).integer(1, kMaxImageSide));
+      r.height = int(size->item(1).integer(1, kMaxImageSide));
+    }
+    if (auto fps = m.optional("fps")) r.fps = fps->inRange(1e-3, 1000.0);
+    if (auto view = m.optional("view")) {
+      const MapReader vm(*view, {"center", "height"});
+      if (auto c = vm.optional("center")) r.viewCenter = c->vec2();
+      if (auto h = vm.optional("height")) r.viewHeight = h->positive();
+    }
+    return r;
+  }
+
+  // --- things with names -------------------------------------------------------------------------
+  void readParticles(const Value& list) {
+    for (const Value& item : list.items()) {
+      const MapReader m(item, {"name", "pos", "vel", "mass", "fixed"});
+      ParticleSpec p;
+      p.pos = m.required("pos").vec2();
+      if (auto v = m.optional("vel")) p.vel = v->vec2();
+      if (auto v = m.optional("mass")) p.mass = v->positive();
+      if (auto v = m.optional("fixed")) p.fixed = v->boolean();
+      if (auto v = m.optional("name")) {
+        p.name = v->string();
+        names_.add(*v, p.name, {NameTable::Kind::Particle, builder_.numParticles(), {}, lineOf(*v)});
+      }
+      addParticle(p);
+      particleNames_.push_back(p.name.empty() ? fmt::format("#{}", particleNames_.size()) : p.name);
+    }
+  }
+
+  void readGrids(const Value& list) {
+    for (const Value& item : list.items()) {
+      const MapReader m(item, {"name", "origin", "size", "spacing", "mass", "springs"});
+      GridSpec g;
+      const Value name = m.required("name");
+      g.name = name.string();
+      if (auto v = m.optional("origin")) g.origin = v->vec2();
+      const Value size = m.required("size");
+      if (!size.isSequence() || size.node().size() != 2) {
+        size.fail(fmt::format("expected [columns, rows], {}", size.found()));
+      }
+      g.cols = int(size.item(0).integer(1, kMaxGridSide));
+      g.rows = int(size.item(1).integer(1, kMaxGridSide));
+      if (static_cast<long long>(g.cols) * g.rows > kMaxGridParticles) {
+        size.fail(fmt::format("{}×{} is more than {} particles", g.cols, g.rows, kMaxGridParticles));
+      }
+      if (auto v = m.optional("spacing")) g.spacing = v->positiveVec2();
+      if (auto v = m.optional("mass")) g.mass = v->positive();
+      if (auto springs = m.optional("springs")) {
+        const MapReader sm(*springs, {"structural", "shear", "flexion"});
+        if (auto f = sm.optional("structural")) g.structural = readSpringFamily(*f);
+        if (auto f = sm.optional("shear")) g.shear = readSpringFamily(*f);
+        if (auto f = sm.optional("flexion")) g.flexion = readSpringFamily(*f);
+      }
+      const bool hasSprings = g.structural || g.shear || g.flexion;
+      DampedSpringForce scratch;
+      const GridIndices indices = addGrid(builder_, hasSprings ? gridSprings() : scratch, g);
+      for (int r = 0; r < g.rows; ++r)
+        for (int c = 0; c < g.cols; ++c) {
+          particlePos_.push_back(g.origin + Vec2(c * g.spacing.x(), -r * g.spacing.y()));
+          particleNames_.push_back(fmt::format("{}[{}][{}]", g.name, r, c));
+        }
+      names_.add(name, g.name, {NameTable::Kind::Grid, -1, indices, lineOf(name)});
+      names_.numParticles = builder_.numParticles();
+    }
+  }
+
+  GridSpringFamily readSpringFamily(const Value& v) {
+    const MapReader m(v, {"ks", "kd"});
+    GridSpringFamily f{0.0, 0.0, 0.0};
+    const Value ks = m.required("ks");
+    if (ks.isSequence()) {
+      if (ks.node().size() != 2) ks.fail(fmt::format("expected a stiffness or [top, bottom], {}", ks.found()));
+      f.ksTop = ks.item(0).nonNegative();
+      f.ksBottom = ks.item(1).nonNegative();
+    } else {
+      f.ksTop = f.ksBottom = ks.nonNegative();
+    }
+    if (auto kd = m.optional("kd")) f.kd = kd->nonNegative();
+    return f;
+  }
+
+  void readBodies(const Value& list) {
+    for (const Value& item : list.items()) {
+      const MapReader m(item, {"name", "pos", "angle", "size", "mass", "vel", "omega"});
+      RigidBodySpec b;
+      b.pos = m.required("pos").vec2();
+      b.size = m.required("size").positiveVec2();
+      if (auto v = m.optional("angle")) b.angle = v->number();
+      if (auto v = m.optional("mass")) b.mass = v->positive();
+      if (auto v = m.optional("vel")) b.vel = v->vec2();
+      if (auto v = m.optional("omega")) b.omega = v->number();
+      if (auto v = m.optional("name")) {
+        b.name = v->string();
+        names_.add(*v, b.name, {NameTable::Kind::Body, builder_.numBodies(), {}, lineOf(*v)});
+      }
+      builder_.addRigidBody(b);
+      bodyPos_.push_back(b.pos);
+      bodyAngle_.push_back(b.angle);
+      bodyNames_.push_back(b.name.empty() ? fmt::format("body#{}", bodyNames_.size()) : b.name);
+    }
+  }
+
+  // --- forces --------------------------------------------------------------------------------------
+  void readForces(const Value& list) {
+    for (const Value& item : list.items()) {
+      const std::string type = readType(item, {"gravity", "drag", "spring"});
+      if (type == "gravity") {
+        const MapReader m(item, {"type", "g"});
+        const Vec2 g = m.optional("g") ? m.optional("g")->vec2() : Vec2(0.0, -9.81);
+        builder_.emplaceForce<GravityForce>(g);
+      } else if (type == "drag") {
+        const MapReader m(item, {"type", "kd", "angular"});
+        const double kd = m.required("kd").nonNegative();
+        const double angular = m.optional("angular") ? m.optional("angular")->nonNegative() : 0.0;
+        builder_.emplaceForce<DragForce>(kd, angular);
+      } else {
+        readSpring(item);
+      }
+    }
+  }
+
+  // `a` and `b` may each be one point or a list; two lists pair up element by element, and a
+  // single point pairs with every point of a list.
+  void readSpring(const Value& item) {
+    const MapReader m(item, {"type", "a", "b", "rest", "ks", "kd"});
+    const Value av = m.required("a"), bv = m.required("b");
+    const auto a = detail::resolvePoints(av, names_, PointKind::Endpoint, true);
+    const auto b = detail::resolvePoints(bv, names_, PointKind::Endpoint, true);
+    if (a.size() != 1 && b.size() != 1 && a.size() != b.size()) {
+      bv.fail(
+          fmt::format("'a' names {} points and 'b' names {}; lists must have the same length (or one side a "
+                      "single point)",
+                      a.size(), b.size()));
+    }
+    const bool hasRest = m.has("rest");
+    const double rest = hasRest ? m.optional("rest")->nonNegative() : 0.0;
+    const double ks = m.required("ks").nonNegative();
+    const double kd = m.optional("kd") ? m.optional("kd")->nonNegative() : 0.0;
+    const size_t n = std::max(a.size(), b.size());
+    for (size_t i = 0; i < n; ++i) {
+      const Endpoint& ea = a[a.size() == 1 ? 0 : i];
+      const Endpoint& eb = b[b.size() == 1 ? 0 : i];
+      if (sameEndpoint(ea, eb)) {
+        bv.fail(fmt::format("a spring joins {} to itself", describe(ea)));
+      }
+      explicitSprings().add({ea, eb, hasRest ? rest : (position(ea) - position(eb)).norm(), ks, kd});
+    }
+  }
+
+  // --- constraints ---------------------------------------------------------------------------------
+  void readConstraints(const Value& list) {
+    for (const Value& item : list.items()) {
+      const std::string type = readType(item, {"circular_wire", "rod", "horizontal_line"});
+      if (type == "circular_wire") {
+        const MapReader m(item, {"type", "particle", "particles", "center", "radius", "ks", "kd"});
+        const Vec2 center = m.required("center").vec2();
+        for (const Endpoint& p : constrainedParticles(m)) {
+          double radius = 0.0;
+          if (auto r = m.optional("radius")) {
+            radius = r->positive();
+          } else {
+            radius = (particlePos_[size_t(p.particle)] - center).norm();
+            if (!(radius > 0.0)) {
+              m.self().fail(fmt::format("{} sits at the wire's centre; give a 'radius' > 0", describe(p)));
+            }
+          }
+          addConstraint<CircularWireConstraint>(p.particle, center, radius, feedback(m));
+        }
+      } else if (type == "rod") {
+        const MapReader m(item, {"type", "a", "b", "length", "ks", "kd"});
+        const Value av = m.required("a"), bv = m.required("b");
+        const int a = detail::resolvePoints(av, names_, PointKind::Particle, false).front().particle;
+        const int b = detail::resolvePoints(bv, names_, PointKind::Particle, false).front().particle;
+        if (a == b) bv.fail(fmt::format("a rod joins {} to itself", describe(Endpoint::ofParticle(a))));
+        double length = 0.0;
+        if (auto l = m.optional("length")) {
+          length = l->positive();
+        } else {
+          length = (particlePos_[size_t(a)] - particlePos_[size_t(b)]).norm();
+          if (!(length > 0.0)) bv.fail("the rod's particles coincide; give a 'length' > 0");
+        }
+        addConstraint<RodConstraint>(a, b, length, feedback(m));
+      } else {
+        const MapReader m(item, {"type", "particle", "particles", "y", "ks", "kd"});
+        const bool hasY = m.has("y");
+        const double y = hasY ? m.optional("y")->number() : 0.0;
+        for (const Endpoint& p : constrainedParticles(m)) {
+          addConstraint<HorizontalLineConstraint>(p.particle, hasY ? y : particlePos_[size_t(p.particle)].y(),
+                                                  feedback(m));
+        }
+      }
+    }
+  }
+
+  // `particle: x` or `particles: [..]` (either accepts a list or a `*` reference).
+  std::vector<Endpoint> constrainedParticles(const MapReader& m) {
+    const bool one = m.has("particle"), many = m.has("particles");
+    if (one && many) m.optional("particles")->fail("give either 'particle' or 'particles', not both");
+    if (!one && !many) {
+      m.self()
+          .child(m.self().node(), m.self().path() + ".particles", YAML::Mark::null_mark())
+          .fail("missing required key 'particles' (or 'particle')");
+    }
+    return detail::resolvePoints(*m.optional(one ? "particle" : "particles"), names_, PointKind::Particle, true);
+  }
+
+  ConstraintFeedback feedback(const MapReader& m) {
+    ConstraintFeedback f;
+    if (auto ks = m.optional("ks")) f.ks = ks->nonNegative();
+    if (auto kd = m.optional("kd")) f.kd = kd->nonNegative();
+    return f;
+  }
+
+  // --- colliders -----------------------------------------------------------------------------------
+  void readColliders(const Value& list) {
+    for (const Value& item : list.items()) {
+      const std::string type = readType(item, {"half_plane", "disk"});
+      if (type == "half_plane") {
+        const MapReader m(item, {"type", "normal", "offset", "k", "damping"});
+        const Value nv = m.required("normal");
+        const Vec2 normal = nv.vec2();
+        if (!(normal.norm() > 0.0)) nv.fail("the normal must not be [0, 0]");
+        const double offset = m.optional("offset") ? m.optional("offset")->number() : 0.0;
+        builder_.addCollider(std::make_unique<HalfPlaneCollider>(normal, offset, penalty(m)));
+      } else {
+        const MapReader m(item, {"type", "center", "radius", "k", "damping"});
+        const Vec2 center = m.required("center").vec2();
+        const double radius = m.required("radius").positive();
+        builder_.addCollider(std::make_unique<DiskCollider>(center, radius, penalty(m)));
+      }
+    }
+  }
+
+  PenaltyParams penalty(const MapReader& m) {
+    PenaltyParams p;
+    if (auto k = m.optional("k")) p.k = k->positive();
+    if (auto d = m.optional("damping")) p.damping = d->nonNegative();
+    return p;
+  }
+
+  // --- the scripted mouse --------------------------------------------------------------------------
+  void readMouse(const Value& list) {
+    for (const Value& item : list.items()) {
+      const MapReader m(item, {"grab", "from", "to", "path", "ks"});
+      MouseScript script;
+      script.grab = detail::resolvePoints(m.required("grab"), names_, PointKind::Endpoint, false).front();
+      script.from = m.optional("from") ? m.optional("from")->nonNegative() : 0.0;
+      const Value to = m.required("to");
+      script.to = to.number();
+      if (!(script.to > script.from)) {
+        to.fail(fmt::format("expected a time after 'from' ({} s), got {}", detail::formatNumber(script.from),
+                            detail::formatNumber(script.to)));
+      }
+      const Value path = m.required("path");
+      for (const Value& point : path.items()) script.path.push_back(point.vec2());
+      if (script.path.empty()) path.fail("a mouse path needs at least one point [x, y]");
+      script.ks = m.required("ks").positive();
+      builder_.emplaceForce<MouseSpringForce>(std::move(script));
+    }
+  }
+
+  // --- helpers -------------------------------------------------------------------------------------
+  void addParticle(const ParticleSpec& p) {
+    builder_.addParticle(p);
+    particlePos_.push_back(p.pos);
+    names_.numParticles = builder_.numParticles();
+  }
+
+  template <typename T, typename... Args>
+  void addConstraint(Args&&... args) {
+    builder_.addConstraint(std::make_unique<T>(std::forward<Args>(args)...));
+  }
+
+  DampedSpringForce& gridSprings() {
+    if (!gridSprings_) gridSprings_ = &builder_.emplaceForce<DampedSpringForce>();
+    return *gridSprings_;
+  }
+  // Kept apart from the grids' springs, which then stay on the all-particle fast path.
+  DampedSpringForce& explicitSprings() {
+    if (!explicitSprings_) explicitSprings_ = &builder_.emplaceForce<DampedSpringForce>();
+    return *explicitSprings_;
+  }
+
+  Vec2 position(const Endpoint& e) const {
+    if (e.isParticle()) return particlePos_[size_t(e.particle)];
+    const double c = std::cos(bodyAngle_[size_t(e.body)]), s = std::sin(bodyAngle_[size_t(e.body)]);
+    return bodyPos_[size_t(e.body)] + Vec2(c * e.anchor.x() - s * e.anchor.y(), s * e.anchor.x() + c * e.anchor.y());
+  }
+
+  static bool sameEndpoint(const Endpoint& a, const Endpoint& b) {
+    return a.particle == b.particle && a.body == b.body && a.anchor == b.anchor;
+  }
+
+  std::string describe(const Endpoint& e) const {
+    if (!e.isParticle()) {
+      return fmt::format("the anchor [{}, {}] of rigid body {}", detail::formatNumber(e.anchor.x()),
+                         detail::formatNumber(e.anchor.y()), bodyNames_[size_t(e.body)]);
+    }
+    return fmt::format("particle {}", particleNames_[size_t(e.particle)]);
+  }
+
+  detail::Source source_;
+  NameTable names_;
+  SystemBuilder builder_;
+  DampedSpringForce* gridSprings_ = nullptr;
+  DampedSpringForce* explicitSprings_ = nullptr;
+  std::vector<Vec2> particlePos_;
+  std::vector<Vec2> bodyPos_;
+  std::vector<double> bodyAngle_;
+  std::vector<std::string> particleNames_;  // as a reference spells them, for messages
+  std::vector<std::string> bodyNames_;
+};
+
+// A key path `a.b[2].c` (or `a.b.2.c`) as segments; numbers are list indices.
+struct PathSegment {
+  std::string key;
+  bool isIndex = false;
+  size_t index = 0;
+};
+
+std::vector<PathSegment> splitPath(const Override& o, const std::string& file) {
+  auto bad = [&](const std::string& why) {
+    throw ScenarioError(file, 0, 0, o.path, fmt::format("cannot use this key path: {}", why), o.origin);
+  };
+  auto indexSegment = [&](const std::string& digits) {
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) {
+      bad(fmt::format("'{}' is not a list index", digits));
+    }
+    return PathSegment{digits, true, size_t(std::stoull(digits))};
+  };
+  std::vector<PathSegment> out;
+  std::string key;
+  size_t i = 0;
+  const std::string& p = o.path;
+  auto flushKey = [&] {
+    if (key.empty()) bad("empty key");
+    if (key.find_first_not_of("0123456789") == std::string::npos) {
+      out.push_back(indexSegment(key));
+    } else {
+      out.push_back({key, false, 0});
+    }
+    key.clear();
+  };
+  while (i < p.size()) {
+    const char c = p[i];
+    if (c == '.') {
+      if (!key.empty())
+        flushKey();
+      else if (out.empty() || !out.back().isIndex)
+        bad("empty key");
+      ++i;
+    } else if (c == '[') {
+      if (!key.empty()) flushKey();
+      const size_t close = p.find(']', i);
+      if (close == std::string::npos) bad("unclosed '['");
+      out.push_back(indexSegment(p.substr(i + 1, close - i - 1)));
+      i = close + 1;
+    } else {
+      key += c;
+      ++i;
+    }
+  }
+  if (!key.empty()) flushKey();
+  if (out.empty()) bad("empty key path");
+  return out;
+}
+
+// Replaces or creates the node at o.path; returns the canonical key path (`forces[1].ks`).
+std::string applyOverride(YAML::Node root, const Override& o, const std::string& file) {
+  const std::vector<PathSegment> segments = splitPath(o, file);
+  YAML::Node value;
+  try {
+    value = YAML::Load(o.value);
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(file, 0, 0, o.path, fmt::format("cannot read the value '{}': {}", o.value, e.msg), o.origin);
+  }
+  if (o.value.empty() || value.IsNull()) {
+    throw ScenarioError(file, 0, 0, o.path, "expected a value after '='", o.origin);
+  }
+  std::string canonical;
+  YAML::Node cur = root;
+  for (size_t k = 0; k < segments.size(); ++k) {
+    const PathSegment& s = segments[k];
+    const bool last = k + 1 == segments.size();
+    auto fail = [&](const std::string& why) {
+      throw ScenarioError(file, 0, 0, canonical.empty() ? o.path : canonical, why, o.origin);
+    };
+    if (s.isIndex) {
+      if (!cur.IsSequence()) fail(fmt::format("cannot index [{}]: this is not a list", s.index));
+      if (s.index >= cur.size())
+        fail(fmt::format("index {} is out of range: the list has {} entries", s.index, cur.size()));
+      canonical += fmt::format("[{}]", s.index);
+      if (last) {
+        cur[s.index] = value;
+      } else {
+        YAML::Node next = cur[s.index];
+        cur.reset(next);
+      }
+    } else {
+      if (!(cur.IsMap() || cur.IsNull() || !cur.IsDefined())) {
+        fail(fmt::format("cannot set key '{}': this is not a map", s.key));
+      }
+      canonical += canonical.empty() ? s.key : "." + s.key;
+      if (last) {
+        cur[s.key] = value;
+      } else {
+        YAML::Node next = cur[s.key];
+        cur.reset(next);
+      }
+    }
+  }
+  return canonical;
+}
+
+Scenario loadDocument(const std::string& text, const std::string& file, std::span<const Override> overrides) {
+  std::vector<YAML::Node> documents;
+  try {
+    documents = YAML::LoadAll(text);
+  } catch (const YAML::ParserException& e) {
+    throw ScenarioError(file, e.mark.line + 1, e.mark.column + 1, "", fmt::format("YAML syntax error: {}", e.msg));
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(file, 0, 0, "", fmt::format("cannot read YAML: {}", e.msg));
+  }
+  if (documents.empty() || documents[0].IsNull()) {
+    throw ScenarioError(file, 1, 1, "", "the file is empty; expected a scenario (a map with at least 'name')");
+  }
+  if (documents.size() > 1) {
+    const YAML::Mark m = documents[1].Mark();
+    throw ScenarioError(file, m.is_null() ? 0 : m.line + 1, m.is_null() ? 0 : m.column + 1, "",
+                        "the file holds more than one YAML document; expected one scenario");
+  }
+  YAML::Node root = documents[0];
+  if (!root.IsMap()) {
+    const YAML::Mark m = root.Mark();
+    throw ScenarioError(file, m.line + 1, m.column + 1, "", "expected a scenario (a map of keys such as 'name')");
+  }
+  detail::Source source{file, {}};
+  for (const Override& o : overrides) source.overridden.emplace_back(applyOverride(root, o, file), o.origin);
+  try {
+    return Loader(std::move(source)).load(root);
+  } catch (const YAML::Exception& e) {
+    // The loader only uses non-throwing conversions; anything yaml-cpp still throws is reported
+    // at its mark rather than escaping as an unexplained exception.
+    throw ScenarioError(file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",
+                        fmt::format("cannot read YAML: {}", e.msg));
+  }
+}
+
+}  // namespace
+
+long SimulationSettings::steps() const {
+  // The tolerance keeps 10 s / 0.01 s at 1000 steps despite rounding in the division.
+  return std::max(1L, long(std::ceil(duration / dt - 1e-9)));
+}
+
+Override parseOverride(std::string_view text) {
+  const std::string origin = fmt::format("--set {}", text);
+  const size_t eq = text.find('=');
+  if (eq == std::string_view::npos || eq == 0) {
+    throw ScenarioError(
+        "command line", 0, 0, "",
+        fmt::format("expected --set path.to.key=value, as in --set simulation.dt=0.005; got '{}'", text));
+  }
+  return Override{std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), origin};
+}
+
+ScenarioError::ScenarioError(std::string file, int line, int column, std::string keyPath, std::string message,
+                             std::string origin)
+    : std::runtime_error([&] {
+        std::string where = file;
+        if (line > 0) where += fmt::format(":{}:{}", line, column);
+        std::string key = keyPath;
+        if (!origin.empty()) key += key.empty() ? fmt::format("({})", origin) : fmt::format(" (from {})", origin);
+        return key.empty() ? fmt::format("{}: error: {}", where, message)
+                           : fmt::format("{}: error: {}: {}", where, key, message);
+      }()),
+      file_(std::move(file)),
+      line_(line),
+      column_(column),
+      keyPath_(std::move(keyPath)),
+      message_(std::move(message)),
+      origin_(std::move(origin)) {}
+
+Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides) {
+  return loadDocument(std::string(text), file, overrides);
+}
+
+Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides) {
+  const std::string name = file.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw ScenarioError(name, 0, 0, "", "cannot read: it is a directory");
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ScenarioError(name, 0, 0, "", fmt::format("cannot open: {}", std::strerror(errno)));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ScenarioError(name, 0, 0, "", fmt::format("cannot read: {}", std::strerror(errno)));
+  return loadDocument(text.str(), name, overrides);
+}
+
+std::string pointName(const Model& model, int point) {
+  const int n = model.layout.numParticles;
+  if (point < n) {
+    const std::string& name = model.particleNames[size_t(point)];
+    return name.empty() ? fmt::format("#{}", point) : name;
+  }
+  const std::string& name = model.bodyNames[size_t(point - n)];
+  return name.empty() ? fmt::format("body#{}", point - n) : name;
+}
+
+size_t springCount(const System& system) {
+  size_t n = 0;
+  for (const auto& f : system.forces()) {
+    if (const auto* springs = dynamic_cast<const DampedSpringForce*>(f.get())) n += springs->size();
+  }
+  return n;
+}
+
+size_t mouseScriptCount(const System& system) {
+  size_t n = 0;
+  for (const auto& f : system.forces()) n += dynamic_cast<const MouseSpringForce*>(f.get()) ? 1 : 0;
+  return n;
+}
+
+}  // namespace particles::scenario

@@ -1,0 +1,89 @@
+#pragma once
+// Scenario files (DESIGN §11): YAML in, a built System plus the simulation and render settings out.
+// Every key, type, unit, default and range is documented in docs/scenarios.md.
+//
+// Bad input never crashes and never half-builds: the loader throws ScenarioError naming the file,
+// the line and column (1-based) and the key path (`forces[2].ks`), and saying what was expected.
+
+#include <filesystem>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "integrators.hpp"
+#include "system.hpp"
+
+namespace particles::scenario {
+
+struct SimulationSettings {
+  Integrator integrator = Integrator::Rk4;
+  double dt = 0.01;        // s, > 0
+  double duration = 10.0;  // simulated seconds, > 0
+  // Steps of dt that cover the duration (the last one may end up to dt − ε past it).
+  long steps() const;
+};
+
+struct RenderSettings {
+  int width = 1280;                // px
+  int height = 720;                // px
+  double fps = 60.0;               // frames per simulated second; also the --stats/--trace tick of `run`
+  Vec2 viewCenter = Vec2::Zero();  // world point at the centre of the frame, m
+  double viewHeight = 3.0;         // world units shown vertically, m
+};
+
+// `--set path.to.key=value`: replaces (or creates) the node at `path` with `value` parsed as YAML,
+// before any validation. `origin` is how the user wrote it, for error messages.
+struct Override {
+  std::string path;  // `simulation.dt`, `forces[1].ks` or `forces.1.ks`
+  std::string value;
+  std::string origin;
+};
+
+// Parses `path=value` as given to --set; throws ScenarioError when there is no `=` or no path.
+Override parseOverride(std::string_view text);
+
+class ScenarioError : public std::runtime_error {
+ public:
+  // line, column: 1-based; 0 when the error has no position (an unreadable file, a --set value).
+  // origin: the command-line option the offending value came from, or empty.
+  ScenarioError(std::string file, int line, int column, std::string keyPath, std::string message,
+                std::string origin = {});
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+  int column() const { return column_; }
+  const std::string& keyPath() const { return keyPath_; }
+  const std::string& message() const { return message_; }
+  const std::string& origin() const { return origin_; }
+
+ private:
+  std::string file_;
+  int line_, column_;
+  std::string keyPath_, message_, origin_;
+};
+
+struct Scenario {
+  std::string name;
+  std::string description;
+  std::string file;  // as given to the loader, for messages
+  SimulationSettings simulation;
+  RenderSettings render;
+  System system;
+};
+
+// Reads and validates a scenario file; overrides are applied first, in order.
+Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides = {});
+// The same from text in memory; `file` only labels messages.
+Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides = {});
+
+// How a reference spells point `point` of the system (DESIGN §12 --trace): the particle's or
+// body's name, `cloth[3][4]` for a grid particle, `#index` for an unnamed particle and `body#j`
+// for an unnamed rigid body.
+std::string pointName(const Model& model, int point);
+
+// Counts for summaries.
+size_t springCount(const System& system);
+size_t mouseScriptCount(const System& system);
+
+}  // namespace particles::scenario

@@ -1,0 +1,206 @@
+#include "yaml_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "scenario.hpp"
+
+namespace particles::scenario::detail {
+
+namespace {
+
+// yaml-cpp tags a quoted scalar "!" and a plain one "?": `mass: "1"` is a string, not a number.
+bool isQuoted(const YAML::Node& node) {
+  return node.Tag() == "!";
+}
+
+bool startsWithPath(const std::string& path, const std::string& prefix) {
+  if (path.size() < prefix.size() || path.compare(0, prefix.size(), prefix) != 0) return false;
+  return path.size() == prefix.size() || path[prefix.size()] == '.' || path[prefix.size()] == '[';
+}
+
+size_t editDistance(std::string_view a, std::string_view b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      const size_t cost = std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1;
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + cost});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::string formatNumber(double x) {
+  return fmt::format("{}", x);
+}
+
+std::string closestName(std::string_view word, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t bestDistance = std::max<size_t>(2, word.size() / 3) + 1;  // at most a third of the word wrong
+  for (const std::string& c : candidates) {
+    const size_t d = editDistance(word, c);
+    if (d < bestDistance) {
+      bestDistance = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+Value::Value(const Source& source, YAML::Node node, std::string path, YAML::Mark fallback)
+    : source_(&source), node_(std::move(node)), path_(std::move(path)), fallback_(fallback) {}
+
+void Value::fail(const std::string& message) const {
+  for (const auto& [overridden, origin] : source_->overridden) {
+    if (startsWithPath(path_, overridden)) throw ScenarioError(source_->file, 0, 0, path_, message, origin);
+  }
+  YAML::Mark mark = fallback_;
+  if (!isNull() && !node_.Mark().is_null()) mark = node_.Mark();
+  if (mark.is_null()) throw ScenarioError(source_->file, 0, 0, path_, message);
+  throw ScenarioError(source_->file, mark.line + 1, mark.column + 1, path_, message);
+}
+
+std::string Value::found() const {
+  if (isNull()) return "got nothing";
+  if (isMap()) return "got a map";
+  if (isSequence()) return fmt::format("got a list of {}", node_.size());
+  return fmt::format("got '{}'", node_.Scalar());
+}
+
+double Value::number() const {
+  if (isScalar() && !isQuoted(node_)) {
+    double x = 0.0;
+    if (YAML::convert<double>::decode(node_, x)) {
+      if (!std::isfinite(x)) fail(fmt::format("expected a finite number, {}", found()));
+      return x;
+    }
+  }
+  fail(fmt::format("expected a number, {}", found()));
+}
+
+double Value::positive() const {
+  const double x = number();
+  if (!(x > 0.0)) fail(fmt::format("expected a number > 0, got {}", formatNumber(x)));
+  return x;
+}
+
+double Value::nonNegative() const {
+  const double x = number();
+  if (!(x >= 0.0)) fail(fmt::format("expected a number ≥ 0, got {}", formatNumber(x)));
+  return x;
+}
+
+double Value::inRange(double lo, double hi) const {
+  const double x = number();
+  if (!(x >= lo && x <= hi)) {
+    fail(fmt::format("expected a number from {} to {}, got {}", formatNumber(lo), formatNumber(hi), formatNumber(x)));
+  }
+  return x;
+}
+
+long long Value::integer(long long lo, long long hi) const {
+  long long n = 0;
+  if (!isScalar() || isQuoted(node_) || !YAML::convert<long long>::decode(node_, n)) {
+    fail(fmt::format("expected a whole number, {}", found()));
+  }
+  if (n < lo || n > hi) fail(fmt::format("expected a whole number from {} to {}, got {}", lo, hi, n));
+  return n;
+}
+
+bool Value::boolean() const {
+  bool b = false;
+  if (!isScalar() || isQuoted(node_) || !YAML::convert<bool>::decode(node_, b)) {
+    fail(fmt::format("expected true or false, {}", found()));
+  }
+  return b;
+}
+
+std::string Value::string() const {
+  if (!isScalar() || node_.Scalar().empty()) fail(fmt::format("expected a text, {}", found()));
+  return node_.Scalar();
+}
+
+Vec2 Value::vec2() const {
+  if (!isSequence() || node_.size() != 2) fail(fmt::format("expected a pair [x, y], {}", found()));
+  return {item(0).number(), item(1).number()};
+}
+
+Vec2 Value::positiveVec2() const {
+  if (!isSequence() || node_.size() != 2) fail(fmt::format("expected a pair [x, y], {}", found()));
+  return {item(0).positive(), item(1).positive()};
+}
+
+std::vector<Value> Value::items() const {
+  if (!isSequence()) fail(fmt::format("expected a list, {}", found()));
+  std::vector<Value> out;
+  for (size_t i = 0; i < node_.size(); ++i) out.push_back(item(i));
+  return out;
+}
+
+Value Value::item(size_t i) const {
+  const YAML::Mark mark = node_.Mark().is_null() ? fallback_ : node_.Mark();
+  return child(node_[i], fmt::format("{}[{}]", path_, i), mark);
+}
+
+Value Value::child(YAML::Node node, std::string path, YAML::Mark fallback) const {
+  return Value(*source_, std::move(node), std::move(path), fallback);
+}
+
+MapReader::MapReader(const Value& value, std::initializer_list<std::string_view> allowed) : value_(value) {
+  if (!value.isMap()) value.fail(fmt::format("expected a map of keys, {}", value.found()));
+  std::vector<std::string> allowedNames(allowed.begin(), allowed.end());
+  const std::string prefix = value.path().empty() ? "" : value.path() + ".";
+  for (auto it = value.node().begin(); it != value.node().end(); ++it) {
+    const YAML::Node key = it->first;
+    const std::string name = key.IsScalar() ? key.Scalar() : std::string("?");
+    const Value keyValue = value.child(key, prefix + name, key.Mark());
+    Value entry = value.child(it->second, prefix + name, key.Mark());
+    if (!key.IsScalar()) keyValue.fail("expected a key name, got a list or map as key");
+    if (std::find(allowedNames.begin(), allowedNames.end(), name) == allowedNames.end()) {
+      const std::string suggestion = closestName(name, allowedNames);
+      std::string message = fmt::format("unknown key '{}'", name);
+      if (!suggestion.empty()) message += fmt::format("; did you mean '{}'?", suggestion);
+      message += fmt::format(" (valid keys here: {})", fmt::join(allowedNames, ", "));
+      keyValue.fail(message);
+    }
+    for (const auto& [seen, seenValue] : entries_) {
+      if (seen == name) keyValue.fail(fmt::format("duplicate key '{}'", name));
+    }
+    entries_.emplace_back(name, std::move(entry));
+  }
+}
+
+bool MapReader::has(std::string_view key) const {
+  return std::any_of(entries_.begin(), entries_.end(),
+                     [&](const auto& e) { return e.first == key && !e.second.isNull(); });
+}
+
+std::optional<Value> MapReader::optional(std::string_view key) const {
+  for (const auto& [name, v] : entries_) {
+    if (name == key && !v.isNull()) return v;
+  }
+  return std::nullopt;
+}
+
+Value MapReader::required(std::string_view key) const {
+  for (const auto& [name, v] : entries_) {
+    if (name == key) {
+      if (v.isNull()) v.fail(fmt::format("'{}' needs a value", key));
+      return v;
+    }
+  }
+  const std::string path = value_.path().empty() ? std::string(key) : value_.path() + "." + std::string(key);
+  value_.child(value_.node(), path, YAML::Mark::null_mark()).fail(fmt::format("missing required key '{}'", key));
+}
+
+}  // namespace particles::scenario::detail

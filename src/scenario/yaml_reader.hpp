@@ -1,0 +1,84 @@
+#pragma once
+// Typed, validating access to a yaml-cpp tree (internal to the scenario loader). A Value is a node
+// together with its key path (`forces[2].ks`) and position, so that every failure can name the
+// file, line, column and key, and say what was expected and what was found.
+
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "state.hpp"
+
+namespace particles::scenario::detail {
+
+// Where the tree came from: the file, and the key paths that --set replaced (errors in those name
+// the option instead of a line of the file).
+struct Source {
+  std::string file;
+  std::vector<std::pair<std::string, std::string>> overridden;  // canonical key path, origin
+};
+
+class Value {
+ public:
+  Value(const Source& source, YAML::Node node, std::string path, YAML::Mark fallback);
+
+  const YAML::Node& node() const { return node_; }
+  const std::string& path() const { return path_; }
+  bool isNull() const { return !node_.IsDefined() || node_.IsNull(); }
+  bool isMap() const { return node_.IsMap(); }
+  bool isSequence() const { return node_.IsSequence(); }
+  bool isScalar() const { return node_.IsScalar(); }
+
+  // Throws ScenarioError at this value's position and key path.
+  [[noreturn]] void fail(const std::string& message) const;
+  // "got 'abc'", "got a list", "got a map", "got nothing".
+  std::string found() const;
+
+  double number() const;                       // any finite number
+  double positive() const;                     // > 0
+  double nonNegative() const;                  // ≥ 0
+  double inRange(double lo, double hi) const;  // lo ≤ x ≤ hi
+  long long integer(long long lo, long long hi) const;
+  bool boolean() const;
+  std::string string() const;        // a non-empty scalar
+  Vec2 vec2() const;                 // [x, y]
+  Vec2 positiveVec2() const;         // [x, y], both > 0
+  std::vector<Value> items() const;  // the elements of a sequence (fails otherwise)
+  Value item(size_t i) const;
+  // Another node of the same tree.
+  Value child(YAML::Node node, std::string path, YAML::Mark fallback) const;
+
+ private:
+  const Source* source_;
+  YAML::Node node_;
+  std::string path_;
+  YAML::Mark fallback_;  // the key's position: yaml-cpp gives null values no reliable mark
+};
+
+// A map with a fixed set of allowed keys. The constructor rejects anything but a map, unknown
+// keys (suggesting the closest allowed one) and duplicate keys.
+class MapReader {
+ public:
+  MapReader(const Value& value, std::initializer_list<std::string_view> allowed);
+
+  const Value& self() const { return value_; }
+  bool has(std::string_view key) const;
+  std::optional<Value> optional(std::string_view key) const;  // absent or null: nothing
+  Value required(std::string_view key) const;
+
+ private:
+  Value value_;
+  std::vector<std::pair<std::string, Value>> entries_;
+};
+
+// The allowed name closest to `word` by edit distance, or empty when none is close.
+std::string closestName(std::string_view word, const std::vector<std::string>& candidates);
+
+std::string formatNumber(double x);  // shortest round-trip form
+
+}  // namespace particles::scenario::detail

@@ -1,0 +1,66 @@
+#pragma once
+// Helpers shared by the render tests: a scratch directory and small scenes.
+
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <set>
+#include <string>
+
+#include "gravity_force.hpp"
+#include "render/image.hpp"
+#include "render/renderer.hpp"
+#include "system.hpp"
+
+namespace particles::test {
+
+// A fresh directory under the system's temp dir, removed with everything in it at scope exit.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    static std::atomic<int> n{0};
+    path_ = std::filesystem::temp_directory_path() /
+            ("particles_render_test_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+  // Names of the entries directly in the directory.
+  std::set<std::string> entries() const { return listing(path_); }
+  static std::set<std::string> listing(const std::filesystem::path& dir) {
+    std::set<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir)) names.insert(e.path().filename().string());
+    return names;
+  }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Three free particles at asymmetric positions under gravity: falls, so frames differ in time.
+inline System fallingParticles() {
+  SystemBuilder b;
+  for (const Vec2& p : {Vec2(0.2, 0.6), Vec2(-0.7, -0.3), Vec2(0.9, -0.8)}) {
+    ParticleSpec spec;
+    spec.pos = p;
+    b.addParticle(spec);
+  }
+  b.emplaceForce<GravityForce>(Vec2(0, -1.0));
+  return b.build();
+}
+
+// Where camera and image size put a world point, in pixels from the top-left (x right, y down).
+inline Vec2 projectToPixel(const Vec2& p, const render::Camera& camera, int width, int height) {
+  const double scale = double(height) / camera.height;
+  return {0.5 * width + (p.x() - camera.center.x()) * scale, 0.5 * height - (p.y() - camera.center.y()) * scale};
+}
+
+inline bool sameRgb(const std::uint8_t* px, render::Rgb c) { return px[0] == c.r && px[1] == c.g && px[2] == c.b; }
+
+}  // namespace particles::test

@@ -1,0 +1,264 @@
+// The `particles` program end to end (DESIGN §12): exit codes, summaries, the --stats and --trace
+// CSVs, and that a failed run leaves no output behind. Runs the binary built next to this test.
+#include <doctest/doctest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+// A scratch directory per test case, removed afterwards.
+struct Scratch {
+  fs::path dir;
+  Scratch() {
+    static int counter = 0;
+    dir = fs::temp_directory_path() /
+          ("particles_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(dir);
+  }
+  ~Scratch() {
+    std::error_code ignored;
+    fs::remove_all(dir, ignored);
+  }
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir / name) << text;
+    return dir / name;
+  }
+  std::vector<std::string> files() const {
+    std::vector<std::string> out;
+    for (const auto& e : fs::directory_iterator(dir)) out.push_back(e.path().filename().string());
+    return out;
+  }
+
+  // Runs `particles ARGS` in this directory.
+  Result run(const std::string& args) const {
+    const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
+    REQUIRE_MESSAGE(fs::exists(exe), "the particles program is not built next to the tests: " << exe);
+    const std::string command =
+        "cd '" + dir.string() + "' && '" + exe.string() + "' " + args + " > stdout.txt 2> stderr.txt";
+    const int status = std::system(command.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(dir / "stdout.txt");
+    r.err = slurp(dir / "stderr.txt");
+    fs::remove(dir / "stdout.txt");
+    fs::remove(dir / "stderr.txt");
+    return r;
+  }
+};
+
+const std::string kPendulum =
+    "name: pendulum\n"
+    "simulation: {integrator: rk4, dt: 0.01, duration: 1}\n"
+    "render: {fps: 10}\n"
+    "particles:\n"
+    "  - {name: pivot, pos: [0, 0], fixed: true}\n"
+    "  - {name: bob, pos: [1, 0]}\n"
+    "rigid_bodies:\n"
+    "  - {name: box, pos: [3, 0], size: [1, 1], omega: 2}\n"
+    "forces:\n"
+    "  - {type: gravity}\n"
+    "constraints:\n"
+    "  - {type: rod, a: pivot, b: bob}\n";
+
+// A stiff spring with explicit Euler at a huge step: blows up in a few steps.
+const std::string kExploding =
+    "name: boom\n"
+    "simulation: {integrator: euler, dt: 0.1, duration: 10}\n"
+    "particles:\n"
+    "  - {name: a, pos: [0, 0], fixed: true}\n"
+    "  - {name: b, pos: [1.1, 0]}\n"
+    "forces:\n"
+    "  - {type: spring, a: a, b: b, rest: 1, ks: 10000}\n";
+
+}  // namespace
+
+TEST_CASE("cli: --version and --help") {
+  Scratch s;
+  Result r = s.run("--version");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("particles 0.") != std::string::npos);
+  r = s.run("--help");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("check") != std::string::npos);
+  CHECK(r.out.find("run") != std::string::npos);
+  CHECK(r.out.find("Exit codes") != std::string::npos);
+  for (const char* command : {"check", "run"}) {
+    CAPTURE(command);
+    r = s.run(std::string(command) + " --help");
+    CHECK(r.code == 0);
+    CHECK(r.out.find("Examples:") != std::string::npos);
+    CHECK(r.out.find("--set") != std::string::npos);
+  }
+}
+
+TEST_CASE("cli: usage errors exit with 2") {
+  Scratch s;
+  CHECK(s.run("").code == 2);
+  CHECK(s.run("frobnicate x.yaml").code == 2);
+  CHECK(s.run("run").code == 2);
+  s.write("p.yaml", kPendulum);
+  CHECK(s.run("run p.yaml --no-such-option").code == 2);
+  const Result r = s.run("run p.yaml --trace-only bob");  // --trace-only needs --trace
+  CHECK(r.code == 2);
+}
+
+TEST_CASE("cli: check accepts a valid scenario and rejects a bad one with file, line and key") {
+  Scratch s;
+  s.write("p.yaml", kPendulum);
+  Result r = s.run("check p.yaml");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("ok") != std::string::npos);
+  CHECK(r.out.find("2 particles") != std::string::npos);
+
+  s.write("bad.yaml", "name: x\nsimulation:\n  dt: -1\n");
+  r = s.run("check bad.yaml");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("bad.yaml:3:") != std::string::npos);
+  CHECK(r.err.find("simulation.dt") != std::string::npos);
+
+  r = s.run("check missing.yaml");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("missing.yaml") != std::string::npos);
+
+  r = s.run("check p.yaml --set simulation.dt=0");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("--set simulation.dt=0") != std::string::npos);
+  CHECK(s.run("check p.yaml --integrator rk5").code == 2);
+  CHECK(s.run("check p.yaml --set nodot").code == 2);
+}
+
+TEST_CASE("cli: run prints a summary and writes the stats and trace CSVs") {
+  Scratch s;
+  s.write("p.yaml", kPendulum);
+  const Result r = s.run("run p.yaml --stats stats.csv --trace trace.csv");
+  REQUIRE(r.code == 0);
+  CHECK(r.err.empty());  // no progress when stderr is not a terminal
+  for (const char* field : {"particles", "springs", "constraints", "integrator", "dt", "steps", "wall time",
+                            "sim/wall ratio", "final energy", "constraint error", "penetration"}) {
+    CAPTURE(field);
+    CHECK(r.out.find(field) != std::string::npos);
+  }
+  CHECK(r.out.find("100") != std::string::npos);  // steps
+
+  const auto stats = lines(slurp(s.dir / "stats.csv"));
+  REQUIRE(stats.size() == 1 + 11);  // header, t = 0, 0.1, …, 1.0
+  CHECK(stats[0] == "t,kinetic,potential,total,constraint_error,penetration");
+  CHECK(stats[1].rfind("0,", 0) == 0);
+  CHECK(stats.back().rfind("1,", 0) == 0);
+
+  const auto trace = lines(slurp(s.dir / "trace.csv"));
+  REQUIRE(trace.size() == 1 + 11 * 3);
+  CHECK(trace[0] == "t,name,x,y,vx,vy,angle,omega");
+  CHECK(trace[1] == "0,pivot,0,0,0,0,0,0");
+  CHECK(trace[2] == "0,bob,1,0,0,0,0,0");
+  CHECK(trace[3] == "0,box,3,0,0,0,0,2");
+
+  // Full precision: fmt's shortest round-trip form, so energies carry ~17 significant digits.
+  std::istringstream row(stats[5]);
+  std::string cell;
+  int cells = 0;
+  size_t longest = 0;
+  while (std::getline(row, cell, ',')) {
+    ++cells;
+    CHECK_NOTHROW((void)std::stod(cell));
+    longest = std::max(longest, cell.size());
+  }
+  CHECK(longest >= 15);
+  CHECK(cells == 6);
+
+  // Only what was written: no temporary files left behind.
+  auto files = s.files();
+  std::sort(files.begin(), files.end());
+  CHECK(files == std::vector<std::string>{"p.yaml", "stats.csv", "trace.csv"});
+}
+
+TEST_CASE("cli: runs are deterministic") {
+  Scratch s;
+  s.write("p.yaml", kPendulum);
+  REQUIRE(s.run("run p.yaml --quiet --stats a.csv --trace ta.csv").code == 0);
+  REQUIRE(s.run("run p.yaml --quiet --stats b.csv --trace tb.csv").code == 0);
+  CHECK(slurp(s.dir / "a.csv") == slurp(s.dir / "b.csv"));
+  CHECK(slurp(s.dir / "ta.csv") == slurp(s.dir / "tb.csv"));
+}
+
+TEST_CASE("cli: --trace-only, --quiet and the shorthands") {
+  Scratch s;
+  s.write("p.yaml", kPendulum);
+  Result r = s.run("run p.yaml --quiet --trace t.csv --trace-only bob,box --dt 0.005 --duration 0.5");
+  REQUIRE(r.code == 0);
+  CHECK(r.out.empty());
+  CHECK(r.err.empty());
+  const auto trace = lines(slurp(s.dir / "t.csv"));
+  REQUIRE(trace.size() == 1 + 6 * 2);
+  CHECK(trace[1].rfind("0,bob,", 0) == 0);
+  CHECK(trace[2].rfind("0,box,", 0) == 0);
+  CHECK(trace.back().rfind("0.5,box,", 0) == 0);
+
+  r = s.run("run p.yaml --trace t2.csv --trace-only nobody");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("nobody") != std::string::npos);
+  CHECK(!fs::exists(s.dir / "t2.csv"));
+
+  r = s.run("run p.yaml --integrator euler --set simulation.duration=0.1");
+  CHECK(r.code == 0);
+  CHECK(r.out.find("euler") != std::string::npos);
+}
+
+TEST_CASE("cli: bad input writes nothing and exits with 2") {
+  Scratch s;
+  s.write("bad.yaml", "name: x\nparticles:\n  - {pos: [0, 0], mass: -1}\n");
+  const Result r = s.run("run bad.yaml --stats stats.csv --trace trace.csv");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("bad.yaml:3:") != std::string::npos);
+  CHECK(r.err.find("particles[0].mass") != std::string::npos);
+  CHECK(s.files() == std::vector<std::string>{"bad.yaml"});
+}
+
+TEST_CASE("cli: an explosion prints the simulation error, exits with 1 and removes the outputs") {
+  Scratch s;
+  s.write("boom.yaml", kExploding);
+  const Result r = s.run("run boom.yaml --stats stats.csv --trace trace.csv");
+  CHECK(r.code == 1);
+  CHECK(r.err.find("exploded") != std::string::npos);
+  CHECK(s.files() == std::vector<std::string>{"boom.yaml"});
+}
+
+TEST_CASE("cli: an unwritable output exits with 3 and leaves nothing") {
+  Scratch s;
+  s.write("p.yaml", kPendulum);
+  Result r = s.run("run p.yaml --stats no/such/dir/stats.csv");
+  CHECK(r.code == 3);
+  CHECK(r.err.find("no/such/dir/stats.csv") != std::string::npos);
+  r = s.run("run p.yaml --stats ok.csv --trace .");  // a directory
+  CHECK(r.code == 3);
+  CHECK(s.files() == std::vector<std::string>{"p.yaml"});
+}

@@ -1,0 +1,226 @@
+// Figures written to SVG and PNG: what is drawn (read back from the SVG), where text lands (in
+// the PNG's pixels), byte-identical output, and the failures writeFigure reports.
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "plot/errors.hpp"
+#include "plot/figure.hpp"
+#include "plot/palette.hpp"
+#include "plot_support.hpp"
+
+using namespace particles::plot;
+using particles::test::decodePng;
+using particles::test::parseXml;
+using particles::test::pathShape;
+using particles::test::sameColour;
+using particles::test::styleProperty;
+using particles::test::TempDir;
+using particles::test::XmlElement;
+
+namespace {
+
+// A zigzag: cairo merges collinear line segments, so a straight line would have fewer vertices.
+Series line(std::string name, std::size_t points, double slope) {
+  Series s{std::move(name), {}, {}};
+  for (std::size_t i = 0; i < points; ++i) {
+    s.x.push_back(0.5 * i);
+    s.y.push_back(1.0 + slope * i + 0.3 * (i % 2));
+  }
+  return s;
+}
+
+// One linear panel with three series of 5, 7 and 9 points.
+Figure threeSeries(std::string title, bool named) {
+  Figure f;
+  f.title = std::move(title);
+  f.chart = LineChart{"t [s]",
+                      {Panel{"energy [J]",
+                             AxisScale::Linear,
+                             {line(named ? "alpha" : "", 5, 1.0), line(named ? "beta" : "", 7, -0.5),
+                              line(named ? "gamma" : "", 9, 0.25)}}}};
+  return f;
+}
+
+std::vector<XmlElement> svgOf(const Figure& f) {
+  return parseXml(renderFigure(f, ImageFormat::Svg));
+}
+
+// <path> elements stroked (or filled) in series colour `index`.
+std::vector<XmlElement> pathsIn(const std::vector<XmlElement>& svg, const char* property, std::size_t index) {
+  std::vector<XmlElement> out;
+  for (const XmlElement& e : svg) {
+    if (e.name == "path" && sameColour(styleProperty(e, property), seriesColour(index))) out.push_back(e);
+  }
+  return out;
+}
+
+// cairo draws text as glyph outlines, each shown by one <use> element per glyph drawn.
+long glyphsDrawn(const std::vector<XmlElement>& svg) {
+  return std::count_if(svg.begin(), svg.end(), [](const XmlElement& e) { return e.name == "use"; });
+}
+
+}  // namespace
+
+TEST_CASE("plot: SVG has one line per series, with every point, plus one legend swatch") {
+  const auto svg = svgOf(threeSeries("Three lines", true));
+  const std::size_t points[] = {5, 7, 9};
+  for (std::size_t i = 0; i < 3; ++i) {
+    CAPTURE(i);
+    const auto stroked = pathsIn(svg, "stroke", i);
+    REQUIRE(stroked.size() == 2);  // the data line and its legend swatch
+    const auto longest = std::max_element(stroked.begin(), stroked.end(), [](const auto& a, const auto& b) {
+      return pathShape(a).vertices < pathShape(b).vertices;
+    });
+    CHECK(pathShape(*longest).vertices == static_cast<int>(points[i]));
+    CHECK(pathShape(*longest).subpaths == 1);
+  }
+  CHECK(pathsIn(svg, "stroke", 3).empty());  // no fourth colour
+}
+
+TEST_CASE("plot: SVG carries the title and draws legend and title text as glyphs") {
+  const auto svg = svgOf(threeSeries("Lines", true));
+  const auto title = std::find_if(svg.begin(), svg.end(), [](const XmlElement& e) { return e.name == "title"; });
+  REQUIRE(title != svg.end());
+  CHECK(title->text == "Lines");
+  // Names without spaces, so the count doesn't depend on whether cairo emits a glyph for a space.
+  const long legendGlyphs = std::string("alphabetagamma").size();
+  CHECK(glyphsDrawn(svg) - glyphsDrawn(svgOf(threeSeries("Lines", false))) == legendGlyphs);
+  CHECK(glyphsDrawn(svg) - glyphsDrawn(svgOf(threeSeries("", true))) == std::string("Lines").size());
+}
+
+TEST_CASE("plot: a log axis leaves out non-positive points and breaks the line there") {
+  Figure f;
+  // Runs: {1, 10}, {100} (alone between two gaps: drawn as a dot), {1000, 10⁴}.
+  Series s{"decades", {0, 1, 2, 3, 4, 5, 6}, {1, 10, -1, 100, 0, 1000, 1e4}};
+  f.chart = LineChart{"x", {Panel{"y", AxisScale::Log, {s}}}};
+  const auto svg = svgOf(f);
+  const auto stroked = pathsIn(svg, "stroke", 0);
+  REQUIRE(stroked.size() == 2);
+  const auto data = pathShape(stroked[0]).vertices > 2 ? stroked[0] : stroked[1];
+  CHECK(pathShape(data).subpaths == 2);
+  CHECK(pathShape(data).vertices == 4);
+  CHECK(pathsIn(svg, "fill", 0).size() == 1);  // the dot at 100
+
+  // The same data on a linear axis is one unbroken line of 7 points.
+  std::get<LineChart>(f.chart).panels[0].yScale = AxisScale::Linear;
+  const auto linear = pathsIn(svgOf(f), "stroke", 0);
+  REQUIRE(linear.size() == 2);
+  CHECK(std::max(pathShape(linear[0]).vertices, pathShape(linear[1]).vertices) == 7);
+}
+
+TEST_CASE("plot: empty, constant and all-non-positive data still make a well-formed figure") {
+  Figure f;
+  f.chart = LineChart{
+      "t [s]",
+      {Panel{"empty", AxisScale::Linear, {}}, Panel{"constant", AxisScale::Linear, {{"c", {0, 1, 2}, {3, 3, 3}}}},
+       Panel{"zero", AxisScale::Linear, {{"z", {0, 1}, {0, 0}}}},
+       Panel{"log of nothing", AxisScale::Log, {{"n", {0, 1}, {0, -2}}}}}};
+  for (ImageFormat format : {ImageFormat::Svg, ImageFormat::Png}) CHECK_FALSE(renderFigure(f, format).empty());
+  CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
+  f.chart = LineChart{};
+  CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
+  f.chart = BarChart{};
+  CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
+}
+
+TEST_CASE("plot: bar chart draws one bar per positive value and a legend swatch per group") {
+  Figure f;
+  f.chart = BarChart{"integrator",
+                     "dt [s]",
+                     {"euler", "midpoint", "rk4"},
+                     {{"stable", {0.002, 0.03, 0.3}}, {"smooth", {0.0005, 0.0, 0.1}}}};
+  const auto svg = svgOf(f);
+  CHECK(pathsIn(svg, "fill", 0).size() == 3 + 1);
+  CHECK(pathsIn(svg, "fill", 1).size() == 2 + 1);  // 0 is not drawable on the log axis: "n/a"
+
+  std::get<BarChart>(f.chart).groups.pop_back();
+  CHECK(pathsIn(svgOf(f), "fill", 1).empty());
+}
+
+TEST_CASE("plot: PNG has text where the title and axis labels go and nothing in the margins") {
+  Figure f = threeSeries("A title for the figure", true);
+  const auto png = decodePng(renderFigure(f, ImageFormat::Png));
+  REQUIRE(png.width == 1200);
+  REQUIRE(png.height == 800);
+  const int w = png.width, h = png.height;
+  // Title: centred, its capitals from 20 px down; x label: centred under the bottom tick labels;
+  // y label: rotated, in the leftmost 20–40 px, centred on the panel.
+  CHECK(png.darkPixels(w / 2 - 150, 15, w / 2 + 150, 40) > 100);
+  CHECK(png.darkPixels(w / 2 - 100, h - 50, w / 2 + 100, h - 15) > 40);
+  CHECK(png.darkPixels(15, h / 2 - 100, 40, h / 2 + 100) > 80);
+  // The outer 12 px of the figure are margin: pure background.
+  CHECK(png.inkedPixels(0, 0, w, 12) == 0);
+  CHECK(png.inkedPixels(0, h - 12, w, h) == 0);
+  CHECK(png.inkedPixels(0, 0, 12, h) == 0);
+  CHECK(png.inkedPixels(w - 12, 0, w, h) == 0);
+
+  // The measure tells text from no text: without a title, its band is empty.
+  f.title.clear();
+  const auto untitled = decodePng(renderFigure(f, ImageFormat::Png));
+  CHECK(untitled.darkPixels(w / 2 - 150, 0, w / 2 + 150, 18) == 0);
+}
+
+TEST_CASE("plot: the same figure gives the same bytes, in one process and written twice") {
+  TempDir dir;
+  const Figure f = threeSeries("Twice", true);
+  for (const char* name : {"a.svg", "a.png"}) {
+    CAPTURE(name);
+    writeFigure(f, dir / name);
+    const auto first = particles::test::readBytes(dir / name);
+    writeFigure(f, dir / name);  // replaces it
+    CHECK(particles::test::readBytes(dir / name) == first);
+    CHECK(renderFigure(f, formatForPath(name)) == first);
+  }
+  // Only the two outputs: no temporary left behind.
+  auto entries = dir.entries();
+  std::sort(entries.begin(), entries.end());
+  CHECK(entries == std::vector<std::string>{"a.png", "a.svg"});
+  // The SVG is px-sized like the PNG.
+  const auto svg = parseXml(particles::test::readBytes(dir / "a.svg"));
+  CHECK(svg.front().attributes.at("width") == "1200px");
+}
+
+TEST_CASE("plot: a bad extension or an unwritable path is an error naming it, and leaves no file") {
+  TempDir dir;
+  const Figure f = threeSeries("", true);
+  const auto expectError = [&](const std::filesystem::path& out, const std::string& says) {
+    CAPTURE(out);
+    try {
+      writeFigure(f, out);
+      FAIL("no error");
+    } catch (const FigureError& e) {
+      const std::string message = e.what();
+      CHECK(message.find(out.string()) != std::string::npos);
+      CHECK(message.find(says) != std::string::npos);
+    }
+  };
+  expectError(dir / "figure.jpg", ".svg or .png");
+  expectError(dir / "figure", ".svg or .png");
+  expectError(dir / "missing" / "figure.png", "No such file or directory");
+  std::filesystem::create_directory(dir / "taken.svg");  // rename() cannot replace a directory
+  expectError(dir / "taken.svg", "rename");
+  CHECK(dir.entries() == std::vector<std::string>{"taken.svg"});
+  CHECK(std::filesystem::is_empty(dir / "taken.svg"));
+}
+
+TEST_CASE("plot: a missing font file is an error naming it") {
+  Figure f = threeSeries("", true);
+  f.fontFile = "/nonexistent/fonts/DejaVuSans.ttf";
+  try {
+    renderFigure(f, ImageFormat::Png);
+    FAIL("no error");
+  } catch (const FigureError& e) {
+    CHECK(std::string(e.what()).find("/nonexistent/fonts/DejaVuSans.ttf") != std::string::npos);
+    CHECK(std::string(e.what()).find("fonts-dejavu-core") != std::string::npos);
+  }
+}
+
+TEST_CASE("plot: a series whose x and y differ in length is refused") {
+  Figure f;
+  f.chart = LineChart{"x", {Panel{"y", AxisScale::Linear, {{"bad", {0, 1, 2}, {0, 1}}}}}};
+  CHECK_THROWS_AS(renderFigure(f, ImageFormat::Svg), FigureError);
+}

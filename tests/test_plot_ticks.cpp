@@ -1,0 +1,124 @@
+// Tick selection and number labels for the figures' axes.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "plot/ticks.hpp"
+
+using namespace particles::plot;
+
+namespace {
+
+// The major tick labels as "a | b | c", superscripts after "^": a failing check prints them.
+std::string texts(const AxisTicks& axis) {
+  std::string out;
+  for (const Tick& t : axis.major) {
+    if (!out.empty()) out += " | ";
+    out += t.label.text + (t.label.superscript.empty() ? "" : "^" + t.label.superscript);
+  }
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const std::string& p : parts) out += (out.empty() ? "" : " | ") + p;
+  return out;
+}
+
+const std::string kMinus = "\u2212";
+
+}  // namespace
+
+TEST_CASE("plot ticks: nice steps are 1, 2 or 5 times a power of ten") {
+  CHECK(niceStep(0.13) == doctest::Approx(0.2));
+  CHECK(niceStep(1.0) == doctest::Approx(1.0));
+  CHECK(niceStep(2.1) == doctest::Approx(5.0));
+  CHECK(niceStep(7.0) == doctest::Approx(10.0));
+  CHECK(niceStep(3e-7) == doctest::Approx(5e-7));
+  CHECK(niceStep(1000.0) == doctest::Approx(1000.0));
+}
+
+TEST_CASE("plot ticks: a linear y axis widens to whole steps") {
+  const AxisTicks axis = linearTicks(0.3, 9.8, 6, true);
+  CHECK(axis.lo == 0);
+  CHECK(axis.hi == doctest::Approx(10));
+  CHECK(texts(axis) == joined({"0", "2", "4", "6", "8", "10"}));
+  CHECK(axis.minor.empty());
+}
+
+TEST_CASE("plot ticks: a linear x axis keeps the data range and labels the steps inside it") {
+  const AxisTicks axis = linearTicks(0.05, 9.7, 6, false);
+  CHECK(axis.lo == 0.05);
+  CHECK(axis.hi == 9.7);
+  CHECK(texts(axis) == joined({"2", "4", "6", "8"}));
+}
+
+TEST_CASE("plot ticks: labels share their decimals and use a real minus sign") {
+  CHECK(texts(linearTicks(-0.3, 0.3, 7, true)) ==
+        joined({kMinus + "0.3", kMinus + "0.2", kMinus + "0.1", "0.0", "0.1", "0.2", "0.3"}));
+  CHECK(texts(linearTicks(0, 2.5, 6, true)) == joined({"0.0", "0.5", "1.0", "1.5", "2.0", "2.5"}));
+}
+
+TEST_CASE("plot ticks: tiny and huge linear values are labelled in scientific form") {
+  CHECK(texts(linearTicks(0, 3e-7, 4, true)) ==
+        joined({"0", "10^" + kMinus + "7", "2\u00d710^" + kMinus + "7", "3\u00d710^" + kMinus + "7"}));
+  CHECK(texts(linearTicks(0, 4e6, 3, true)) == joined({"0", "2\u00d710^6", "4\u00d710^6"}));
+}
+
+TEST_CASE("plot ticks: constant, zero and non-finite ranges fall back to something drawable") {
+  const AxisTicks constant = linearTicks(5, 5, 5, true);
+  CHECK(constant.lo <= 4.5);
+  CHECK(constant.hi >= 5.5);
+  CHECK(constant.major.size() >= 2);
+  const AxisTicks zero = linearTicks(0, 0, 5, true);
+  CHECK(zero.lo == 0);
+  CHECK(zero.hi == 1);
+  const AxisTicks nan = linearTicks(NAN, 1, 5, true);
+  CHECK(nan.lo == 0);
+  CHECK(nan.hi == 1);
+}
+
+TEST_CASE("plot ticks: a log axis spans whole decades with minor ticks at 2..9") {
+  const AxisTicks axis = logTicks(3e-5, 2e-2, 10);
+  CHECK(axis.lo == doctest::Approx(1e-5));
+  CHECK(axis.hi == doctest::Approx(1e-1));
+  CHECK(texts(axis) == joined({"10^" + kMinus + "5", "10^" + kMinus + "4", "10^" + kMinus + "3", "10^" + kMinus + "2",
+                               "10^" + kMinus + "1"}));
+  CHECK(axis.minor.size() == 4 * 8);
+  CHECK(axis.minor.front() == doctest::Approx(2e-5));
+}
+
+TEST_CASE("plot ticks: a log axis over many decades labels every k-th one") {
+  const AxisTicks axis = logTicks(1e-12, 1e3, 6);  // 15 decades, at most 6 labels: every 3rd
+  CHECK(axis.lo == doctest::Approx(1e-12));
+  CHECK(axis.hi == doctest::Approx(1e3));
+  CHECK(axis.major.size() == 6);
+  CHECK(axis.major[1].label.superscript == kMinus + "9");
+  CHECK(axis.minor.size() == 15 - 5);  // the unlabelled decades
+}
+
+TEST_CASE("plot ticks: a log axis within one decade, or without positive data, still shows a decade") {
+  const AxisTicks within = logTicks(2e-3, 3e-3, 5);
+  CHECK(within.lo == doctest::Approx(1e-3));
+  CHECK(within.hi == doctest::Approx(1e-2));
+  const AxisTicks exact = logTicks(1e-3, 1e-3, 5);
+  CHECK(exact.lo == doctest::Approx(1e-3));
+  CHECK(exact.hi == doctest::Approx(1e-2));
+  const AxisTicks none = logTicks(-1, 0, 5);
+  CHECK(none.lo == 1);
+  CHECK(none.hi == 10);
+}
+
+TEST_CASE("plot ticks: values are labelled with their significant digits") {
+  CHECK(formatValue(0.0125, 3) == Label{"0.0125", ""});
+  CHECK(formatValue(0.00052, 2) == Label{"0.00052", ""});
+  CHECK(formatValue(0.29, 3) == Label{"0.29", ""});
+  CHECK(formatValue(9.996, 3) == Label{"10", ""});
+  CHECK(formatValue(3.2e-5, 2) == Label{"3.2\u00d710", kMinus + "5"});
+  CHECK(formatValue(123456, 3) == Label{"1.23\u00d710", "5"});
+  CHECK(formatValue(-0.5, 3) == Label{kMinus + "0.5", ""});
+  CHECK(formatValue(0, 3) == Label{"0", ""});
+}

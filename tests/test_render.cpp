@@ -1,0 +1,266 @@
+// The renderer (render/renderer.hpp) and snapshots (render/snapshot.hpp): what lands where in a
+// frame, strain colours, anti-aliasing, determinism, and the errors it reports.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "circular_wire_constraint.hpp"
+#include "damped_spring_force.hpp"
+#include "disk_collider.hpp"
+#include "half_plane_collider.hpp"
+#include "horizontal_line_constraint.hpp"
+#include "mouse_spring_force.hpp"
+#include "render/errors.hpp"
+#include "render/renderer.hpp"
+#include "render/snapshot.hpp"
+#include "render_support.hpp"
+#include "rod_constraint.hpp"
+
+using namespace particles;
+using namespace particles::render;
+using particles::test::projectToPixel;
+using particles::test::sameRgb;
+
+namespace {
+
+// Unsets DISPLAY for its lifetime: the renderer must not need an X server.
+class NoDisplay {
+ public:
+  NoDisplay() {
+    if (const char* d = std::getenv("DISPLAY")) saved_ = d;
+    ::unsetenv("DISPLAY");
+  }
+  ~NoDisplay() {
+    if (saved_) ::setenv("DISPLAY", saved_->c_str(), 1);
+  }
+
+ private:
+  std::optional<std::string> saved_;
+};
+
+RenderOptions smallOptions(int msaa = 4) {
+  RenderOptions o;
+  o.width = 320;
+  o.height = 240;
+  o.msaa = msaa;
+  o.particleRadius = {6.0, Length::Unit::pixels};
+  return o;
+}
+
+std::string rgbText(const std::uint8_t* p) {
+  return std::to_string(p[0]) + "," + std::to_string(p[1]) + "," + std::to_string(p[2]);
+}
+
+}  // namespace
+
+TEST_CASE("snapshotOf copies positions, spring strains, constraints, colliders and the active mouse") {
+  SystemBuilder b;
+  const int a = b.addParticle({Vec2(0, 0), Vec2::Zero(), 1.0, true, "a"});
+  const int c = b.addParticle({Vec2(1.5, 0), Vec2::Zero(), 1.0, false, "c"});
+  const int d = b.addParticle({Vec2(0, 1), Vec2::Zero(), 1.0, false, "d"});
+  const int body = b.addRigidBody({Vec2(2, 2), Vec2::Zero(), 0.3, 0.0, Vec2(0.4, 0.2), 1.0, "box"});
+  auto& springs = b.emplaceForce<DampedSpringForce>();
+  springs.add({Endpoint::ofParticle(a), Endpoint::ofParticle(c), 1.0, 10, 0});  // |l| 1.5, rest 1: +0.5
+  springs.add({Endpoint::ofParticle(c), Endpoint::ofBody(body, Vec2(0.2, 0)), 4.0, 10, 0});
+  b.emplaceForce<MouseSpringForce>(MouseScript{Endpoint::ofParticle(d), 0.0, 1.0, {Vec2(3, 3)}, 5});
+  b.emplaceForce<MouseSpringForce>(MouseScript{Endpoint::ofParticle(c), 2.0, 3.0, {Vec2(-3, 3)}, 5});  // later
+  b.addConstraint(std::make_unique<RodConstraint>(a, d, 1.0));
+  for (int p : {c, d}) b.addConstraint(std::make_unique<CircularWireConstraint>(p, Vec2(0, 0), 1.5));
+  for (int p : {c, d}) b.addConstraint(std::make_unique<HorizontalLineConstraint>(p, 0.5));
+  b.addCollider(std::make_unique<HalfPlaneCollider>(Vec2(0, 2), -1.5));
+  b.addCollider(std::make_unique<DiskCollider>(Vec2(1, -1), 0.25));
+  const System system = b.build();
+
+  const FrameSnapshot f = snapshotOf(system);
+  CHECK(f.time == 0.0);
+  REQUIRE(f.particles.size() == 3);
+  CHECK(f.particles[1] == Vec2(1.5, 0));
+  CHECK(f.particleFixed == std::vector<char>{1, 0, 0});
+  REQUIRE(f.bodies.size() == 1);
+  CHECK(f.bodies[0].center == Vec2(2, 2));
+  CHECK(f.bodies[0].angle == 0.3);
+  CHECK(f.bodies[0].size == Vec2(0.4, 0.2));
+  REQUIRE(f.springs.size() == 2);
+  CHECK(f.springs[0].strain == doctest::Approx(0.5));
+  // The second spring ends on the body's anchor, rotated by 0.3 rad about its centre.
+  CHECK(f.springs[1].b.x() == doctest::Approx(2 + 0.2 * std::cos(0.3)));
+  CHECK(f.springs[1].b.y() == doctest::Approx(2 + 0.2 * std::sin(0.3)));
+  REQUIRE(f.rods.size() == 1);
+  CHECK(f.rods[0].b == Vec2(0, 1));
+  CHECK(f.wires.size() == 1);  // two beads on one wire: one circle
+  CHECK(f.rails.size() == 1);
+  REQUIRE(f.halfPlanes.size() == 1);
+  CHECK(f.halfPlanes[0].normal == Vec2(0, 1));
+  CHECK(f.disks.size() == 1);
+  REQUIRE(f.mice.size() == 1);  // the second script starts at t = 2
+  CHECK(f.mice[0].target == Vec2(3, 3));
+  CHECK(f.mice[0].grabbed == Vec2(0, 1));
+}
+
+TEST_CASE("particles land where the camera projects them, and nothing else is drawn") {
+  NoDisplay noDisplay;
+  const System system = particles::test::fallingParticles();
+  const FrameSnapshot frame = snapshotOf(system);
+  const RenderOptions options = smallOptions();
+  const Theme colors = theme(options.themeName);
+  // Off-centre camera: a frame drawn shifted, flipped or at the wrong scale puts the discs elsewhere.
+  const Camera camera{Vec2(0.25, -0.1), 2.4};
+  Renderer renderer(options);
+  CHECK(renderer.samples() == 4);
+  const Image& image = renderer.render(frame, camera);
+  REQUIRE(image.width == 320);
+  REQUIRE(image.height == 240);
+
+  std::vector<Vec2> centres;
+  for (const Vec2& p : frame.particles) centres.push_back(projectToPixel(p, camera, image.width, image.height));
+  for (const Vec2& c : centres) {
+    INFO("particle at pixel (" << c.x() << ", " << c.y() << ")");
+    REQUIRE(c.x() > 8);
+    REQUIRE(c.x() < image.width - 8);
+    REQUIRE(c.y() > 8);
+    REQUIRE(c.y() < image.height - 8);
+    // Inside the 6 px disc every sample is covered: exactly the particle colour.
+    for (const Vec2& off : {Vec2(0, 0), Vec2(3, 0), Vec2(-3, 0), Vec2(0, 3), Vec2(0, -3)}) {
+      const std::uint8_t* px = image.pixel(int(c.x() + off.x()), int(c.y() + off.y()));
+      CHECK_MESSAGE(sameRgb(px, colors.particle), "got " << rgbText(px));
+    }
+  }
+  // Every 7th pixel at least 9 px from all discs is pure background.
+  int sampled = 0;
+  for (int y = 0; y < image.height; y += 7) {
+    for (int x = 0; x < image.width; x += 7) {
+      bool nearParticle = false;
+      for (const Vec2& c : centres) nearParticle = nearParticle || (Vec2(x + 0.5, y + 0.5) - c).norm() < 9.0;
+      if (nearParticle) continue;
+      ++sampled;
+      const std::uint8_t* px = image.pixel(x, y);
+      if (!sameRgb(px, colors.background)) FAIL_CHECK("pixel (" << x << ", " << y << ") is " << rgbText(px));
+    }
+  }
+  CHECK(sampled > 1500);
+}
+
+TEST_CASE("world-unit particle radius scales with the camera") {
+  const System system = particles::test::fallingParticles();
+  RenderOptions options = smallOptions();
+  options.particleRadius = {0.05, Length::Unit::world};  // 0.05 · 240 px / 2.4 = 5 px
+  const Theme colors = theme(options.themeName);
+  const Camera camera{Vec2(0.1, -0.1), 2.4};
+  Renderer renderer(options);
+  const Image& image = renderer.render(snapshotOf(system), camera);
+  const Vec2 c = projectToPixel(Vec2(0.2, 0.6), camera, 320, 240);
+  CHECK(sameRgb(image.pixel(int(c.x() + 3), int(c.y())), colors.particle));    // 3.5 px from the centre
+  CHECK(sameRgb(image.pixel(int(c.x() + 7), int(c.y())), colors.background));  // 7.5 px
+}
+
+TEST_CASE("springs are coloured by strain: compressed, at rest, stretched") {
+  // Three horizontal springs of rest length 1, drawn 4 px wide, at world y = 0.6, 0, −0.6.
+  FrameSnapshot f;
+  f.springs = {{Vec2(-0.5, 0.6), Vec2(0.5, 0.6), -0.5}, {Vec2(-0.5, 0), Vec2(0.5, 0), 0.0},
+               {Vec2(-0.5, -0.6), Vec2(0.5, -0.6), 0.5}};
+  RenderOptions options = smallOptions();
+  options.springWidthPx = 4.0;
+  const Theme colors = theme(options.themeName);
+  const Camera camera{Vec2(0, 0), 2.0};
+  Renderer renderer(options);
+  const Image& image = renderer.render(f, camera);
+  auto at = [&](double y) {
+    const Vec2 p = projectToPixel(Vec2(0.1, y), camera, 320, 240);
+    return image.pixel(int(p.x()), int(p.y()));
+  };
+  CHECK_MESSAGE(sameRgb(at(0.6), colors.springCompressed), rgbText(at(0.6)));
+  CHECK_MESSAGE(sameRgb(at(0.0), colors.springRest), rgbText(at(0.0)));
+  CHECK_MESSAGE(sameRgb(at(-0.6), colors.springStretched), rgbText(at(-0.6)));
+  CHECK(sameRgb(at(0.3), colors.background));
+}
+
+TEST_CASE("every kind of shape is drawn in its theme colour") {
+  FrameSnapshot f;
+  f.halfPlanes = {{Vec2(0, 1), -0.8}};  // solid below y = −0.8
+  f.disks = {{Vec2(-0.8, 0.5), 0.2}};
+  f.bodies = {{Vec2(0.8, 0.5), 0.0, Vec2(0.4, 0.2)}};
+  f.rods = {{Vec2(-0.5, -0.3), Vec2(0.5, -0.3)}};
+  f.rails = {{0.8}};
+  f.wires = {{Vec2(0, 0.3), 0.3}};
+  f.mice = {{Vec2(0.0, -0.55), Vec2(-0.9, -0.55)}};
+  for (ThemeName name : {ThemeName::dark, ThemeName::light}) {
+    RenderOptions options = smallOptions();
+    options.themeName = name;
+    options.guideWidthPx = 4.0;  // wide enough to cover whole pixel rows
+    options.springWidthPx = 4.0;
+    const Theme colors = theme(name);
+    const Camera camera{Vec2(0, 0), 2.0};
+    Renderer renderer(options);
+    const Image& image = renderer.render(f, camera);
+    auto at = [&](double x, double y) {
+      const Vec2 p = projectToPixel(Vec2(x, y), camera, 320, 240);
+      return image.pixel(int(p.x()), int(p.y()));
+    };
+    CHECK(sameRgb(at(0.0, 0.9), colors.background));
+    CHECK(sameRgb(at(0.0, -0.95), colors.colliderFill));
+    CHECK(sameRgb(at(-0.8, 0.5), colors.colliderFill));
+    CHECK(sameRgb(at(0.8, 0.5), colors.bodyFill));
+    CHECK(sameRgb(at(0.0, -0.3), colors.rod));
+    CHECK(sameRgb(at(-1.2, 0.8), colors.guide));      // the rail spans the whole width
+    CHECK(sameRgb(at(0.0, 0.0), colors.guide));       // bottom of the wire circle
+    const std::uint8_t* inArrow = image.pixel(160 + 2, 186 + 6);  // tip at (0, −0.55) → pixel (160, 186)
+    CHECK_MESSAGE(sameRgb(inArrow, colors.mouse), rgbText(inArrow));
+    CHECK(sameRgb(at(-0.6, -0.55), colors.mouse));  // the line to the grabbed point
+  }
+  CHECK(theme(ThemeName::dark).background.r < 64);
+  CHECK(theme(ThemeName::light).background.r > 192);
+}
+
+TEST_CASE("multisampling smooths edges; msaa 1 gives hard edges") {
+  const System system = particles::test::fallingParticles();
+  const Camera camera{Vec2(0, 0), 2.4};
+  auto distinctColours = [&](int msaa) {
+    Renderer renderer(smallOptions(msaa));
+    const Image& image = renderer.render(snapshotOf(system), camera);
+    std::set<std::uint32_t> colours;
+    for (size_t i = 0; i < image.rgba.size(); i += 4) {
+      colours.insert(std::uint32_t(image.rgba[i]) << 16 | std::uint32_t(image.rgba[i + 1]) << 8 | image.rgba[i + 2]);
+    }
+    return colours.size();
+  };
+  CHECK(distinctColours(1) == 2);  // background and particle, nothing in between
+  CHECK(distinctColours(4) > 2);   // partially covered pixels at the disc edges
+}
+
+TEST_CASE("the same snapshot renders to the same bytes") {
+  const System system = particles::test::fallingParticles();
+  const FrameSnapshot frame = snapshotOf(system);
+  const Camera camera{Vec2(0.1, 0), 2.4};
+  Renderer renderer(smallOptions());
+  const Image first = renderer.render(frame, camera);
+  FrameSnapshot other = frame;
+  other.particles[0] += Vec2(0.3, 0);
+  const Image moved = renderer.render(other, camera);
+  CHECK(moved != first);
+  CHECK(renderer.render(frame, camera) == first);
+  Renderer second(smallOptions());  // a fresh context too
+  CHECK(second.render(frame, camera) == first);
+}
+
+TEST_CASE("renderer options are checked") {
+  RenderOptions o = smallOptions();
+  o.msaa = 0;
+  CHECK_THROWS_AS(Renderer{o}, std::invalid_argument);
+  o = smallOptions();
+  o.width = 0;
+  CHECK_THROWS_AS(Renderer{o}, std::invalid_argument);
+  o = smallOptions(64);
+  try {
+    Renderer renderer(o);
+    FAIL("msaa 64 accepted");
+  } catch (const RenderError& e) {
+    CHECK(std::string(e.what()).find("GL_MAX_SAMPLES") != std::string::npos);
+  }
+  Renderer renderer(smallOptions());
+  CHECK_THROWS_AS(renderer.render(FrameSnapshot{}, Camera{Vec2::Zero(), 0.0}), std::invalid_argument);
+}

@@ -1,0 +1,94 @@
+// Every scenario in scenarios/ runs headless for its full duration without exploding, with its
+// worst constraint error and penetration below the bounds documented in docs/scenarios.md.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "scenario/runner.hpp"
+#include "scenario/scenario.hpp"
+
+using namespace particles;
+using namespace particles::scenario;
+
+namespace {
+
+const std::filesystem::path kScenarios = std::filesystem::path(PARTICLES_SOURCE_DIR) / "scenarios";
+
+struct Bounds {
+  double constraintError;  // m
+  double penetration;      // m
+};
+
+// docs/scenarios.md, "The demos": measured worst values with about a factor two of headroom.
+// Scenarios not listed here must meet the default.
+const std::map<std::string, Bounds> kBounds{
+    {"soft_body", {0.0, 0.25}},  // unit spacing: a quarter of a spacing at the hardest landing
+    {"collisions", {0.0, 0.1}},  // 0.1 kg balls falling 3 m on k = 1e5
+    {"rigid_chain", {0.0, 0.08}},
+};
+constexpr Bounds kDefault{1e-4, 0.05};
+
+Scenario load(const std::string& name) {
+  return loadScenarioFile(kScenarios / (name + ".yaml"));
+}
+
+}  // namespace
+
+TEST_CASE("demos: every scenario runs its full duration within its bounds") {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(kScenarios)) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++count;
+    const std::string stem = entry.path().stem().string();
+    CAPTURE(stem);
+    Scenario s = loadScenarioFile(entry.path());
+    CHECK(s.name == stem);
+    RunSummary summary;
+    REQUIRE_NOTHROW(summary = runScenario(s));
+    CHECK(summary.steps == s.simulation.steps());
+    CHECK(summary.simulatedTime ==
+          doctest::Approx(s.simulation.duration).epsilon(s.simulation.dt / s.simulation.duration));
+    CHECK(s.system.state().allFinite());
+    const auto it = kBounds.find(stem);
+    const Bounds bounds = it == kBounds.end() ? kDefault : it->second;
+    CAPTURE(summary.worstConstraintError);
+    CAPTURE(summary.worstPenetration);
+    CHECK(summary.worstConstraintError <= std::max(bounds.constraintError, kDefault.constraintError));
+    CHECK(summary.worstPenetration <= bounds.penetration);
+    // Nothing in the demos adds energy except the scripted mouse; without one, total energy must
+    // not grow (beyond the integrator's error, bounded loosely here).
+    if (mouseScriptCount(s.system) == 0) {
+      const double e0 = summary.initialEnergy.total(), e1 = summary.finalEnergy.total();
+      CHECK(e1 <= e0 + 1e-3 * (std::abs(e0) + 1.0));
+    }
+  }
+  CHECK(count >= 8);
+}
+
+TEST_CASE("demos: the cloth is the report's 25×25 with 2×25×24 structural springs on a rail") {
+  const Scenario s = load("cloth");
+  CHECK(s.system.layout().numParticles == 25 * 25);
+  CHECK(springCount(s.system) == 2 * 25 * 24);
+  CHECK(s.system.constraints().size() == 25);
+  CHECK(mouseScriptCount(s.system) >= 1);
+}
+
+TEST_CASE("demos: the soft-body man has 56 particles and 189 springs, RK4 at h = 0.15") {
+  const Scenario s = load("soft_body");
+  CHECK(s.system.layout().numParticles == 56);
+  CHECK(springCount(s.system) == 189);
+  CHECK(s.simulation.integrator == Integrator::Rk4);
+  CHECK(s.simulation.dt == 0.15);
+  CHECK(s.system.colliders().size() == 2);
+  CHECK(mouseScriptCount(s.system) == 2);
+}
+
+TEST_CASE("demos: the rigid chain hangs rectangles on corner springs") {
+  const Scenario s = load("rigid_chain");
+  CHECK(s.system.layout().numBodies >= 3);
+  CHECK(springCount(s.system) >= size_t(2 * (s.system.layout().numBodies - 1) + 1));
+  CHECK(s.system.colliders().size() >= 1);
+}
