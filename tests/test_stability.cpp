@@ -75,9 +75,14 @@ TEST_CASE("a run that explodes, overstretches or shakes is classified as such") 
   CHECK(smooth.verdict == RunVerdict::Stable);
   CHECK(smooth.shakingIndex == doctest::Approx(std::pow(std::sin(0.01 / 2), 2)).epsilon(0.01));
   CHECK(smooth.maxStretch == doctest::Approx(1.05).epsilon(1e-3));
-  // ωh = 1: coarse but resolved, sin²(½) = 0.23 < 0.5.
+  // ωh = 0.5: about 13 steps per period, sin²(¼) = 0.061 < 0.1: smooth.
+  const RunAssessment resolved = assessRun(make, Integrator::Rk4, 0.05, 20.0, criteria);
+  CHECK(resolved.verdict == RunVerdict::Stable);
+  CHECK(resolved.shakingIndex == doctest::Approx(std::pow(std::sin(0.25), 2)).epsilon(0.02));
+  // ωh = 1: six steps per period, sin²(½) = 0.23 > 0.1: shaking, though stable.
   const RunAssessment coarse = assessRun(make, Integrator::Rk4, 0.1, 20.0, criteria);
-  CHECK(coarse.verdict == RunVerdict::Stable);
+  CHECK(coarse.verdict == RunVerdict::Shaking);
+  CHECK(coarse.stable());
   CHECK(coarse.shakingIndex == doctest::Approx(std::pow(std::sin(0.5), 2)).epsilon(0.02));
   const RunAssessment blown = assessRun(make, Integrator::Euler, 0.05, 50.0, criteria);
   CHECK_FALSE(blown.stable());

@@ -30,7 +30,7 @@ struct StabilityOptionsCli {
   std::string plot;  // --plot .svg | .png, empty: none
   double energyTolerance = 0.1;
   double stretchFactor = 1.5;  // × the reference run's largest stretch
-  double shakeThreshold = 0.5;
+  double shakeThreshold = 0.1;
   double minDt = 0;  // 0: the scenario's dt / 1000
   double maxDt = 10.0;
   int threads = 0;
