@@ -104,9 +104,12 @@ RunAssessment assessRun(const SystemFactory& make, Integrator integrator, double
 
 double roundDownTwoDigits(double x) {
   if (!(x > 0.0)) return 0.0;
-  const double unit = std::pow(10.0, std::floor(std::log10(x)) - 1.0);
-  // The small relative slack keeps an exact 0.013 from becoming 0.012 through round-off.
-  return std::floor(x / unit * (1.0 + 1e-12)) * unit;
+  const int exponent = int(std::floor(std::log10(x))) - 1;
+  const double scale = std::pow(10.0, std::abs(exponent));
+  // The small relative slack keeps an exact 0.013 from becoming 0.012 through round-off; dividing
+  // by a power of ten (exact) rather than multiplying by 0.001 (inexact) makes 13e-3 read 0.013.
+  const double digits = std::floor((exponent < 0 ? x * scale : x / scale) * (1.0 + 1e-12));
+  return exponent < 0 ? digits / scale : digits * scale;
 }
 
 double findLargestDt(const std::function<RunAssessment(double)>& run,

@@ -15,6 +15,9 @@ TEST_CASE("two-significant-digit rounding") {
   CHECK(roundDownTwoDigits(2.83) == doctest::Approx(2.8));
   CHECK(roundDownTwoDigits(150.0) == doctest::Approx(150.0));
   CHECK(roundDownTwoDigits(0.0) == 0.0);
+  // Exactly the double nearest the decimal, so CSV files read 0.013, not 0.013000000000000001.
+  CHECK(roundDownTwoDigits(0.0131) == 0.013);
+  CHECK(roundDownTwoDigits(0.00549) == 0.0054);
 }
 
 namespace {
