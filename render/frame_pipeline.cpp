@@ -7,7 +7,9 @@ namespace particles::render {
 FramePipeline::FramePipeline(size_t capacity, Consumer consume)
     : capacity_(std::max<size_t>(1, capacity)), consume_(std::move(consume)), worker_([this] { run(); }) {}
 
-FramePipeline::~FramePipeline() { cancel(); }
+FramePipeline::~FramePipeline() {
+  cancel();
+}
 
 void FramePipeline::rethrowIfFailed() {
   if (error_) std::rethrow_exception(error_);

@@ -13,7 +13,7 @@
 namespace particles::render {
 
 bool isX264Preset(const std::string& name) {
-  static const char* const presets[] = {"ultrafast", "superfast", "veryfast", "faster",  "fast",
+  static const char* const presets[] = {"ultrafast", "superfast", "veryfast", "faster",   "fast",
                                         "medium",    "slow",      "slower",   "veryslow", "placebo"};
   return std::any_of(std::begin(presets), std::end(presets), [&](const char* p) { return name == p; });
 }
@@ -45,6 +45,8 @@ long frameCount(double duration, int fps) {
   return std::max(1L, std::lround(duration * fps));
 }
 
-void setLibavVerbose(bool verbose) { av_log_set_level(verbose ? AV_LOG_INFO : AV_LOG_ERROR); }
+void setLibavVerbose(bool verbose) {
+  av_log_set_level(verbose ? AV_LOG_INFO : AV_LOG_ERROR);
+}
 
 }  // namespace particles::render

@@ -57,7 +57,9 @@ struct VideoOptions {
   // x264 constant rate factor, 0 (lossless) to 51. Line art on a flat background is cheap to
   // encode; 18 keeps thin coloured lines free of visible ringing and chroma smear.
   int crf = 18;
-  std::string preset = "medium";  // x264 preset: ultrafast … placebo
+  // x264 preset: ultrafast … placebo. Encoding alone, 25×25 cloth at 1280×720 on 2 shared cores:
+  // medium about 55 frames/s, veryfast about 114 frames/s with 5 % larger files.
+  std::string preset = "medium";
   // x264 tune, "" for none. "animation" sounds right for line art but measured worse on the 25×25
   // cloth at 1280×720, crf 18: 15 % larger files and no faster than none.
   std::string tune;

@@ -51,7 +51,8 @@ struct Mp4Writer::Encoder {
     const uint8_t* src[1] = {image.rgba.data()};
     const int srcStride[1] = {int(image.stride())};
     const int rows = sws_scale(sws.get(), src, srcStride, 0, image.height, frame->data, frame->linesize);
-    if (rows != image.height) throw OutputError("sws_scale(RGBA → yuv420p) converted " + std::to_string(rows) + " rows");
+    if (rows != image.height)
+      throw OutputError("sws_scale(RGBA → yuv420p) converted " + std::to_string(rows) + " rows");
     frame->pts = index;
     send(frame.get());
   }
@@ -80,8 +81,8 @@ void validate(const FrameWriterOptions& o) {
                                 "' (ultrafast, superfast, veryfast, faster, fast, medium, slow, slower, veryslow, "
                                 "placebo)");
   }
-  static const char* const tunes[] = {"", "film", "animation", "grain", "stillimage", "psnr", "ssim", "fastdecode",
-                                      "zerolatency"};
+  static const char* const tunes[] = {"",     "film", "animation",  "grain",      "stillimage",
+                                      "psnr", "ssim", "fastdecode", "zerolatency"};
   bool tuneOk = false;
   for (const char* t : tunes) tuneOk = tuneOk || o.video.tune == t;
   if (!tuneOk) throw std::invalid_argument("unknown x264 tune '" + o.video.tune + "'");

@@ -1,7 +1,8 @@
 #include "render/png_sequence_writer.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
-#include <regex>
 #include <string>
 #include <system_error>
 
@@ -15,6 +16,19 @@ std::string sequenceFrameName(long index) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%06ld.png", index);
   return name;
+}
+
+std::optional<long> sequenceFrameIndex(const std::string& name) {
+  const std::string prefix = "frame_", suffix = ".png";
+  if (name.size() < prefix.size() + 6 + suffix.size() || !name.starts_with(prefix) || !name.ends_with(suffix)) {
+    return std::nullopt;
+  }
+  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.size() > 18 ||
+      !std::all_of(digits.begin(), digits.end(), [](unsigned char c) { return std::isdigit(c); })) {
+    return std::nullopt;
+  }
+  return std::stol(digits);
 }
 
 PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWriterOptions& options)
@@ -73,11 +87,9 @@ void PngSequenceWriter::finish() {
       if (ec) throw OutputError("cannot move " + name + " into " + directory_.string() + ": " + ec.message());
     }
     // Frames beyond this run's last, left by an earlier run.
-    static const std::regex framePattern(R"(frame_(\d{6,})\.png)");
     for (const fs::directory_entry& entry : fs::directory_iterator(directory_, ec)) {
-      std::smatch m;
-      const std::string name = entry.path().filename().string();
-      if (std::regex_match(name, m, framePattern) && std::stol(m[1].str()) >= frames_) fs::remove(entry.path(), ec);
+      const std::optional<long> index = sequenceFrameIndex(entry.path().filename().string());
+      if (index && *index >= frames_) fs::remove(entry.path(), ec);
     }
     staging_->discard();
   } catch (...) {

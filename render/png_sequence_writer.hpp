@@ -7,6 +7,9 @@
 // directory is created if missing (its parent must exist) and removed again on abort if it was
 // created here and is empty.
 
+#include <optional>
+#include <string>
+
 #include "render/frame_pipeline.hpp"
 #include "render/frame_writer.hpp"
 #include "render/pending_output.hpp"
@@ -15,6 +18,8 @@ namespace particles::render {
 
 // "frame_000042.png"
 std::string sequenceFrameName(long index);
+// 42 for "frame_000042.png" (six or more digits); nothing for any other name.
+std::optional<long> sequenceFrameIndex(const std::string& name);
 
 class PngSequenceWriter final : public FrameWriter {
  public:

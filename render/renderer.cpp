@@ -217,8 +217,16 @@ Renderer::Renderer(const RenderOptions& options) : impl_(std::make_unique<Impl>(
   m.image = Image(options.width, options.height);
 
   // No depth, stencil or accumulation buffers: shapes are drawn opaque in painter's order.
-  const int attribs[] = {OSMESA_FORMAT,     OSMESA_RGBA, OSMESA_DEPTH_BITS, 0, OSMESA_STENCIL_BITS,
-                         0,                 OSMESA_ACCUM_BITS, 0, OSMESA_PROFILE, OSMESA_COMPAT_PROFILE,
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         0,
+                         OSMESA_STENCIL_BITS,
+                         0,
+                         OSMESA_ACCUM_BITS,
+                         0,
+                         OSMESA_PROFILE,
+                         OSMESA_COMPAT_PROFILE,
                          0};
   m.context.reset(OSMesaCreateContextAttribs(attribs, nullptr));
   if (!m.context) {
@@ -237,8 +245,8 @@ Renderer::Renderer(const RenderOptions& options) : impl_(std::make_unique<Impl>(
     checkGl("glGetIntegerv(GL_MAX_SAMPLES)");
     if (options.msaa > maxSamples) {
       throw RenderError("msaa " + std::to_string(options.msaa) + " is more than this OpenGL (" +
-                        reinterpret_cast<const char*>(glGetString(GL_RENDERER)) + ") supports: GL_MAX_SAMPLES = " +
-                        std::to_string(maxSamples));
+                        reinterpret_cast<const char*>(glGetString(GL_RENDERER)) +
+                        ") supports: GL_MAX_SAMPLES = " + std::to_string(maxSamples));
     }
     glGenFramebuffers(1, &m.fbo);
     glGenRenderbuffers(1, &m.colorBuffer);
@@ -261,16 +269,19 @@ Renderer::Renderer(const RenderOptions& options) : impl_(std::make_unique<Impl>(
 
 Renderer::~Renderer() {
   if (!impl_ || !impl_->context) return;
-  if (impl_->fbo != 0 &&
-      OSMesaMakeCurrent(impl_->context.get(), impl_->image.rgba.data(), GL_UNSIGNED_BYTE, impl_->image.width,
-                        impl_->image.height)) {
+  if (impl_->fbo != 0 && OSMesaMakeCurrent(impl_->context.get(), impl_->image.rgba.data(), GL_UNSIGNED_BYTE,
+                                           impl_->image.width, impl_->image.height)) {
     glDeleteFramebuffers(1, &impl_->fbo);
     glDeleteRenderbuffers(1, &impl_->colorBuffer);
   }
 }
 
-const RenderOptions& Renderer::options() const { return impl_->options; }
-int Renderer::samples() const { return impl_->samples; }
+const RenderOptions& Renderer::options() const {
+  return impl_->options;
+}
+int Renderer::samples() const {
+  return impl_->samples;
+}
 
 void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
   const Theme& c = colors;
@@ -331,7 +342,7 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
   }
 
   const float radius = float(options.particleRadius.unit == Length::Unit::world ? options.particleRadius.value * scale
-                                                                                 : options.particleRadius.value);
+                                                                                : options.particleRadius.value);
   for (size_t i = 0; i < f.particles.size(); ++i) {
     const P2 p = toPixel(f.particles[i]);
     if (i < f.particleFixed.size() && f.particleFixed[i]) {
@@ -349,7 +360,7 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
     const P2 tip = toPixel(mouse.target);
     mesh.line(tip, toPixel(mouse.grabbed), float(options.springWidthPx), c.mouse);
     auto at = [&](float x, float y) -> P2 { return {tip[0] + x, tip[1] + y}; };
-    const std::vector<P2> arrow = {at(0, 0),      at(0, 17),     at(4.5f, 13), at(7.5f, 20),
+    const std::vector<P2> arrow = {at(0, 0),      at(0, 17),       at(4.5f, 13), at(7.5f, 20),
                                    at(10.0f, 19), at(7.0f, 12.2f), at(12, 12.2f)};
     mesh.triangle(arrow[0], arrow[1], arrow[2], c.mouse);
     mesh.triangle(arrow[0], arrow[2], arrow[5], c.mouse);

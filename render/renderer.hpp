@@ -9,7 +9,11 @@
 //
 // Every shape is built on the CPU as triangles in pixel coordinates (lines as quads of a given
 // pixel width, discs as fans), drawn opaque in a fixed order: the same snapshot gives the same
-// pixels every time (tests check byte equality).
+// pixels every time (tests check byte equality; a 1280×720 cloth frame was also byte-identical
+// with LP_NUM_THREADS = 0, 1, 2 and llvmpipe's default).
+//
+// Speed (25×25 cloth, 1280×720, 2 shared cores, Mesa 22.3): about 72 frames/s with msaa 4 and
+// 220–280 frames/s with msaa 1.
 
 #include <memory>
 
@@ -50,9 +54,9 @@ struct Length {
 };
 
 struct RenderOptions {
-  int width = 1280;   // pixels
+  int width = 1280;  // pixels
   int height = 720;
-  int msaa = 4;       // samples per pixel: 1 (off), 2 or 4 (llvmpipe's maximum)
+  int msaa = 4;  // samples per pixel: 1 (off), 2 or 4 (llvmpipe's maximum)
   ThemeName themeName = ThemeName::dark;
   Length particleRadius{4.0, Length::Unit::pixels};
   double springWidthPx = 1.5;

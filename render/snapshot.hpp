@@ -41,7 +41,7 @@ struct BodyBox {  // rigid rectangle
 };
 
 struct HalfPlaneShape {  // solid where normal·p < offset (HalfPlaneCollider's convention)
-  Vec2 normal;  // unit
+  Vec2 normal;           // unit
   double offset;
 };
 
@@ -51,8 +51,8 @@ struct DiskShape {
 };
 
 struct MouseCursor {  // a scripted mouse while it holds its point
-  Vec2 target;   // m(t), where the cursor is
-  Vec2 grabbed;  // the point it pulls
+  Vec2 target;        // m(t), where the cursor is
+  Vec2 grabbed;       // the point it pulls
 };
 
 struct FrameSnapshot {

@@ -19,9 +19,8 @@ void check(int err, const std::string& call) {
 
 Image toRgba(const AVFrame* f) {
   Image image(f->width, f->height);
-  libav::SwsPtr sws(sws_getContext(f->width, f->height, AVPixelFormat(f->format), f->width, f->height,
-                                   AV_PIX_FMT_RGBA, SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT, nullptr,
-                                   nullptr, nullptr));
+  libav::SwsPtr sws(sws_getContext(f->width, f->height, AVPixelFormat(f->format), f->width, f->height, AV_PIX_FMT_RGBA,
+                                   SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT, nullptr, nullptr, nullptr));
   if (!sws) throw OutputError("sws_getContext(→ RGBA): unsupported conversion");
   const int space = f->colorspace == AVCOL_SPC_BT709 ? SWS_CS_ITU709 : SWS_CS_DEFAULT;
   const int fullRange = f->color_range == AVCOL_RANGE_JPEG ? 1 : 0;

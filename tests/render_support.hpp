@@ -61,6 +61,8 @@ inline Vec2 projectToPixel(const Vec2& p, const render::Camera& camera, int widt
   return {0.5 * width + (p.x() - camera.center.x()) * scale, 0.5 * height - (p.y() - camera.center.y()) * scale};
 }
 
-inline bool sameRgb(const std::uint8_t* px, render::Rgb c) { return px[0] == c.r && px[1] == c.g && px[2] == c.b; }
+inline bool sameRgb(const std::uint8_t* px, render::Rgb c) {
+  return px[0] == c.r && px[1] == c.g && px[2] == c.b;
+}
 
 }  // namespace particles::test

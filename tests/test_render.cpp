@@ -129,6 +129,11 @@ TEST_CASE("particles land where the camera projects them, and nothing else is dr
       const std::uint8_t* px = image.pixel(int(c.x() + off.x()), int(c.y() + off.y()));
       CHECK_MESSAGE(sameRgb(px, colors.particle), "got " << rgbText(px));
     }
+    // Pixels whose centres are 6.5–7.5 px out are background: shifted 2 px, the disc covers one.
+    for (const Vec2& off : {Vec2(7, 0), Vec2(-7, 0), Vec2(0, 7), Vec2(0, -7)}) {
+      const std::uint8_t* px = image.pixel(int(c.x() + off.x()), int(c.y() + off.y()));
+      CHECK_MESSAGE(sameRgb(px, colors.background), "got " << rgbText(px) << " at offset " << off.transpose());
+    }
   }
   // Every 7th pixel at least 9 px from all discs is pure background.
   int sampled = 0;
@@ -161,7 +166,8 @@ TEST_CASE("world-unit particle radius scales with the camera") {
 TEST_CASE("springs are coloured by strain: compressed, at rest, stretched") {
   // Three horizontal springs of rest length 1, drawn 4 px wide, at world y = 0.6, 0, −0.6.
   FrameSnapshot f;
-  f.springs = {{Vec2(-0.5, 0.6), Vec2(0.5, 0.6), -0.5}, {Vec2(-0.5, 0), Vec2(0.5, 0), 0.0},
+  f.springs = {{Vec2(-0.5, 0.6), Vec2(0.5, 0.6), -0.5},
+               {Vec2(-0.5, 0), Vec2(0.5, 0), 0.0},
                {Vec2(-0.5, -0.6), Vec2(0.5, -0.6), 0.5}};
   RenderOptions options = smallOptions();
   options.springWidthPx = 4.0;
@@ -206,8 +212,8 @@ TEST_CASE("every kind of shape is drawn in its theme colour") {
     CHECK(sameRgb(at(-0.8, 0.5), colors.colliderFill));
     CHECK(sameRgb(at(0.8, 0.5), colors.bodyFill));
     CHECK(sameRgb(at(0.0, -0.3), colors.rod));
-    CHECK(sameRgb(at(-1.2, 0.8), colors.guide));      // the rail spans the whole width
-    CHECK(sameRgb(at(0.0, 0.0), colors.guide));       // bottom of the wire circle
+    CHECK(sameRgb(at(-1.2, 0.8), colors.guide));                  // the rail spans the whole width
+    CHECK(sameRgb(at(0.0, 0.0), colors.guide));                   // bottom of the wire circle
     const std::uint8_t* inArrow = image.pixel(160 + 2, 186 + 6);  // tip at (0, −0.55) → pixel (160, 186)
     CHECK_MESSAGE(sameRgb(inArrow, colors.mouse), rgbText(inArrow));
     CHECK(sameRgb(at(-0.6, -0.55), colors.mouse));  // the line to the grabbed point

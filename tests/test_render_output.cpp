@@ -85,6 +85,11 @@ TEST_CASE("frame counts and output kinds") {
   CHECK(outputKind("frames/") == OutputKind::pngSequence);
   CHECK_THROWS_AS(outputKind("out.avi"), std::invalid_argument);
   CHECK(sequenceFrameName(42) == "frame_000042.png");
+  CHECK(sequenceFrameIndex("frame_000042.png") == 42);
+  CHECK(sequenceFrameIndex("frame_1234567.png") == 1234567);
+  CHECK_FALSE(sequenceFrameIndex("frame_42.png"));
+  CHECK_FALSE(sequenceFrameIndex("frame_00004x.png"));
+  CHECK_FALSE(sequenceFrameIndex("frame_000042.png.bak"));
 }
 
 TEST_CASE("a rendered frame survives a PNG round trip through libpng") {
