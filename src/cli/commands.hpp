@@ -2,6 +2,7 @@
 // The subcommands of the program (DESIGN §12). Each returns the process exit code:
 // 0 success, 1 simulation failure (explosion), 2 bad input or usage, 3 output failure.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,22 @@ struct StabilityOptionsCli {
   int threads = 0;
 };
 
+struct RenderCommandOptions {
+  std::string output;                  // -o: file.mp4, dir/ or file.png (with --at)
+  std::optional<double> at;            // --at T, s
+  std::string size;                    // --size WxH; empty: the scenario's render.size
+  double fps = 0;                      // --fps; 0: the scenario's render.fps
+  int msaa = 4;                        // samples per pixel, 1 = off
+  std::string theme = "dark";          // dark | light
+  std::string particleRadius;          // "4px" or "0.02m"; empty: the renderer's default
+  int crf = 18;                        // x264 quality (see render/frame_writer.hpp)
+  std::string preset = "medium";       // x264 preset
+  int pngLevel = 6;                    // zlib level for PNG output
+  bool verbose = false;                // libav/x264 log
+  std::string stats, trace;            // CSVs, one row per frame
+  std::vector<std::string> traceOnly;
+};
+
 struct PlotOptions {
   std::string input;   // a --stats CSV
   std::string output;  // .svg | .png
@@ -48,5 +65,6 @@ int checkCommand(const CommonOptions& common);
 int runCommand(const CommonOptions& common, const RunOptions& run);
 int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& options);
 int plotCommand(const PlotOptions& options);
+int renderCommand(const CommonOptions& common, const RenderCommandOptions& options);
 
 }  // namespace particles::cli
