@@ -1,0 +1,187 @@
+// `particles render`, `stability` and `plot` end to end: outputs decoded and checked, bad input
+// and unwritable outputs, interruption, and that a failure leaves no file behind.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "cli_support.hpp"
+#include "render/png_io.hpp"
+#include "render/video_probe.hpp"
+
+using namespace particles::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kSwing =
+    "name: swing\n"
+    "simulation: {integrator: rk4, dt: 0.01, duration: 1}\n"
+    "render: {size: [160, 120], fps: 10, view: {center: [0, -0.5], height: 3}}\n"
+    "particles:\n"
+    "  - {name: pivot, pos: [0, 0], fixed: true}\n"
+    "  - {name: bob, pos: [1, 0]}\n"
+    "forces:\n"
+    "  - {type: gravity}\n"
+    "constraints:\n"
+    "  - {type: rod, a: pivot, b: bob}\n";
+
+// The only files left in the scratch directory besides the scenario.
+std::vector<std::string> outputs(const Scratch& s) {
+  auto files = s.files();
+  files.erase(std::remove(files.begin(), files.end(), "s.yaml"), files.end());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+}  // namespace
+
+TEST_CASE("cli render: an MP4 with fps × duration H.264 frames") {
+  Scratch s;
+  s.write("s.yaml", kSwing);
+  const Result r = s.run("render s.yaml -o swing.mp4 --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  const auto info = particles::render::probeVideo(s.dir / "swing.mp4");
+  CHECK(info.codec == "h264");
+  CHECK(info.pixelFormat == "yuv420p");
+  CHECK(info.width == 160);
+  CHECK(info.height == 120);
+  CHECK(info.frames == 10);
+  CHECK(info.durationSeconds == doctest::Approx(1.0).epsilon(0.1));
+  CHECK(outputs(s) == std::vector<std::string>{"swing.mp4"});
+  // Command-line size and fps win over the scenario's.
+  REQUIRE(s.run("render s.yaml -o big.mp4 --size 320x240 --fps 20 --quiet").code == 0);
+  const auto big = particles::render::probeVideo(s.dir / "big.mp4");
+  CHECK(big.width == 320);
+  CHECK(big.frames == 20);
+}
+
+TEST_CASE("cli render: a PNG sequence, one PNG at --at, and per-frame stats") {
+  Scratch s;
+  s.write("s.yaml", kSwing);
+  Result r = s.run("render s.yaml -o frames/ --stats stats.csv --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  std::vector<std::string> frames;
+  for (const auto& e : fs::directory_iterator(s.dir / "frames")) frames.push_back(e.path().filename().string());
+  std::sort(frames.begin(), frames.end());
+  REQUIRE(frames.size() == 10);
+  CHECK(frames.front() == "frame_000000.png");
+  CHECK(frames.back() == "frame_000009.png");
+  const auto statsLines = lines(slurp(s.dir / "stats.csv"));
+  CHECK(statsLines.front() == "t,kinetic,potential,total,constraint_error,penetration");
+  CHECK(statsLines.size() == 11);  // one row per frame
+  CHECK(statsLines[5].rfind("0.4,", 0) == 0);
+
+  r = s.run("render s.yaml -o at.png --at 0.4 --theme light --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  const auto single = particles::render::readPng(s.dir / "at.png");
+  CHECK(single.width == 160);
+  // The single frame at 0.4 s is the sequence's frame 4 in another theme: same size, and the
+  // dark sequence frame re-rendered with --at matches it byte for byte.
+  REQUIRE(s.run("render s.yaml -o at_dark.png --at 0.4 --quiet").code == 0);
+  CHECK(particles::render::readPng(s.dir / "at_dark.png") ==
+        particles::render::readPng(s.dir / "frames" / "frame_000004.png"));
+}
+
+TEST_CASE("cli render: bad input is exit 2 and writes nothing") {
+  Scratch s;
+  s.write("s.yaml", kSwing);
+  CHECK(s.run("render s.yaml -o one.png").code == 2);                  // a PNG needs --at
+  CHECK(s.run("render s.yaml -o v.mp4 --at 0.5").code == 2);           // --at needs a PNG
+  CHECK(s.run("render s.yaml -o v.mp4 --size 161x120").code == 2);     // odd size for H.264
+  CHECK(s.run("render s.yaml -o v.mp4 --size big").code == 2);
+  CHECK(s.run("render s.yaml -o v.mp4 --theme neon").code == 2);
+  CHECK(s.run("render s.yaml -o v.mp4 --msaa 64").code != 0);
+  CHECK(s.run("render s.yaml -o v.avi").code == 2);
+  CHECK(s.run("render s.yaml -o f.png --at 5").code == 2);             // past the duration
+  const Result r = s.run("render s.yaml -o v.mp4 --set simulation.dt=0");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("simulation.dt") != std::string::npos);
+  CHECK(outputs(s).empty());
+}
+
+TEST_CASE("cli render: an unwritable output is exit 3 and leaves no file") {
+  Scratch s;
+  s.write("s.yaml", kSwing);
+  s.write("blocker", "a file where a directory should be");
+  for (const char* out : {"blocker/v.mp4", "blocker/f.png --at 0.5", "blocker/frames/"}) {
+    CAPTURE(out);
+    const Result r = s.run(std::string("render s.yaml --quiet -o ") + out);
+    CHECK(r.code == 3);
+    CHECK(r.err.find("blocker") != std::string::npos);
+  }
+  auto files = outputs(s);
+  CHECK(files == std::vector<std::string>{"blocker"});
+}
+
+TEST_CASE("cli render: an explosion is exit 1, names the step, and leaves no file") {
+  Scratch s;
+  s.write("s.yaml",
+          "name: boom\n"
+          "simulation: {integrator: euler, dt: 0.1, duration: 10}\n"
+          "render: {size: [64, 64], fps: 10}\n"
+          "particles:\n"
+          "  - {name: a, pos: [0, 0], fixed: true}\n"
+          "  - {name: b, pos: [1.1, 0]}\n"
+          "forces:\n"
+          "  - {type: spring, a: a, b: b, rest: 1, ks: 10000}\n");
+  const Result r = s.run("render s.yaml -o boom.mp4 --quiet");
+  CHECK(r.code == 1);
+  CHECK(r.err.find("exploded at step") != std::string::npos);
+  CHECK(outputs(s).empty());
+}
+
+TEST_CASE("cli render: SIGINT and SIGTERM stop the render and remove the partial output") {
+  Scratch s;
+  // Long enough (600 frames at 640×480) to still be running when the signal arrives.
+  s.write("s.yaml",
+          "name: long\n"
+          "simulation: {integrator: rk4, dt: 0.01, duration: 20}\n"
+          "render: {size: [640, 480], fps: 30}\n"
+          "particles:\n"
+          "  - {name: pivot, pos: [0, 0], fixed: true}\n"
+          "  - {name: bob, pos: [1, 0]}\n"
+          "forces:\n"
+          "  - {type: gravity}\n"
+          "constraints:\n"
+          "  - {type: rod, a: pivot, b: bob}\n");
+  const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
+  for (const auto& [signal, code] : {std::pair{"INT", 130}, std::pair{"TERM", 143}}) {
+    CAPTURE(signal);
+    // Wait until the temporary output exists (the render is under way), then signal it.
+    const std::string command = "cd '" + s.dir.string() + "' && ('" + exe.string() +
+                                "' render s.yaml -o long.mp4 --quiet 2> err.txt & pid=$!; "
+                                "for i in $(seq 100); do ls | grep -q partial && break; sleep 0.05; done; "
+                                "kill -" + signal + " $pid; wait $pid; echo $? > code.txt)";
+    REQUIRE(std::system(command.c_str()) == 0);
+    CHECK(std::stoi(slurp(s.dir / "code.txt")) == code);
+    CHECK(slurp(s.dir / "err.txt").find("interrupted") != std::string::npos);
+    fs::remove(s.dir / "code.txt");
+    fs::remove(s.dir / "err.txt");
+    CHECK(outputs(s).empty());
+  }
+}
+
+TEST_CASE("cli stability and plot: the table as CSV and figures") {
+  Scratch s;
+  s.write("s.yaml", kSwing);
+  Result r = s.run("stability s.yaml --integrators midpoint,rk4 --csv table.csv --plot table.svg --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  const auto rows = lines(slurp(s.dir / "table.csv"));
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[0] == "integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler");
+  CHECK(rows[1].rfind("midpoint,2,", 0) == 0);
+  CHECK(rows[2].rfind("rk4,4,", 0) == 0);
+  CHECK(slurp(s.dir / "table.svg").find("<svg") != std::string::npos);
+  CHECK(s.run("stability s.yaml --integrators verlet").code == 2);
+
+  REQUIRE(s.run("run s.yaml --stats stats.csv --quiet").code == 0);
+  r = s.run("plot stats.csv -o energy.png --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  CHECK(particles::render::readPng(s.dir / "energy.png").width == 1200);
+  s.write("bad.csv", "t,kinetic\n0,1\n");
+  r = s.run("plot bad.csv -o bad.svg");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("bad.csv:1:") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "bad.svg"));
+}
