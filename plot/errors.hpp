@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include <fmt/format.h>
+
 namespace particles::plot {
 
 // A figure could not be drawn or written: names the path or the font file and the failing call,
@@ -23,8 +25,8 @@ class FigureError : public std::runtime_error {
 class CsvError : public std::runtime_error {
  public:
   CsvError(std::filesystem::path file, std::size_t line, std::size_t column, const std::string& message)
-      : std::runtime_error(file.string() + (line > 0 ? ":" + std::to_string(line) + ":" + std::to_string(column) : "") +
-                           ": " + message),
+      : std::runtime_error(line > 0 ? fmt::format("{}:{}:{}: {}", file.string(), line, column, message)
+                                    : fmt::format("{}: {}", file.string(), message)),
         file_(std::move(file)),
         line_(line),
         column_(column) {}
