@@ -91,7 +91,7 @@ void validate(const FrameWriterOptions& o) {
 }  // namespace
 
 Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions& options)
-    : out_(path), width_(options.width), height_(options.height) {
+    : PipelinedFrameWriter(options.width, options.height, "the video"), out_(path) {
   validate(options);
   auto enc = std::make_unique<Encoder>();
   enc->path = path.string();
@@ -167,21 +167,6 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions
 
 Mp4Writer::~Mp4Writer() {
   if (!finished_) abort();
-}
-
-void Mp4Writer::write(const Image& frame) {
-  if (finished_ || aborted_) throw std::logic_error("Mp4Writer::write after finish or abort");
-  if (frame.width != width_ || frame.height != height_) {
-    throw std::invalid_argument("frame is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                                ", the video " + std::to_string(width_) + "x" + std::to_string(height_));
-  }
-  try {
-    pipeline_->push(frame);
-  } catch (...) {
-    abort();
-    throw;
-  }
-  ++frames_;
 }
 
 void Mp4Writer::finish() {

@@ -12,31 +12,26 @@
 
 #include "render/frame_pipeline.hpp"
 #include "render/frame_writer.hpp"
+#include "render/pipelined_frame_writer.hpp"
 #include "render/pending_output.hpp"
 
 namespace particles::render {
 
-class Mp4Writer final : public FrameWriter {
+class Mp4Writer final : public PipelinedFrameWriter {
  public:
   // Opens the encoder and the temporary file and writes the header. Throws std::invalid_argument
   // for bad options, OutputError naming the failing libav call and its message.
   Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions& options);
   ~Mp4Writer() override;  // abort() unless finished
 
-  void write(const Image& frame) override;
   void finish() override;
   void abort() noexcept override;
   const std::filesystem::path& destination() const override { return out_.destination(); }
-  long framesWritten() const override { return frames_; }
 
  private:
   struct Encoder;
   PendingOutput out_;  // first: the temporary file is removed after the encoder has closed it
   std::unique_ptr<Encoder> encoder_;
-  std::unique_ptr<FramePipeline> pipeline_;
-  int width_, height_;
-  long frames_ = 0;
-  bool finished_ = false, aborted_ = false;
 };
 
 }  // namespace particles::render

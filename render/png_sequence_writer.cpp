@@ -32,7 +32,7 @@ std::optional<long> sequenceFrameIndex(const std::string& name) {
 }
 
 PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWriterOptions& options)
-    : directory_(directory), width_(options.width), height_(options.height) {
+    : PipelinedFrameWriter(options.width, options.height, "the sequence"), directory_(directory) {
   if (options.png.compressionLevel < 0 || options.png.compressionLevel > 9) {
     throw std::invalid_argument("PNG compression level " + std::to_string(options.png.compressionLevel) +
                                 " is out of range 0–9");
@@ -59,21 +59,6 @@ PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWrite
 
 PngSequenceWriter::~PngSequenceWriter() {
   if (!finished_) abort();
-}
-
-void PngSequenceWriter::write(const Image& frame) {
-  if (finished_ || aborted_) throw std::logic_error("PngSequenceWriter::write after finish or abort");
-  if (frame.width != width_ || frame.height != height_) {
-    throw std::invalid_argument("frame is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) +
-                                ", the sequence " + std::to_string(width_) + "x" + std::to_string(height_));
-  }
-  try {
-    pipeline_->push(frame);
-  } catch (...) {
-    abort();
-    throw;
-  }
-  ++frames_;
 }
 
 void PngSequenceWriter::finish() {

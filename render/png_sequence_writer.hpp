@@ -12,6 +12,7 @@
 
 #include "render/frame_pipeline.hpp"
 #include "render/frame_writer.hpp"
+#include "render/pipelined_frame_writer.hpp"
 #include "render/pending_output.hpp"
 
 namespace particles::render {
@@ -21,26 +22,20 @@ std::string sequenceFrameName(long index);
 // 42 for "frame_000042.png" (six or more digits); nothing for any other name.
 std::optional<long> sequenceFrameIndex(const std::string& name);
 
-class PngSequenceWriter final : public FrameWriter {
+class PngSequenceWriter final : public PipelinedFrameWriter {
  public:
   // Throws OutputError if the directory cannot be created or is not a directory.
   PngSequenceWriter(const std::filesystem::path& directory, const FrameWriterOptions& options);
   ~PngSequenceWriter() override;  // abort() unless finished
 
-  void write(const Image& frame) override;
   void finish() override;
   void abort() noexcept override;
   const std::filesystem::path& destination() const override { return directory_; }
-  long framesWritten() const override { return frames_; }
 
  private:
   std::filesystem::path directory_;
   bool createdDirectory_ = false;
   std::unique_ptr<PendingOutput> staging_;  // the temporary subdirectory
-  std::unique_ptr<FramePipeline> pipeline_;
-  int width_, height_;
-  long frames_ = 0;
-  bool finished_ = false, aborted_ = false;
 };
 
 }  // namespace particles::render

@@ -1,0 +1,22 @@
+#include "render/pipelined_frame_writer.hpp"
+
+#include <stdexcept>
+
+namespace particles::render {
+
+void PipelinedFrameWriter::write(const Image& frame) {
+  if (finished_ || aborted_) throw std::logic_error("write to " + what_ + " after finish or abort");
+  if (frame.width != width_ || frame.height != height_) {
+    throw std::invalid_argument("frame is " + std::to_string(frame.width) + "x" + std::to_string(frame.height) + ", " +
+                                what_ + " " + std::to_string(width_) + "x" + std::to_string(height_));
+  }
+  try {
+    pipeline_->push(frame);
+  } catch (...) {
+    abort();
+    throw;
+  }
+  ++frames_;
+}
+
+}  // namespace particles::render
