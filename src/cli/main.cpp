@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "commands.hpp"
+#include "compare_command.hpp"
 
 namespace {
 
@@ -27,7 +28,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "particles " PARTICLES_VERSION);
   app.require_subcommand(1);
   app.footer(
-      "Exit codes: 0 success, 1 simulation failure (explosion), 2 bad input or usage, 3 output failure.\n"
+      "Exit codes: 0 success, 1 simulation failure (explosion; for compare: the frames differ),\n"
+      "2 bad input or usage, 3 output failure.\n"
       "Run 'particles COMMAND --help' for the options of a command.\n");
 
   CommonOptions common;
@@ -117,6 +119,9 @@ int main(int argc, char** argv) {
       "  particles stability scenarios/cloth.yaml --csv cloth_dt.csv --plot cloth_dt.svg\n"
       "  particles stability scenarios/soft_body.yaml --integrators midpoint,rk4 --duration 20\n");
 
+  particles::cli::CompareOptions compare;
+  CLI::App* compareCmd = particles::cli::addCompareCommand(app, compare);
+
   particles::cli::PlotOptions plotOptions;
   CLI::App* plotCmd = app.add_subcommand("plot", "Draw the figure of a --stats CSV: energy and constraint error over time");
   plotCmd->add_option("stats", plotOptions.input, "A CSV written by run/render --stats")->required();
@@ -140,6 +145,7 @@ int main(int argc, char** argv) {
     if (check->parsed()) return particles::cli::checkCommand(common);
     if (stabilityCmd->parsed()) return particles::cli::stabilityCommand(common, stability);
     if (plotCmd->parsed()) return particles::cli::plotCommand(plotOptions);
+    if (compareCmd->parsed()) return particles::cli::compareCommand(compare);
     if (renderCmd->parsed()) return particles::cli::renderCommand(common, render);
     return particles::cli::runCommand(common, run);
   } catch (const std::exception& e) {
