@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cstring>
@@ -21,6 +20,8 @@
 #include "plot/canvas.hpp"
 #include "plot/charts.hpp"
 #include "plot/errors.hpp"
+#include "render/errors.hpp"
+#include "render/pending_output.hpp"
 #include "plot/figure.hpp"
 #include "plot/font.hpp"
 
@@ -144,21 +145,17 @@ std::string lowerExtension(const std::filesystem::path& p) {
   return ext;
 }
 
-std::atomic<unsigned> temporaryCounter{0};
-
-// Writes all of `bytes` to `out` through "<out>.partial-<pid>-<n>", renamed over `out` when
-// complete. The temporary is removed on every failure path.
+// Writes all of `bytes` to `out` through a PendingOutput ("<out>.partial-<pid>-<n>", renamed over
+// `out` when complete). The temporary is removed on every failure path.
 void writeFileAtomically(const std::filesystem::path& out, const std::vector<std::uint8_t>& bytes) {
-  std::filesystem::path temporary = out;
-  temporary += ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(temporaryCounter++);
+  render::PendingOutput pending(out);
+  const std::filesystem::path& temporary = pending.temporary();
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) {
     throw FigureError("cannot write figure " + out.string() + ": cannot create " + temporary.string() + ": " +
                       std::strerror(errno));
   }
   const auto fail = [&](const std::string& what, int error) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
     throw FigureError("cannot write figure " + out.string() + ": " + what + ": " + std::strerror(error));
   };
   std::size_t done = 0;
@@ -173,7 +170,11 @@ void writeFileAtomically(const std::filesystem::path& out, const std::vector<std
     done += static_cast<std::size_t>(n);
   }
   if (::close(fd) != 0) fail("close " + temporary.string(), errno);
-  if (::rename(temporary.c_str(), out.c_str()) != 0) fail("rename " + temporary.string(), errno);
+  try {
+    pending.commit();
+  } catch (const render::OutputError& e) {
+    throw FigureError("cannot write figure " + out.string() + ": " + e.what());
+  }
 }
 
 }  // namespace

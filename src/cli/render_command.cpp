@@ -235,9 +235,6 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   } catch (const render::RenderError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kOutputFailed;
-  } catch (const render::OutputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kOutputFailed;
   } catch (const OutputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return kOutputFailed;
