@@ -185,3 +185,31 @@ TEST_CASE("cli stability and plot: the table as CSV and figures") {
   CHECK(r.err.find("bad.csv:1:") != std::string::npos);
   CHECK_FALSE(fs::exists(s.dir / "bad.svg"));
 }
+
+TEST_CASE("cli render --hud: text in the top-left corner, the rest of the frame untouched") {
+  Scratch s;
+  s.write("s.yaml", kSwing);
+  REQUIRE(s.run("render s.yaml -o plain.png --at 0.5 --size 480x360 --quiet").code == 0);
+  const Result r = s.run("render s.yaml -o hud.png --at 0.5 --size 480x360 --hud --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  const auto plain = particles::render::readPng(s.dir / "plain.png");
+  const auto hud = particles::render::readPng(s.dir / "hud.png");
+  REQUIRE(plain.width == hud.width);
+  int changedInCorner = 0, brightInCorner = 0, changedElsewhere = 0;
+  for (int y = 0; y < hud.height; ++y) {
+    for (int x = 0; x < hud.width; ++x) {
+      const size_t i = (size_t(y) * size_t(hud.width) + size_t(x)) * 4;
+      const bool changed = !std::equal(&hud.rgba[i], &hud.rgba[i] + 3, &plain.rgba[i]);
+      // The panel: three lines of 10 px text at 360 px height, inside 400 × 70 px.
+      if (x < 400 && y < 70) {
+        changedInCorner += changed;
+        brightInCorner += hud.rgba[i] > 200 && hud.rgba[i + 1] > 200 && hud.rgba[i + 2] > 200;
+      } else {
+        changedElsewhere += changed;
+      }
+    }
+  }
+  CHECK(changedInCorner > 1000);  // the translucent panel darkens the corner
+  CHECK(brightInCorner > 100);    // light glyphs on it (dark theme)
+  CHECK(changedElsewhere == 0);
+}

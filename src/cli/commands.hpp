@@ -49,6 +49,7 @@ struct RenderCommandOptions {
   std::string preset = "medium";       // x264 preset
   int pngLevel = 6;                    // zlib level for PNG output
   bool verbose = false;                // libav/x264 log
+  bool hud = false;                    // time, integrator, dt and energy drawn on each frame
   std::string stats, trace;            // CSVs, one row per frame
   std::vector<std::string> traceOnly;
 };

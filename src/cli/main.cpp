@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--preset", render.preset, "x264 preset: ultrafast … veryslow")->capture_default_str();
   renderCmd->add_option("--png-level", render.pngLevel, "PNG compression level 0 … 9")->capture_default_str();
   renderCmd->add_flag("--verbose", render.verbose, "Show libav/x264's own log");
+  renderCmd->add_flag("--hud", render.hud, "Draw time, integrator, dt and energy in the top-left corner of every frame");
   renderCmd->add_option("--stats", render.stats, "Write t,kinetic,potential,total,constraint_error,penetration per frame");
   auto* renderTrace = renderCmd->add_option("--trace", render.trace, "Write t,name,x,y,vx,vy,angle,omega per frame");
   renderCmd->add_option("--trace-only", render.traceOnly, "Trace only these objects (comma-separated names)")
@@ -85,6 +86,7 @@ int main(int argc, char** argv) {
       "  particles render scenarios/cloth.yaml -o cloth.mp4\n"
       "  particles render scenarios/soft_body.yaml -o frames/ --size 640x360 --fps 30\n"
       "  particles render scenarios/cloth.yaml -o fig.png --at 2.5 --theme light --size 1600x1200\n"
+      "  particles render scenarios/soft_body.yaml -o man.mp4 --hud   # time, integrator, dt, energy on every frame\n"
       "  particles render scenarios/rigid_chain.yaml -o chain.mp4 --crf 23 --preset veryfast --quiet\n");
 
   particles::cli::StabilityOptionsCli stability;

@@ -8,12 +8,15 @@
 // or the codes of commands.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <optional>
 
 #include "cli_support.hpp"
+#include "plot/errors.hpp"
+#include "plot/text_overlay.hpp"
 #include "csv_recorder.hpp"
 #include "render/errors.hpp"
 #include "render/frame_writer.hpp"
@@ -65,6 +68,39 @@ std::optional<render::Length> parseRadius(const std::string& text) {
   }
   return std::nullopt;
 }
+
+// The frame for the current state, with the --hud text drawn over it when asked for.
+class FramePainter {
+ public:
+  FramePainter(render::Renderer& renderer, const render::Camera& camera, const scenario::Scenario& s, bool hud,
+               bool darkTheme)
+      : renderer_(renderer), camera_(camera), scenario_(s), hud_(hud) {
+    style_.darkBackground = darkTheme;
+    style_.sizePx = std::clamp(renderer.options().height / 40.0, 10.0, 28.0);
+  }
+  const render::Image& paint(const System& system) {
+    const render::Image& image = renderer_.render(render::snapshotOf(system), camera_);
+    if (!hud_) return image;
+    framed_ = image;
+    const EnergyReport e = system.energy();
+    const auto& sim = scenario_.simulation;
+    plot::drawTextOverlay(framed_.rgba.data(), framed_.width, framed_.height,
+                          {fmt::format("t = {:.3f} s", system.time()),
+                           fmt::format("{}, dt = {} s", integratorName(sim.integrator), sim.dt),
+                           fmt::format("E = {:.4g} J (kinetic {:.3g}, potential {:.3g})", e.total(), e.kinetic,
+                                       e.potential)},
+                          style_);
+    return framed_;
+  }
+
+ private:
+  render::Renderer& renderer_;
+  render::Camera camera_;
+  const scenario::Scenario& scenario_;
+  bool hud_;
+  plot::OverlayStyle style_;
+  render::Image framed_;
+};
 
 struct SignalGuard {
   SignalGuard() {
@@ -164,6 +200,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
     auto recorder = CsvRecorder::open(s->system, options.stats, options.trace, options.traceOnly);
     if (!recorder) return kBadInput;
     Stepper stepper(s->system, s->simulation);
+    FramePainter painter(*renderer, camera, *s, options.hud, look.themeName == render::ThemeName::dark);
     const auto start = std::chrono::steady_clock::now();
 
     if (kind == render::OutputKind::png) {
@@ -174,8 +211,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
         return kSimulationFailed;
       }
       recorder->record(s->system);
-      render::writePng(options.output, renderer->render(render::snapshotOf(s->system), camera),
-                       render::PngOptions{options.pngLevel});
+      render::writePng(options.output, painter.paint(s->system), render::PngOptions{options.pngLevel});
       recorder->commit();
       if (!common.quiet) {
         fmt::print("{}: frame at t = {:.6g} s ({}×{}) → {}\n", s->name, s->system.time(), look.width, look.height,
@@ -219,7 +255,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
         return kSimulationFailed;
       }
       recorder->record(s->system);
-      writer->write(renderer->render(render::snapshotOf(s->system), camera));
+      writer->write(painter.paint(s->system));
       progress.update(i + 1, frames, fmt::format("t = {:.2f} s", s->system.time()));
     }
     writer->finish();
@@ -237,6 +273,9 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
     return kOutputFailed;
   } catch (const OutputError& e) {
     fmt::print(stderr, "error: {}\n", e.what());
+    return kOutputFailed;
+  } catch (const plot::FigureError& e) {
+    fmt::print(stderr, "error: --hud: {}\n", e.what());
     return kOutputFailed;
   }
 }
