@@ -4,21 +4,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 
+#include "plot/cairo_ptr.hpp"
 #include "plot/errors.hpp"
 #include "plot/font.hpp"
 
 namespace particles::plot {
 
 namespace {
-
-struct SurfaceDeleter {
-  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-  void operator()(cairo_t* c) const { cairo_destroy(c); }
-};
 
 void check(cairo_status_t status, const char* call) {
   if (status != CAIRO_STATUS_SUCCESS) {
@@ -38,8 +31,8 @@ void drawTextOverlay(std::uint8_t* rgba, int width, int height, const std::vecto
   // Measure on a scratch surface, then draw the panel on one just its size.
   double textWidth = 0;
   {
-    std::unique_ptr<cairo_surface_t, SurfaceDeleter> scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1));
-    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(scratch.get()));
+    SurfacePtr scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1));
+    ContextPtr cr(cairo_create(scratch.get()));
     cairo_set_font_face(cr.get(), font.get());
     cairo_set_font_size(cr.get(), style.sizePx);
     for (const std::string& line : lines) {
@@ -53,11 +46,11 @@ void drawTextOverlay(std::uint8_t* rgba, int width, int height, const std::vecto
   const int panelH = std::min(height, int(std::ceil(lines.size() * lineHeight + 2 * pad - (lineHeight - style.sizePx))));
   const int margin = std::min({int(pad), width - panelW, height - panelH});
 
-  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(
+  SurfacePtr surface(
       cairo_image_surface_create(CAIRO_FORMAT_ARGB32, panelW, panelH));
   check(cairo_surface_status(surface.get()), "cairo_image_surface_create");
   {
-    std::unique_ptr<cairo_t, ContextDeleter> cr(cairo_create(surface.get()));
+    ContextPtr cr(cairo_create(surface.get()));
     const double bg = style.darkBackground ? 0.0 : 1.0, fg = style.darkBackground ? 0.92 : 0.1;
     cairo_set_source_rgba(cr.get(), bg, bg, bg, 0.6);
     cairo_paint(cr.get());

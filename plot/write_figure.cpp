@@ -17,6 +17,7 @@
 #include <variant>
 #include <vector>
 
+#include "plot/cairo_ptr.hpp"
 #include "plot/canvas.hpp"
 #include "plot/charts.hpp"
 #include "plot/errors.hpp"
@@ -28,15 +29,6 @@
 namespace particles::plot {
 
 namespace {
-
-struct SurfaceDeleter {
-  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
-};
-struct ContextDeleter {
-  void operator()(cairo_t* cr) const { cairo_destroy(cr); }
-};
-using SurfacePtr = std::unique_ptr<cairo_surface_t, SurfaceDeleter>;
-using ContextPtr = std::unique_ptr<cairo_t, ContextDeleter>;
 
 // cairo's write callback: appends to a byte vector. Must not throw into C.
 cairo_status_t appendBytes(void* closure, const unsigned char* data, unsigned int length) {
