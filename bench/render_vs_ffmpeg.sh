@@ -7,6 +7,7 @@
 #   end to end:     particles render scenarios/cloth.yaml -o cloth.mp4 (simulate, draw, encode)
 # and prints median wall times, frames per second and their ratio.
 # Usage: bench/render_vs_ffmpeg.sh [BUILD_DIR] [REPS]     (default build-bench, 3)
+#        RENDER_ARGS='--msaa 1' bench/render_vs_ffmpeg.sh   extra options for particles render
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$root/build-bench}"
@@ -29,7 +30,8 @@ enc=(); e2e=()
 for _ in $(seq "$reps"); do
   enc+=("$(seconds ffmpeg -y -v error -f rawvideo -pix_fmt rgba -s 1280x720 -r 60 -i "$tmp/frames.raw" \
            -c:v libx264 -preset medium -crf 18 -pix_fmt yuv420p -movflags +faststart "$tmp/ffmpeg.mp4")")
-  e2e+=("$(seconds "$particles" render "$scenario" -o "$tmp/particles.mp4" --quiet)")
+  # shellcheck disable=SC2086  # RENDER_ARGS is a list of words
+  e2e+=("$(seconds "$particles" render "$scenario" -o "$tmp/particles.mp4" --quiet ${RENDER_ARGS:-})")
 done
 encMed=$(printf '%s\n' "${enc[@]}" | median)
 e2eMed=$(printf '%s\n' "${e2e[@]}" | median)
