@@ -12,6 +12,8 @@ extern "C" {
 #include <memory>
 #include <string>
 
+#include "render/errors.hpp"
+
 namespace particles::render::libav {
 
 // "avcodec_open2(libx264): Invalid argument" from a call name and a negative AVERROR code.
@@ -19,6 +21,11 @@ inline std::string describe(const std::string& call, int err) {
   char buf[AV_ERROR_MAX_STRING_SIZE] = {};
   av_strerror(err, buf, sizeof buf);
   return call + ": " + buf;
+}
+
+// Throws OutputError with describe()'s message when a libav call returned an error code.
+inline void check(int err, const std::string& call) {
+  if (err < 0) throw OutputError(describe(call, err));
 }
 
 struct CodecContextDeleter {

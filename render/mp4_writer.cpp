@@ -11,15 +11,7 @@ extern "C" {
 
 namespace particles::render {
 
-using libav::describe;
-
-namespace {
-
-void check(int err, const std::string& call) {
-  if (err < 0) throw OutputError(describe(call, err));
-}
-
-}  // namespace
+using libav::check;
 
 // Everything libav. Touched by the pipeline's worker while it runs (encodeFrame) and by the
 // calling thread before it starts and after it has stopped (open, flush): never by both at once.

@@ -9,13 +9,9 @@ extern "C" {
 
 namespace particles::render {
 
-using libav::describe;
+using libav::check;
 
 namespace {
-
-void check(int err, const std::string& call) {
-  if (err < 0) throw OutputError(describe(call, err));
-}
 
 Image toRgba(const AVFrame* f) {
   Image image(f->width, f->height);
