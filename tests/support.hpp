@@ -5,6 +5,7 @@
 
 #include "damped_spring_force.hpp"
 #include "gravity_force.hpp"
+#include "grid.hpp"
 #include "solver.hpp"
 #include "system.hpp"
 
@@ -21,6 +22,20 @@ inline ParticleSpec particleAt(double x, double y, double mass = 1.0, bool fixed
   p.mass = mass;
   p.fixed = fixed;
   return p;
+}
+
+// A square grid like the report's cloth: structural springs only, k_s 25 N/m at the top row to
+// 1 N/m at the bottom, k_d 0.2, 0.05 kg per particle, row 0 at (−1, 1).
+inline GridSpec reportCloth(int size, double spacing) {
+  GridSpec spec;
+  spec.name = "cloth";
+  spec.origin = Vec2(-1, 1);
+  spec.cols = size;
+  spec.rows = size;
+  spec.spacing = Vec2(spacing, spacing);
+  spec.mass = 0.05;
+  spec.structural = GridSpringFamily{25.0, 1.0, 0.2};
+  return spec;
 }
 
 // Undamped 1-D harmonic oscillator: a unit mass on a spring (k, rest 1) to a fixed anchor at the

@@ -158,14 +158,7 @@ TEST_CASE("energy is booked by source") {
 TEST_CASE("grids: particle and spring counts, positions, names and graded stiffness") {
   SystemBuilder b;
   auto& springs = b.emplaceForce<DampedSpringForce>();
-  GridSpec spec;
-  spec.name = "cloth";
-  spec.origin = Vec2(-1, 1);
-  spec.cols = 25;
-  spec.rows = 25;
-  spec.spacing = Vec2(0.08, 0.08);
-  spec.mass = 0.05;
-  spec.structural = GridSpringFamily{25.0, 1.0, 0.2};
+  const GridSpec spec = reportCloth(25, 0.08);
   const GridIndices g = addGrid(b, springs, spec);
   CHECK(b.numParticles() == 625);
   CHECK(springs.size() == 2 * 25 * 24);  // the report's cloth

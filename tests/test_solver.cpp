@@ -56,15 +56,7 @@ namespace {
 System clothWithRail() {
   SystemBuilder b;
   auto& springs = b.emplaceForce<DampedSpringForce>();
-  GridSpec spec;
-  spec.name = "cloth";
-  spec.origin = Vec2(-1, 1);
-  spec.cols = 10;
-  spec.rows = 10;
-  spec.spacing = Vec2(0.1, 0.1);
-  spec.mass = 0.05;
-  spec.structural = GridSpringFamily{25.0, 1.0, 0.2};
-  const GridIndices g = addGrid(b, springs, spec);
+  const GridIndices g = addGrid(b, springs, reportCloth(10, 0.1));
   for (int c = 0; c < 10; ++c) b.addConstraint(std::make_unique<RodConstraint>(g.at(0, c), g.at(1, c), 0.1));
   b.emplaceForce<GravityForce>(Vec2(0, -9.81));
   return b.build();

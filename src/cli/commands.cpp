@@ -2,11 +2,8 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cstdio>
-#include <optional>
 
-#include "damped_spring_force.hpp"
 #include "cli_support.hpp"
 #include "csv_recorder.hpp"
 #include "output_file.hpp"

@@ -23,7 +23,7 @@
 #include "render/png_io.hpp"
 #include "render/renderer.hpp"
 #include "render/snapshot.hpp"
-#include "solver.hpp"
+#include "scenario/runner.hpp"
 
 namespace particles::cli {
 
@@ -31,29 +31,6 @@ namespace {
 
 volatile std::sig_atomic_t stopSignal = 0;
 extern "C" void onStopSignal(int signal) { stopSignal = signal; }
-
-// Steps the system until its time is the last multiple of dt at or before `t`.
-class Stepper {
- public:
-  Stepper(System& system, const scenario::SimulationSettings& sim)
-      : system_(system), solver_(sim.integrator), dt_(sim.dt), t0_(system.time()) {}
-  void advanceTo(double t) {
-    // Rounding: a frame time that is a multiple of dt up to 1e-9 of a step counts as reached.
-    const long target = long(std::floor((t - t0_) / dt_ + 1e-9));
-    while (steps_ < target) {
-      solver_.doStep(system_, dt_);
-      ++steps_;
-      system_.setTime(t0_ + double(steps_) * dt_);  // t as k·dt, free of summed rounding
-    }
-  }
-  long steps() const { return steps_; }
-
- private:
-  System& system_;
-  Solver solver_;
-  double dt_, t0_;
-  long steps_ = 0;
-};
 
 std::optional<render::Length> parseRadius(const std::string& text) {
   // "4px" (pixels, also a bare number) or "0.02m" (world units).
@@ -199,7 +176,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
     }
     auto recorder = CsvRecorder::open(s->system, options.stats, options.trace, options.traceOnly);
     if (!recorder) return kBadInput;
-    Stepper stepper(s->system, s->simulation);
+    scenario::Stepper stepper(s->system, s->simulation);
     FramePainter painter(*renderer, camera, *s, options.hud, look.themeName == render::ThemeName::dark);
     const auto start = std::chrono::steady_clock::now();
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace particles::scenario {
 
@@ -15,13 +16,23 @@ Sample sampleOf(const System& system) {
           system.penetration(system.state())};
 }
 
+void Stepper::step() {
+  solver_.doStep(system_, dt_);
+  ++steps_;
+  system_.setTime(t0_ + double(steps_) * dt_);  // t as k·dt, free of summed rounding
+}
+
+void Stepper::advanceTo(double t) {
+  const long target = long(std::floor((t - t0_) / dt_ + 1e-9));
+  while (steps_ < target) step();
+}
+
 RunSummary runScenario(Scenario& scenario, const RunObserver& observer) {
   System& system = scenario.system;
   const SimulationSettings& sim = scenario.simulation;
   const double fps = scenario.render.fps;
   const long steps = sim.steps();
-  const double t0 = system.time();
-  Solver solver(sim.integrator);
+  Stepper stepper(system, sim);
 
   RunSummary summary;
   summary.initialEnergy = system.energy();
@@ -33,12 +44,11 @@ RunSummary runScenario(Scenario& scenario, const RunObserver& observer) {
   long nextTick = 1;
   bool tickedLast = true;
   for (long step = 1; step <= steps; ++step) {
-    solver.doStep(system, sim.dt);
-    system.setTime(t0 + double(step) * sim.dt);  // t as k·dt, free of summed rounding
+    stepper.step();
     summary.worstConstraintError = std::max(summary.worstConstraintError, system.constraintError(system.state()));
     summary.worstPenetration = std::max(summary.worstPenetration, system.penetration(system.state()));
     // Tick k falls at t0 + k / fps; a tick is due once the step reaches it (to rounding).
-    const double elapsed = system.time() - t0 + 1e-9 * sim.dt;
+    const double elapsed = stepper.elapsed() + 1e-9 * sim.dt;
     tickedLast = false;
     if (double(nextTick) / fps <= elapsed) {
       while (double(nextTick) / fps <= elapsed) ++nextTick;
@@ -50,7 +60,7 @@ RunSummary runScenario(Scenario& scenario, const RunObserver& observer) {
   if (!tickedLast && observer.onTick) observer.onTick(system);
   summary.wallSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.steps = steps;
-  summary.simulatedTime = system.time() - t0;
+  summary.simulatedTime = stepper.elapsed();
   summary.finalEnergy = system.energy();
   return summary;
 }
