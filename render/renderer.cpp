@@ -63,8 +63,8 @@ void validate(const RenderOptions& o) {
     throw std::invalid_argument("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                                 " is out of range (1 to 16384 pixels per side)");
   }
-  if (o.msaa < 1 || o.msaa > 64) {
-    throw std::invalid_argument("msaa " + std::to_string(o.msaa) + " is out of range (1 turns it off)");
+  if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16) {
+    throw std::invalid_argument("msaa " + std::to_string(o.msaa) + " is not one of 1 (off), 2, 4, 8, 16");
   }
   if (!(o.particleRadius.value > 0.0)) throw std::invalid_argument("particle radius must be positive");
   if (!(o.springWidthPx > 0.0) || !(o.rodWidthPx > 0.0) || !(o.guideWidthPx > 0.0) || !(o.outlineWidthPx > 0.0)) {
@@ -104,25 +104,78 @@ void checkGl(const char* what) {
 
 using P2 = std::array<float, 2>;  // a point in pixels, x right, y down from the top-left corner
 
-// Triangles with per-vertex colour, in pixel coordinates; drawn in the order they are added.
+// How far (pixels) every anti-aliased edge is pushed outwards, so that a pixel whose centre lies
+// just outside a shape but one of whose samples lies inside still gets a fragment. Samples sit at
+// most 0.5 px from the centre along each axis (0.71 px away), so 1 px is enough.
+constexpr float kFringePx = 1.0f;
+// A distance that never limits coverage: the slot of an edge that is not anti-aliased or absent.
+constexpr float kFarPx = 1.0e4f;
+
+// One vertex as the shader sees it (interleaved). `shape` says where the primitive's true
+// boundary is, so the fragment shader can test each sample against it:
+//   kind 0 (edges):  shape = signed distances in pixels to up to four edges, positive inside;
+//                    distances are affine in position, so interpolation and dFdx/dFdy are exact.
+//   kind 1 (circle): shape = (x, y) offset from the centre in pixels, outer radius, inner radius;
+//                    a sample is covered when inner ≤ |offset + sample| ≤ outer.
+struct Vertex {
+  float x, y;
+  float shape[4];
+  float kind;
+  std::uint8_t rgba[4];
+};
+
+// Triangles in pixel coordinates, each carrying its shape's true boundary; drawn in the order
+// added. Every primitive's triangles extend kFringePx past its anti-aliased edges; the fragment
+// shader discards what no sample covers.
 class Mesh {
  public:
-  void clear() {
-    xy_.clear();
-    rgba_.clear();
-  }
-  const std::vector<float>& xy() const { return xy_; }
-  const std::vector<std::uint8_t>& rgba() const { return rgba_; }
-  GLsizei vertexCount() const { return GLsizei(xy_.size() / 2); }
+  void clear() { vertices_.clear(); }
+  const std::vector<Vertex>& vertices() const { return vertices_; }
+  GLsizei vertexCount() const { return GLsizei(vertices_.size()); }
 
-  void triangle(P2 a, P2 b, P2 c, Rgb col) {
-    vertex(a, col);
-    vertex(b, col);
-    vertex(c, col);
-  }
-  void quad(P2 a, P2 b, P2 c, P2 d, Rgb col) {  // a b c d around the quad
-    triangle(a, b, c, col);
-    triangle(a, c, d, col);
+  // A convex polygon of 3 or 4 corners (either winding). Edge i runs from corner i to corner
+  // i + 1; bit i of `smoothEdges` anti-aliases it. An edge left out is shared with a neighbouring
+  // piece of the same shape: not pushed out and not tested, so the pieces tile without a seam.
+  void convex(const std::vector<P2>& corners, Rgb col, unsigned smoothEdges = 0xF) {
+    const size_t n = corners.size();
+    float cx = 0, cy = 0;
+    for (const P2& p : corners) cx += p[0] / float(n), cy += p[1] / float(n);
+    std::array<P2, 4> normal{};  // unit, pointing into the polygon
+    std::array<float, 4> push{};
+    for (size_t i = 0; i < n; ++i) {
+      const P2 a = corners[i], b = corners[(i + 1) % n];
+      const float len = std::hypot(b[0] - a[0], b[1] - a[1]);
+      if (!(len > 1e-4f)) return;  // degenerate: nothing to draw
+      P2 m = {-(b[1] - a[1]) / len, (b[0] - a[0]) / len};
+      if (m[0] * (cx - a[0]) + m[1] * (cy - a[1]) < 0) m = {-m[0], -m[1]};
+      normal[i] = m;
+      push[i] = (smoothEdges >> i & 1u) ? kFringePx : 0.0f;
+    }
+    // Corner i of the grown polygon: where edges i − 1 and i, each moved out by its push, meet.
+    std::array<Vertex, 4> grown{};
+    for (size_t i = 0; i < n; ++i) {
+      const size_t j = (i + n - 1) % n;
+      const P2 p = corners[i], u = normal[j], v = normal[i];
+      const float det = u[0] * v[1] - u[1] * v[0];
+      P2 q;
+      if (std::abs(det) < 1e-6f) {  // the two edges are parallel
+        q = {p[0] - v[0] * push[i], p[1] - v[1] * push[i]};
+      } else {  // solve u·(q − p) = −push[j], v·(q − p) = −push[i]
+        const float rj = -push[j], ri = -push[i];
+        q = {p[0] + (rj * v[1] - ri * u[1]) / det, p[1] + (ri * u[0] - rj * v[0]) / det};
+      }
+      Vertex& out = grown[i];
+      out = vertex(q, col, 0.0f);
+      for (size_t e = 0; e < 4; ++e) {
+        const bool tested = e < n && (smoothEdges >> e & 1u);
+        out.shape[e] = tested ? normal[e][0] * (q[0] - corners[e][0]) + normal[e][1] * (q[1] - corners[e][1]) : kFarPx;
+      }
+    }
+    for (size_t i = 1; i + 1 < n; ++i) {
+      vertices_.push_back(grown[0]);
+      vertices_.push_back(grown[i]);
+      vertices_.push_back(grown[i + 1]);
+    }
   }
   // A segment of the given pixel width; squareCaps extends it by half the width at both ends.
   void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false) {
@@ -137,49 +190,50 @@ class Mesh {
       a = {a[0] - dx * h, a[1] - dy * h};
       b = {b[0] + dx * h, b[1] + dy * h};
     }
-    quad({a[0] + nx, a[1] + ny}, {b[0] + nx, b[1] + ny}, {b[0] - nx, b[1] - ny}, {a[0] - nx, a[1] - ny}, col);
+    convex({{a[0] + nx, a[1] + ny}, {b[0] + nx, b[1] + ny}, {b[0] - nx, b[1] - ny}, {a[0] - nx, a[1] - ny}}, col);
   }
   void closedOutline(const std::vector<P2>& pts, float width, Rgb col) {
     for (size_t i = 0; i < pts.size(); ++i) line(pts[i], pts[(i + 1) % pts.size()], width, col, true);
   }
-  void convexPolygon(const std::vector<P2>& pts, Rgb col) {
-    for (size_t i = 1; i + 1 < pts.size(); ++i) triangle(pts[0], pts[i], pts[i + 1], col);
-  }
-  void disc(P2 c, float r, Rgb col) {
-    const int n = segments(r, 1.5f, 8, 128);
-    P2 prev = {c[0] + r, c[1]};
-    for (int i = 1; i <= n; ++i) {
-      const P2 p = onCircle(c, r, i, n);
-      triangle(c, prev, p, col);
-      prev = p;
-    }
-  }
+  void disc(P2 c, float r, Rgb col) { annulus(c, 0.0f, r, col); }
   void ring(P2 c, float r, float width, Rgb col) {
-    const int n = segments(r, 3.0f, 16, 256);
-    const float ri = std::max(0.0f, r - 0.5f * width), ro = r + 0.5f * width;
-    for (int i = 0; i < n; ++i) {
-      quad(onCircle(c, ri, i, n), onCircle(c, ro, i, n), onCircle(c, ro, i + 1, n), onCircle(c, ri, i + 1, n), col);
-    }
+    annulus(c, std::max(0.0f, r - 0.5f * width), r + 0.5f * width, col);
   }
 
  private:
-  // Enough segments that each is about `step` pixels long: the polygon then strays from the true
-  // circle by r(1 − cos(π/n)), well under a pixel at these steps.
-  static int segments(float r, float step, int lo, int hi) {
-    return std::clamp(int(std::ceil(2.0f * std::numbers::pi_v<float> * r / step)), lo, hi);
+  // The points between radii `inner` and `outer` (inner 0: a disc), covered by a band of quads
+  // (a fan when inner is 0) whose polygons contain the annulus grown by kFringePx on both sides:
+  // the outer polygon is circumscribed, the inner one inscribed.
+  void annulus(P2 c, float inner, float outer, Rgb col) {
+    const float fringeOuter = outer + kFringePx;
+    const float fringeInner = std::max(0.0f, inner - kFringePx);
+    const int n = std::clamp(int(std::ceil(2.0f * std::numbers::pi_v<float> * fringeOuter / 16.0f)), 8, 256);
+    const float polyOuter = fringeOuter / std::cos(std::numbers::pi_v<float> / float(n));
+    auto at = [&](float radius, int i) {
+      const double a = 2.0 * std::numbers::pi * double(i % n) / double(n);
+      const P2 p = {c[0] + radius * float(std::cos(a)), c[1] + radius * float(std::sin(a))};
+      Vertex v = vertex(p, col, 1.0f);
+      v.shape[0] = p[0] - c[0];
+      v.shape[1] = p[1] - c[1];
+      v.shape[2] = outer;
+      v.shape[3] = inner;
+      return v;
+    };
+    for (int i = 0; i < n; ++i) {
+      const Vertex o0 = at(polyOuter, i), o1 = at(polyOuter, i + 1);
+      if (fringeInner > 0.0f) {
+        const Vertex i0 = at(fringeInner, i), i1 = at(fringeInner, i + 1);
+        vertices_.insert(vertices_.end(), {i0, o0, o1, i0, o1, i1});
+      } else {
+        vertices_.insert(vertices_.end(), {at(0.0f, 0), o0, o1});
+      }
+    }
   }
-  static P2 onCircle(P2 c, float r, int i, int n) {
-    const double a = 2.0 * std::numbers::pi * double(i % n) / double(n);
-    return {c[0] + r * float(std::cos(a)), c[1] + r * float(std::sin(a))};
-  }
-  void vertex(P2 p, Rgb col) {
-    xy_.push_back(p[0]);
-    xy_.push_back(p[1]);
-    rgba_.insert(rgba_.end(), {col.r, col.g, col.b, 255});
+  static Vertex vertex(P2 p, Rgb col, float kind) {
+    return {p[0], p[1], {0, 0, 0, 0}, kind, {col.r, col.g, col.b, 255}};
   }
 
-  std::vector<float> xy_;
-  std::vector<std::uint8_t> rgba_;
+  std::vector<Vertex> vertices_;
 };
 
 Rgb mix(Rgb a, Rgb b, double t) {
@@ -189,15 +243,104 @@ Rgb mix(Rgb a, Rgb b, double t) {
   return {m(a.r, b.r), m(a.g, b.g), m(a.b, b.b)};
 }
 
+
+// Coverage is computed per sample in the fragment shader: each primitive knows its true boundary
+// (see Vertex), the pixel's samples sit at the standard positions (samplePattern), and the share
+// covered becomes the fragment's alpha, blended over what is already drawn. For one edge over a
+// background this is exactly what a multisampled framebuffer resolves to.
+constexpr const char* kVertexShader = R"(#version 130
+uniform vec2 imageSize;
+in vec2 position;   // pixels, x right, y = image row (GL window row, see OSMESA_Y_UP)
+in vec4 color;
+in vec4 shape;
+in float kind;
+out vec4 vColor;
+out vec4 vShape;
+flat out float vKind;
+void main() {
+  gl_Position = vec4(2.0 * position / imageSize - 1.0, 0.0, 1.0);
+  vColor = color;
+  vShape = shape;
+  vKind = kind;
+}
+)";
+
+// Compiled once per sample count (SAMPLE_COUNT and SAMPLES are defined before this text) so the
+// loop unrolls and llvmpipe's vectorised code has no branches: both shape kinds are evaluated and
+// one is selected.
+constexpr const char* kFragmentShader = R"(
+in vec4 vColor;
+in vec4 vShape;
+flat in float vKind;
+void main() {
+  const vec2 samples[SAMPLE_COUNT] = vec2[SAMPLE_COUNT](SAMPLES);
+  vec4 ddx = dFdx(vShape), ddy = dFdy(vShape);  // exact: edge distances are affine in position
+  float rOut2 = vShape.z * vShape.z, rIn2 = vShape.w * vShape.w;
+  float covered = 0.0;
+  for (int i = 0; i < SAMPLE_COUNT; ++i) {
+    vec2 o = samples[i];
+    vec2 q = vShape.xy + o;
+    float r2 = dot(q, q);
+    vec4 d = vShape + ddx * o.x + ddy * o.y;
+    bool inCircle = r2 <= rOut2 && r2 >= rIn2;
+    bool inEdges = min(min(d.x, d.y), min(d.z, d.w)) >= 0.0;
+    covered += (vKind > 0.5 ? inCircle : inEdges) ? 1.0 : 0.0;
+  }
+  if (covered == 0.0) discard;
+  gl_FragColor = vec4(vColor.rgb, vColor.a * covered / float(SAMPLE_COUNT));
+}
+)";
+
+GLuint compileShader(GLenum type, const char* source, const char* name) {
+  const GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    throw RenderError(std::string("compiling the ") + name + " shader failed: " + log);
+  }
+  return shader;
+}
+
 }  // namespace
+
+const std::vector<Vec2>& samplePattern(int samples) {
+  // The standard sample positions of Direct3D and Vulkan, in 1/16 pixel, y down.
+  static const std::vector<Vec2> p1 = {Vec2(0, 0)};
+  static const std::vector<Vec2> p2 = {Vec2(4, 4), Vec2(-4, -4)};
+  static const std::vector<Vec2> p4 = {Vec2(-2, -6), Vec2(6, -2), Vec2(-6, 2), Vec2(2, 6)};
+  static const std::vector<Vec2> p8 = {Vec2(1, -3), Vec2(-1, 3), Vec2(5, 1),  Vec2(-3, -5),
+                                       Vec2(-5, 5), Vec2(-7, -1), Vec2(3, 7), Vec2(7, -7)};
+  static const std::vector<Vec2> p16 = {Vec2(1, 1),   Vec2(-1, -3), Vec2(-3, 2), Vec2(4, -1),
+                                        Vec2(-5, -2), Vec2(2, 5),   Vec2(5, 3),  Vec2(3, -5),
+                                        Vec2(-2, 6),  Vec2(0, -7),  Vec2(-4, -6), Vec2(-6, 4),
+                                        Vec2(-8, 0),  Vec2(7, -4),  Vec2(6, 7),  Vec2(-7, -8)};
+  static const auto scaled = [](std::vector<Vec2> v) {
+    for (Vec2& o : v) o /= 16.0;
+    return v;
+  };
+  static const std::vector<Vec2> s1 = p1, s2 = scaled(p2), s4 = scaled(p4), s8 = scaled(p8), s16 = scaled(p16);
+  switch (samples) {
+    case 1: return s1;
+    case 2: return s2;
+    case 4: return s4;
+    case 8: return s8;
+    case 16: return s16;
+    default: throw std::invalid_argument("no sample pattern for " + std::to_string(samples) + " samples");
+  }
+}
 
 struct Renderer::Impl {
   RenderOptions options;
   Theme colors;
   Image image;  // OSMesa's colour buffer: GL window row y is image row y (see toPixel)
   OsMesaContextPtr context;
-  GLuint fbo = 0, colorBuffer = 0;  // the multisampled target, when msaa > 1
-  int samples = 1;
+  GLuint program = 0;
+  GLint positionAttr = -1, colorAttr = -1, shapeAttr = -1, kindAttr = -1;
   Mesh mesh;
 
   void makeCurrent() {
@@ -207,7 +350,41 @@ struct Renderer::Impl {
     }
   }
   void buildMesh(const FrameSnapshot& frame, const Camera& camera);
+  void buildProgram();
 };
+
+void Renderer::Impl::buildProgram() {
+  const GLuint vs = compileShader(GL_VERTEX_SHADER, kVertexShader, "vertex");
+  const std::vector<Vec2>& pattern = samplePattern(options.msaa);
+  std::string header = "#version 130\n#define SAMPLE_COUNT " + std::to_string(pattern.size()) + "\n#define SAMPLES ";
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%svec2(%.6f, %.6f)", i ? ", " : "", pattern[i].x(), pattern[i].y());
+    header += buf;
+  }
+  const std::string fragmentSource = header + "\n" + kFragmentShader;
+  const GLuint fs = compileShader(GL_FRAGMENT_SHADER, fragmentSource.c_str(), "fragment");
+  program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);  // freed with the program
+  glDeleteShader(fs);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    throw RenderError(std::string("linking the shader program failed: ") + log);
+  }
+  positionAttr = glGetAttribLocation(program, "position");
+  colorAttr = glGetAttribLocation(program, "color");
+  shapeAttr = glGetAttribLocation(program, "shape");
+  kindAttr = glGetAttribLocation(program, "kind");
+  glUseProgram(program);
+  glUniform2f(glGetUniformLocation(program, "imageSize"), float(options.width), float(options.height));
+  checkGl("shader program setup");
+}
 
 Renderer::Renderer(const RenderOptions& options) : impl_(std::make_unique<Impl>()) {
   validate(options);
@@ -216,7 +393,7 @@ Renderer::Renderer(const RenderOptions& options) : impl_(std::make_unique<Impl>(
   m.colors = theme(options.themeName);
   m.image = Image(options.width, options.height);
 
-  // No depth, stencil or accumulation buffers: shapes are drawn opaque in painter's order.
+  // No depth, stencil or accumulation buffers: shapes are drawn in painter's order.
   const int attribs[] = {OSMESA_FORMAT,
                          OSMESA_RGBA,
                          OSMESA_DEPTH_BITS,
@@ -238,49 +415,16 @@ Renderer::Renderer(const RenderOptions& options) : impl_(std::make_unique<Impl>(
   // Image row 0 must be the top of the picture: with OSMESA_Y_UP = 1 (the default) memory row 0 is
   // GL window row 0, and toPixel() puts the top of the view there.
   OSMesaPixelStore(OSMESA_Y_UP, 1);
-
-  if (options.msaa > 1) {
-    GLint maxSamples = 0;
-    glGetIntegerv(GL_MAX_SAMPLES, &maxSamples);
-    checkGl("glGetIntegerv(GL_MAX_SAMPLES)");
-    if (options.msaa > maxSamples) {
-      throw RenderError("msaa " + std::to_string(options.msaa) + " is more than this OpenGL (" +
-                        reinterpret_cast<const char*>(glGetString(GL_RENDERER)) +
-                        ") supports: GL_MAX_SAMPLES = " + std::to_string(maxSamples));
-    }
-    glGenFramebuffers(1, &m.fbo);
-    glGenRenderbuffers(1, &m.colorBuffer);
-    glBindRenderbuffer(GL_RENDERBUFFER, m.colorBuffer);
-    glRenderbufferStorageMultisample(GL_RENDERBUFFER, options.msaa, GL_RGBA8, options.width, options.height);
-    checkGl("glRenderbufferStorageMultisample");
-    glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, m.colorBuffer);
-    const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-    if (status != GL_FRAMEBUFFER_COMPLETE) {
-      throw RenderError("glCheckFramebufferStatus: multisampled framebuffer (" + std::to_string(options.msaa) +
-                        " samples) is incomplete, status " + hex(status));
-    }
-    GLint samples = 0;
-    glGetRenderbufferParameteriv(GL_RENDERBUFFER, GL_RENDERBUFFER_SAMPLES, &samples);
-    checkGl("multisampled framebuffer setup");
-    m.samples = samples;
-  }
+  m.buildProgram();
 }
 
-Renderer::~Renderer() {
-  if (!impl_ || !impl_->context) return;
-  if (impl_->fbo != 0 && OSMesaMakeCurrent(impl_->context.get(), impl_->image.rgba.data(), GL_UNSIGNED_BYTE,
-                                           impl_->image.width, impl_->image.height)) {
-    glDeleteFramebuffers(1, &impl_->fbo);
-    glDeleteRenderbuffers(1, &impl_->colorBuffer);
-  }
-}
+Renderer::~Renderer() = default;  // the context owns the program; destroying it frees both
 
 const RenderOptions& Renderer::options() const {
   return impl_->options;
 }
 int Renderer::samples() const {
-  return impl_->samples;
+  return impl_->options.msaa;
 }
 
 void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
@@ -306,7 +450,7 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
     const P2 b = {p0[0] - t[0] * reach, p0[1] - t[1] * reach};
     const P2 bIn = {b[0] - n[0] * 2 * reach, b[1] - n[1] * 2 * reach};
     const P2 aIn = {a[0] - n[0] * 2 * reach, a[1] - n[1] * 2 * reach};
-    mesh.quad(a, b, bIn, aIn, c.colliderFill);
+    mesh.convex({a, b, bIn, aIn}, c.colliderFill);
     mesh.line(a, b, lineWidth, c.colliderOutline);
   }
   for (const DiskShape& d : f.disks) {
@@ -337,7 +481,7 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
     const Vec2 hx = 0.5 * body.size.x() * Vec2(cs, sn), hy = 0.5 * body.size.y() * Vec2(-sn, cs);
     const std::vector<P2> corners = {toPixel(body.center - hx - hy), toPixel(body.center + hx - hy),
                                      toPixel(body.center + hx + hy), toPixel(body.center - hx + hy)};
-    mesh.convexPolygon(corners, c.bodyFill);
+    mesh.convex(corners, c.bodyFill);
     mesh.closedOutline(corners, lineWidth, c.bodyOutline);
   }
 
@@ -347,8 +491,8 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
     const P2 p = toPixel(f.particles[i]);
     if (i < f.particleFixed.size() && f.particleFixed[i]) {
       const float s = 0.9f * radius;  // a fixed particle is a square, so it reads as pinned
-      mesh.quad({p[0] - s, p[1] - s}, {p[0] + s, p[1] - s}, {p[0] + s, p[1] + s}, {p[0] - s, p[1] + s},
-                c.fixedParticle);
+      mesh.convex({{p[0] - s, p[1] - s}, {p[0] + s, p[1] - s}, {p[0] + s, p[1] + s}, {p[0] - s, p[1] + s}},
+                  c.fixedParticle);
     } else {
       mesh.disc(p, radius, c.particle);
     }
@@ -362,10 +506,11 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
     auto at = [&](float x, float y) -> P2 { return {tip[0] + x, tip[1] + y}; };
     const std::vector<P2> arrow = {at(0, 0),      at(0, 17),       at(4.5f, 13), at(7.5f, 20),
                                    at(10.0f, 19), at(7.0f, 12.2f), at(12, 12.2f)};
-    mesh.triangle(arrow[0], arrow[1], arrow[2], c.mouse);
-    mesh.triangle(arrow[0], arrow[2], arrow[5], c.mouse);
-    mesh.triangle(arrow[0], arrow[5], arrow[6], c.mouse);
-    mesh.quad(arrow[2], arrow[3], arrow[4], arrow[5], c.mouse);
+    // Convex pieces of the arrow; only edges on its outline are smoothed (bit i: edge i → i + 1).
+    mesh.convex({arrow[0], arrow[1], arrow[2]}, c.mouse, 0b011);
+    mesh.convex({arrow[0], arrow[2], arrow[5]}, c.mouse, 0b000);
+    mesh.convex({arrow[0], arrow[5], arrow[6]}, c.mouse, 0b110);
+    mesh.convex({arrow[2], arrow[3], arrow[4], arrow[5]}, c.mouse, 0b0111);
     mesh.closedOutline(arrow, 1.25f, c.mouseOutline);
   }
 }
@@ -377,40 +522,37 @@ const Image& Renderer::render(const FrameSnapshot& frame, const Camera& camera) 
   m.buildMesh(frame, camera);
 
   const int w = m.options.width, h = m.options.height;
-  glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);  // 0: OSMesa's buffer itself
   glViewport(0, 0, w, h);
-  glMatrixMode(GL_PROJECTION);
-  glLoadIdentity();
-  glOrtho(0.0, double(w), 0.0, double(h), -1.0, 1.0);
-  glMatrixMode(GL_MODELVIEW);
-  glLoadIdentity();
   glDisable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
   glDisable(GL_DITHER);
-  if (m.fbo != 0) glEnable(GL_MULTISAMPLE);
+  // Coverage as alpha over what is drawn; the destination keeps alpha 1.
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
 
   const Rgb bg = m.colors.background;
   glClearColor(float(bg.r) / 255.0f, float(bg.g) / 255.0f, float(bg.b) / 255.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
 
   if (m.mesh.vertexCount() > 0) {
-    glEnableClientState(GL_VERTEX_ARRAY);
-    glEnableClientState(GL_COLOR_ARRAY);
-    glVertexPointer(2, GL_FLOAT, 0, m.mesh.xy().data());
-    glColorPointer(4, GL_UNSIGNED_BYTE, 0, m.mesh.rgba().data());
+    const Vertex* v = m.mesh.vertices().data();
+    const GLsizei stride = sizeof(Vertex);
+    glUseProgram(m.program);
+    const GLint attrs[] = {m.positionAttr, m.colorAttr, m.shapeAttr, m.kindAttr};
+    for (GLint a : attrs) {
+      if (a >= 0) glEnableVertexAttribArray(GLuint(a));
+    }
+    // An attribute the compiler dropped has location −1 and is skipped.
+    if (m.positionAttr >= 0) glVertexAttribPointer(GLuint(m.positionAttr), 2, GL_FLOAT, GL_FALSE, stride, &v->x);
+    if (m.colorAttr >= 0) glVertexAttribPointer(GLuint(m.colorAttr), 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, v->rgba);
+    if (m.shapeAttr >= 0) glVertexAttribPointer(GLuint(m.shapeAttr), 4, GL_FLOAT, GL_FALSE, stride, v->shape);
+    if (m.kindAttr >= 0) glVertexAttribPointer(GLuint(m.kindAttr), 1, GL_FLOAT, GL_FALSE, stride, &v->kind);
     glDrawArrays(GL_TRIANGLES, 0, m.mesh.vertexCount());
-    glDisableClientState(GL_COLOR_ARRAY);
-    glDisableClientState(GL_VERTEX_ARRAY);
+    for (GLint a : attrs) {
+      if (a >= 0) glDisableVertexAttribArray(GLuint(a));
+    }
   }
   checkGl("drawing the frame");
-
-  if (m.fbo != 0) {  // resolve the samples into OSMesa's buffer
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, m.fbo);
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glBlitFramebuffer(0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
-    checkGl("glBlitFramebuffer (multisample resolve)");
-  }
   glFinish();
   checkGl("glFinish");
   return m.image;

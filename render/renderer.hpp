@@ -2,20 +2,24 @@
 // Off-screen OpenGL rendering of a FrameSnapshot (DESIGN §9) through OSMesa, Mesa's software
 // rasteriser (llvmpipe): no display, no GPU. DISPLAY may be unset.
 //
-// Anti-aliasing: OSMesa has no multisampled visuals, but its GL 4.5 compatibility context has
-// framebuffer objects (measured: Mesa 22.3, llvmpipe, GL_MAX_SAMPLES = 4). We draw into a
-// multisampled renderbuffer and resolve it with glBlitFramebuffer into OSMesa's colour buffer.
-// msaa = 1 draws straight into that buffer (no anti-aliasing).
+// Anti-aliasing is multisampling done in the fragment shader: every primitive carries its true
+// boundary (edge distances, or a circle's centre and radii), each pixel is tested at `msaa` sample
+// positions (the standard 2/4/8/16 patterns, samplePattern) and the covered share is blended over
+// what is already drawn as the fragment's alpha. For one edge over a background this gives the
+// same pixel as a multisampled framebuffer's resolve. We do not use llvmpipe's multisampled
+// framebuffer: its resolve alone costs ~6 ms of CPU per 1280×720 frame (glBlitFramebuffer or a
+// texelFetch shader alike, measured on Mesa 22.3), which ran end-to-end video at 0.6 of the
+// encoder's speed; the shader's cost grows only with the pixels shapes touch. msaa = 1 tests the
+// pixel centre only: hard edges.
 //
 // Every shape is built on the CPU as triangles in pixel coordinates (lines as quads of a given
-// pixel width, discs as fans), drawn opaque in a fixed order: the same snapshot gives the same
-// pixels every time (tests check byte equality; a 1280×720 cloth frame was also byte-identical
-// with LP_NUM_THREADS = 0, 1, 2 and llvmpipe's default).
+// pixel width, discs as fans), pushed out by a 1 px fringe where they are smoothed, and drawn in a
+// fixed order: the same snapshot gives the same pixels every time (tests check byte equality).
 //
-// Speed (25×25 cloth, 1280×720, 2 shared cores, Mesa 22.3): about 72 frames/s with msaa 4 and
-// 220–280 frames/s with msaa 1.
+// Speed: bench/README.md (render-only frames per second for the three demos).
 
 #include <memory>
+#include <vector>
 
 #include "render/image.hpp"
 #include "render/snapshot.hpp"
@@ -56,7 +60,7 @@ struct Length {
 struct RenderOptions {
   int width = 1280;  // pixels
   int height = 720;
-  int msaa = 4;  // samples per pixel: 1 (off), 2 or 4 (llvmpipe's maximum)
+  int msaa = 4;  // samples per pixel: 1 (off), 2, 4, 8 or 16
   ThemeName themeName = ThemeName::dark;
   Length particleRadius{4.0, Length::Unit::pixels};
   double springWidthPx = 1.5;
@@ -67,6 +71,11 @@ struct RenderOptions {
   // colour is interpolated from the at-rest colour.
   double strainForFullColor = 0.2;
 };
+
+// The sample positions for 1, 2, 4, 8 or 16 samples per pixel: offsets from the pixel centre in
+// pixels, x right, y down (Direct3D's and Vulkan's standard patterns; 1 is the centre itself).
+// Throws std::invalid_argument for another count.
+const std::vector<Vec2>& samplePattern(int samples);
 
 // Throws std::invalid_argument when a size, width or sample count is out of range.
 void validate(const RenderOptions& options);
@@ -86,7 +95,7 @@ class Renderer {
   const Image& render(const FrameSnapshot& frame, const Camera& camera);
 
   const RenderOptions& options() const;
-  int samples() const;  // the sample count GL actually gave (1 when msaa is off)
+  int samples() const;  // samples per pixel (options().msaa)
 
  private:
   struct Impl;

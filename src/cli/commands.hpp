@@ -42,7 +42,7 @@ struct RenderCommandOptions {
   std::optional<double> at;            // --at T, s
   std::string size;                    // --size WxH; empty: the scenario's render.size
   double fps = 0;                      // --fps; 0: the scenario's render.fps
-  int msaa = 4;                        // samples per pixel, 1 = off
+  int msaa = 4;                        // anti-aliasing samples per pixel: 1 (off), 2, 4, 8, 16
   std::string theme = "dark";          // dark | light
   std::string particleRadius;          // "4px" or "0.02m"; empty: the renderer's default
   int crf = 18;                        // x264 quality (see render/frame_writer.hpp)

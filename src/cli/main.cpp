@@ -66,7 +66,9 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--at", render.at, "Draw the one frame at this simulated time, s (with -o file.png)");
   renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
   renderCmd->add_option("--fps", render.fps, "Frames per simulated second (default: the scenario's render.fps)");
-  renderCmd->add_option("--msaa", render.msaa, "Multisampling: 1 (off), 2 or 4 samples per pixel")->capture_default_str();
+  renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: 1 (off), 2, 4, 8 or 16")
+      ->check(CLI::IsMember({1, 2, 4, 8, 16}))
+      ->capture_default_str();
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
   renderCmd->add_option("--particle-radius", render.particleRadius, "Particle disc radius: 4px (pixels) or 0.02m (world)");
   renderCmd->add_option("--crf", render.crf, "x264 constant rate factor, 0 (lossless) … 51")->capture_default_str();
