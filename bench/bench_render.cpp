@@ -1,7 +1,8 @@
 // Render-only throughput (no encoding): frames per second drawing the three demos at 1280×720
-// through the OSMesa renderer, with MSAA 4× and off. Each iteration draws one frame of a state
-// prepared beforehand (the scenario advanced to a representative time), so simulation is outside
-// the clock; the snapshot is taken inside it, as `particles render` does per frame.
+// through the OSMesa renderer, with 1 (off), 4 (the default) and 16 anti-aliasing samples per
+// pixel. Each iteration draws one frame of a state prepared beforehand (the scenario advanced to a
+// representative time), so simulation is outside the clock; the snapshot is taken inside it, as
+// `particles render` does per frame.
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -33,8 +34,23 @@ void BM_Render(benchmark::State& state, const std::string& file, double at) {
   state.counters["msaa"] = double(options.msaa);
 }
 
-BENCHMARK_CAPTURE(BM_Render, cloth, std::string("cloth.yaml"), 2.5)->Arg(1)->Arg(4)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Render, soft_body, std::string("soft_body.yaml"), 20.0)->Arg(1)->Arg(4)->UseRealTime()->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Render, rigid_chain, std::string("rigid_chain.yaml"), 3.0)->Arg(1)->Arg(4)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Render, cloth, std::string("cloth.yaml"), 2.5)
+    ->Arg(1)
+    ->Arg(4)
+    ->Arg(16)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Render, soft_body, std::string("soft_body.yaml"), 20.0)
+    ->Arg(1)
+    ->Arg(4)
+    ->Arg(16)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Render, rigid_chain, std::string("rigid_chain.yaml"), 3.0)
+    ->Arg(1)
+    ->Arg(4)
+    ->Arg(16)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace

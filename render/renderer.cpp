@@ -243,7 +243,6 @@ Rgb mix(Rgb a, Rgb b, double t) {
   return {m(a.r, b.r), m(a.g, b.g), m(a.b, b.b)};
 }
 
-
 // Coverage is computed per sample in the fragment shader: each primitive knows its true boundary
 // (see Vertex), the pixel's samples sit at the standard positions (samplePattern), and the share
 // covered becomes the fragment's alpha, blended over what is already drawn. For one edge over a
@@ -313,12 +312,11 @@ const std::vector<Vec2>& samplePattern(int samples) {
   static const std::vector<Vec2> p1 = {Vec2(0, 0)};
   static const std::vector<Vec2> p2 = {Vec2(4, 4), Vec2(-4, -4)};
   static const std::vector<Vec2> p4 = {Vec2(-2, -6), Vec2(6, -2), Vec2(-6, 2), Vec2(2, 6)};
-  static const std::vector<Vec2> p8 = {Vec2(1, -3), Vec2(-1, 3), Vec2(5, 1),  Vec2(-3, -5),
+  static const std::vector<Vec2> p8 = {Vec2(1, -3), Vec2(-1, 3),  Vec2(5, 1), Vec2(-3, -5),
                                        Vec2(-5, 5), Vec2(-7, -1), Vec2(3, 7), Vec2(7, -7)};
-  static const std::vector<Vec2> p16 = {Vec2(1, 1),   Vec2(-1, -3), Vec2(-3, 2), Vec2(4, -1),
-                                        Vec2(-5, -2), Vec2(2, 5),   Vec2(5, 3),  Vec2(3, -5),
-                                        Vec2(-2, 6),  Vec2(0, -7),  Vec2(-4, -6), Vec2(-6, 4),
-                                        Vec2(-8, 0),  Vec2(7, -4),  Vec2(6, 7),  Vec2(-7, -8)};
+  static const std::vector<Vec2> p16 = {Vec2(1, 1),  Vec2(-1, -3), Vec2(-3, 2), Vec2(4, -1), Vec2(-5, -2), Vec2(2, 5),
+                                        Vec2(5, 3),  Vec2(3, -5),  Vec2(-2, 6), Vec2(0, -7), Vec2(-4, -6), Vec2(-6, 4),
+                                        Vec2(-8, 0), Vec2(7, -4),  Vec2(6, 7),  Vec2(-7, -8)};
   static const auto scaled = [](std::vector<Vec2> v) {
     for (Vec2& o : v) o /= 16.0;
     return v;

@@ -305,6 +305,29 @@ double checkCoverage(const Image& image, Rgb bg, Rgb fg, int samples, const std:
 
 }  // namespace
 
+TEST_CASE("sample patterns lie inside the pixel, one sample per row and per column") {
+  // Distinct x and y offsets ("N rooks"): a vertical or horizontal edge crossing the pixel passes
+  // through all N + 1 coverage levels, the point of the standard patterns.
+  for (int samples : {1, 2, 4, 8, 16}) {
+    CAPTURE(samples);
+    const std::vector<Vec2>& pattern = samplePattern(samples);
+    REQUIRE(int(pattern.size()) == samples);
+    std::set<double> xs, ys;
+    Vec2 mean = Vec2::Zero();
+    for (const Vec2& o : pattern) {
+      CHECK(std::abs(o.x()) <= 0.5);
+      CHECK(std::abs(o.y()) <= 0.5);
+      xs.insert(o.x());
+      ys.insert(o.y());
+      mean += o / samples;
+    }
+    CHECK(int(xs.size()) == samples);
+    CHECK(int(ys.size()) == samples);
+    CHECK(mean.norm() < 0.07);  // centred on the pixel
+  }
+  CHECK_THROWS_AS(samplePattern(3), std::invalid_argument);
+}
+
 TEST_CASE("each pixel of a disc is blended by the share of its samples inside the circle") {
   const Vec2 centre(20.3, 17.8);  // pixels; off the pixel grid on purpose
   const double radius = 6.2;
@@ -321,8 +344,8 @@ TEST_CASE("each pixel of a disc is blended by the share of its samples inside th
     Renderer renderer(o);
     CHECK(renderer.samples() == samples);
     const Theme colors = theme(o.themeName);
-    const double area = checkCoverage(renderer.render(frame, kPixelCamera), colors.background, colors.particle,
-                                      samples, [&](Vec2 p) { return (p - centre).norm() <= radius; });
+    const double area = checkCoverage(renderer.render(frame, kPixelCamera), colors.background, colors.particle, samples,
+                                      [&](Vec2 p) { return (p - centre).norm() <= radius; });
     // More samples, closer to the true area π r² (120.8 px²).
     const double error = std::abs(area / (std::numbers::pi * radius * radius) - 1.0);
     if (samples >= 4) CHECK(error < 0.03);
@@ -365,7 +388,7 @@ TEST_CASE("a shape drawn in convex pieces shows no seams between them") {
   const Image& image = renderer.render(frame, kPixelCamera);
   const Theme colors = theme(o.themeName);
   // The arrow's outline, relative to its tip (render/renderer.cpp), and distances to it.
-  const std::vector<Vec2> arrow = {Vec2(0, 0),  Vec2(0, 17),  Vec2(4.5, 13),   Vec2(7.5, 20),
+  const std::vector<Vec2> arrow = {Vec2(0, 0),   Vec2(0, 17),   Vec2(4.5, 13), Vec2(7.5, 20),
                                    Vec2(10, 19), Vec2(7, 12.2), Vec2(12, 12.2)};
   auto distanceToOutline = [&](Vec2 p) {
     double d = 1e9;

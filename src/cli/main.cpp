@@ -59,9 +59,11 @@ int main(int argc, char** argv) {
       "  particles run scenarios/springs.yaml --duration 2 --quiet --stats springs.csv\n");
 
   particles::cli::RenderCommandOptions render;
-  CLI::App* renderCmd = app.add_subcommand("render", "Simulate and draw the scenario off-screen to an MP4, PNG frames or one PNG");
+  CLI::App* renderCmd =
+      app.add_subcommand("render", "Simulate and draw the scenario off-screen to an MP4, PNG frames or one PNG");
   addCommonOptions(*renderCmd, common);
-  renderCmd->add_option("-o,--output", render.output, "file.mp4 (H.264), dir/ (frame_000000.png …) or file.png (with --at)")
+  renderCmd
+      ->add_option("-o,--output", render.output, "file.mp4 (H.264), dir/ (frame_000000.png …) or file.png (with --at)")
       ->required();
   renderCmd->add_option("--at", render.at, "Draw the one frame at this simulated time, s (with -o file.png)");
   renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
@@ -70,13 +72,16 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({1, 2, 4, 8, 16}))
       ->capture_default_str();
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
-  renderCmd->add_option("--particle-radius", render.particleRadius, "Particle disc radius: 4px (pixels) or 0.02m (world)");
+  renderCmd->add_option("--particle-radius", render.particleRadius,
+                        "Particle disc radius: 4px (pixels) or 0.02m (world)");
   renderCmd->add_option("--crf", render.crf, "x264 constant rate factor, 0 (lossless) … 51")->capture_default_str();
   renderCmd->add_option("--preset", render.preset, "x264 preset: ultrafast … veryslow")->capture_default_str();
   renderCmd->add_option("--png-level", render.pngLevel, "PNG compression level 0 … 9")->capture_default_str();
   renderCmd->add_flag("--verbose", render.verbose, "Show libav/x264's own log");
-  renderCmd->add_flag("--hud", render.hud, "Draw time, integrator, dt and energy in the top-left corner of every frame");
-  renderCmd->add_option("--stats", render.stats, "Write t,kinetic,potential,total,constraint_error,penetration per frame");
+  renderCmd->add_flag("--hud", render.hud,
+                      "Draw time, integrator, dt and energy in the top-left corner of every frame");
+  renderCmd->add_option("--stats", render.stats,
+                        "Write t,kinetic,potential,total,constraint_error,penetration per frame");
   auto* renderTrace = renderCmd->add_option("--trace", render.trace, "Write t,name,x,y,vx,vy,angle,omega per frame");
   renderCmd->add_option("--trace-only", render.traceOnly, "Trace only these objects (comma-separated names)")
       ->delimiter(',')
@@ -102,15 +107,18 @@ int main(int argc, char** argv) {
                            "Write integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,"
                            "speed_vs_euler to this CSV");
   stabilityCmd->add_option("--plot", stability.plot, "Write the table as a bar chart (log axis): .svg or .png");
-  stabilityCmd->add_option("--energy-tolerance", stability.energyTolerance,
-                           "Unstable when energy exceeds E(0) + mouse work by this fraction of the energy scale")
+  stabilityCmd
+      ->add_option("--energy-tolerance", stability.energyTolerance,
+                   "Unstable when energy exceeds E(0) + mouse work by this fraction of the energy scale")
       ->capture_default_str();
-  stabilityCmd->add_option("--stretch-factor", stability.stretchFactor,
-                           "Unstable when a spring stretches beyond this multiple of the largest stretch of a "
-                           "reference run (rk4 at a quarter of the scenario's dt)")
+  stabilityCmd
+      ->add_option("--stretch-factor", stability.stretchFactor,
+                   "Unstable when a spring stretches beyond this multiple of the largest stretch of a "
+                   "reference run (rk4 at a quarter of the scenario's dt)")
       ->capture_default_str();
-  stabilityCmd->add_option("--shake-threshold", stability.shakeThreshold,
-                           "Shaking when the step-alternating share of velocity exceeds this (sin²(ωh/2))")
+  stabilityCmd
+      ->add_option("--shake-threshold", stability.shakeThreshold,
+                   "Shaking when the step-alternating share of velocity exceeds this (sin²(ωh/2))")
       ->capture_default_str();
   stabilityCmd->add_option("--min-dt", stability.minDt, "Smallest dt tried, s (default: the scenario's dt / 1000)");
   stabilityCmd->add_option("--max-dt", stability.maxDt, "Largest dt tried, s")->capture_default_str();
@@ -127,7 +135,8 @@ int main(int argc, char** argv) {
   CLI::App* compareCmd = particles::cli::addCompareCommand(app, compare);
 
   particles::cli::PlotOptions plotOptions;
-  CLI::App* plotCmd = app.add_subcommand("plot", "Draw the figure of a --stats CSV: energy and constraint error over time");
+  CLI::App* plotCmd =
+      app.add_subcommand("plot", "Draw the figure of a --stats CSV: energy and constraint error over time");
   plotCmd->add_option("stats", plotOptions.input, "A CSV written by run/render --stats")->required();
   plotCmd->add_option("-o,--output", plotOptions.output, "The figure: .svg (vector) or .png")->required();
   plotCmd->add_option("--title", plotOptions.title, "Title above the chart");
