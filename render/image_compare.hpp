@@ -14,19 +14,23 @@
 
 namespace particles::render {
 
-// The defaults, from measurement (golden/README.md has the tables). Noise: every golden frame was
-// byte-identical over repeated runs, LP_NUM_THREADS = 0, 1, 2, 8 and llvmpipe's default,
-// LP_NATIVE_VECTOR_WIDTH = 128 and 256, and -O0, -O2 and -march=x86-64-v3 builds (largest
-// difference 0). Signal: a moved edge flips whole MSAA samples, so the perturbations changed
-// channels by 30 … 255; one time step later changed ≥ 106 pixels (0.14 %) of every frame, one
-// spring stiffness +5 % ≥ 58 pixels (0.075 %).
+// The defaults, from measurement (golden/README.md has the tables, scripts/measure-golden measures
+// them). Noise: every golden frame was byte-identical over repeated runs, LP_NUM_THREADS = 0, 1, 2,
+// 8 and llvmpipe's default, LP_NATIVE_VECTOR_WIDTH = 128 and 256, and -O0, -O2 and
+// -march=x86-64-v3 builds (largest difference 0). Signal: the renderer's fragment shader tests each
+// pixel at 4 sample positions and blends the covered share, so a moved edge changes a pixel by
+// whole quarters of the contrast across it: 54 … 255 in 127 of the 130 perturbed frames that
+// changed a pixel (16 … 27 in the other three: a spring's colour follows its strain, and an edge
+// over a spring has less contrast); one time step later changed ≥ 105 pixels (0.14 %) of every
+// frame, one spring stiffness +5 % ≥ 46 pixels (0.06 %).
 //
-// Per channel, 0 … 255: a margin for rounding in blending and the MSAA resolve on another Mesa or
-// CPU (not measurable here, with one Mesa), under the smallest change a moved edge made (30).
+// Per channel, 0 … 255: a margin for rounding in blending the covered share on another Mesa or CPU
+// (not measurable here, with one Mesa), under the quarter of the contrast a moved particle edge
+// makes on the dark background (54).
 inline constexpr int kDefaultThreshold = 16;
-// Share of the pixels, 0 … 1: 0.02 % is 15 pixels of a 320×240 frame: room for a few edge samples
-// flipped by rounding-level differences in the simulation (the rigid chain is chaotic), and 4×
-// under the weakest perturbation the golden tests must catch (ks +5 %: 58 pixels).
+// Share of the pixels, 0 … 1: 0.02 % is 15 pixels of a 320×240 frame: room for a few pixels whose
+// coverage changes with rounding-level differences in the simulation (the rigid chain is chaotic),
+// and 3× under the weakest perturbation the golden tests must catch (ks +5 %: 46 pixels).
 inline constexpr double kDefaultMaxShare = 0.0002;
 
 struct CompareTolerance {
