@@ -1,5 +1,7 @@
 // Cost of one constraint solve (DESIGN §2 stage 4, ConstraintSolver::solve): assemble
-// J W Jᵀ λ = −J̇ q̇ − J W Q − k_s C − k_d Ċ, solve it with Jacobi-preconditioned CG, add Jᵀλ.
+// J W Jᵀ λ = −J̇ q̇ − J W Q − k_s C − k_d Ċ, solve it with preconditioned CG, add Jᵀλ. Every
+// scene runs with both preconditioners (argument jacobi: 0 incomplete Cholesky, 1 Jacobi); the
+// automatic default picks incomplete Cholesky for chain and curtain (no loops), Jacobi for net.
 //
 // Scenes, all particles 0.01 kg, rods 0.02 m, gravity, at rest with every rod straight:
 //   chain    one chain of R rods hanging from a fixed particle, 30° below the horizontal. J W Jᵀ
@@ -10,6 +12,9 @@
 //            most 60 rows: CG iterations are set by the blocks' mixed spectra, not by R. (Equal
 //            blocks would let CG finish in one block's worth of iterations, which no real scene
 //            offers.)
+//   net      a square net of rods (closed cells, about R rods) hung by its two top corners, its
+//            top edge 30° below the horizontal: loops everywhere, so the incomplete Cholesky
+//            factor is not exact.
 //
 // Each scene is taken one RK4 step of 0.01 s from rest (integrateRk4 over System::derivEval), and
 // the solve is timed at that state y₁ — the first evaluation of the second step — three ways:
@@ -28,6 +33,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <tuple>
 #include <memory>
 #include <numbers>
 #include <utility>
@@ -41,7 +47,7 @@ namespace {
 
 using namespace particles;
 
-enum class Shape { Chain, Curtain };
+enum class Shape { Chain, Curtain, Net };
 enum class Start { Cold, Warm, Converged };
 
 constexpr int kCurtainMinRods = 40, kCurtainMaxRods = 60;
@@ -66,10 +72,36 @@ void addChain(SystemBuilder& b, const Vec2& top, double angle, int rods) {
   }
 }
 
-System makeScene(Shape shape, int rods) {
+// A square net of rods (horizontal and vertical, closed cells) with its top row fixed, rotated 30°
+// from hanging straight so it swings: about `rods` rods, n × n particles with 2n(n − 1) ≈ rods.
+void addNet(SystemBuilder& b, int rods) {
+  const int n = int(std::ceil(0.5 + std::sqrt(0.25 + 0.5 * rods)));
+  const Vec2 right = kRodLength * Vec2(std::cos(-std::numbers::pi / 6), std::sin(-std::numbers::pi / 6));
+  const Vec2 down(right.y(), -right.x());
+  ParticleSpec p;
+  p.mass = kMass;
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      p.pos = double(c) * right + double(r) * down;
+      p.fixed = r == 0 && (c == 0 || c == n - 1);  // hung by its two top corners
+      b.addParticle(p);
+    }
+  }
+  for (int r = 0; r < n; ++r) {
+    for (int c = 0; c < n; ++c) {
+      if (c + 1 < n) b.addConstraint(std::make_unique<RodConstraint>(r * n + c, r * n + c + 1, kRodLength));
+      if (r + 1 < n) b.addConstraint(std::make_unique<RodConstraint>(r * n + c, (r + 1) * n + c, kRodLength));
+    }
+  }
+}
+
+System makeScene(Shape shape, int rods, const ConstraintSolverOptions& options) {
   SystemBuilder b;
+  b.setConstraintSolverOptions(options);
   if (shape == Shape::Chain) {
     addChain(b, Vec2(0, 0), -std::numbers::pi / 6, rods);
+  } else if (shape == Shape::Net) {
+    addNet(b, rods);
   } else {
     for (int k = 0, placed = 0; placed < rods; ++k) {
       const int length = std::min(kCurtainMinRods + k % (kCurtainMaxRods - kCurtainMinRods + 1), rods - placed);
@@ -94,8 +126,9 @@ struct Scene {
   ForceAccumulator forces;     // stages 1–2 at y₁
 };
 
-std::unique_ptr<Scene> prepareScene(Shape shape, int rods) {
-  auto scene = std::make_unique<Scene>(Scene{makeScene(shape, rods), ConstraintSolver(), ConstraintSolver(), {}});
+std::unique_ptr<Scene> prepareScene(Shape shape, int rods, const ConstraintSolverOptions& options) {
+  auto scene = std::make_unique<Scene>(
+      Scene{makeScene(shape, rods, options), ConstraintSolver(options), ConstraintSolver(options), {}});
   System& sys = scene->system;
   ForceAccumulator acc;
   acc.resize(sys.layout());
@@ -119,20 +152,24 @@ std::unique_ptr<Scene> prepareScene(Shape shape, int rods) {
 
 // Preparing the 10⁴-rod chain costs eight slow solves; every run of a benchmark (repetitions,
 // the iteration-count probe) reuses it.
-const Scene& scene(Shape shape, int rods) {
-  static std::map<std::pair<Shape, int>, std::unique_ptr<Scene>> cache;
-  auto& entry = cache[{shape, rods}];
-  if (!entry) entry = prepareScene(shape, rods);
+const Scene& scene(Shape shape, int rods, Preconditioner preconditioner) {
+  static std::map<std::tuple<Shape, int, Preconditioner>, std::unique_ptr<Scene>> cache;
+  auto& entry = cache[{shape, rods, preconditioner}];
+  ConstraintSolverOptions options;
+  options.preconditioner = preconditioner;
+  if (!entry) entry = prepareScene(shape, rods, options);
   return *entry;
 }
 
 void BM_ConstraintSolve(benchmark::State& state, Shape shape, Start start) {
-  const Scene& sc = scene(shape, int(state.range(0)));
+  ConstraintSolverOptions options;
+  options.preconditioner = state.range(1) == 0 ? Preconditioner::incompleteCholesky : Preconditioner::jacobi;
+  const Scene& sc = scene(shape, int(state.range(0)), options.preconditioner);
   const System& sys = sc.system;
   const StateView s = sys.view();
   ConstraintSolveStats stats;
   for (auto _ : state) {
-    ConstraintSolver solver;
+    ConstraintSolver solver(options);
     if (start == Start::Warm) solver = sc.warm;
     if (start == Start::Converged) solver = sc.converged;
     ForceAccumulator acc = sc.forces;
@@ -147,35 +184,23 @@ void BM_ConstraintSolve(benchmark::State& state, Shape shape, Start start) {
   state.counters["rel_residual"] = stats.relativeResidual;
 }
 
-BENCHMARK_CAPTURE(BM_ConstraintSolve, chain_cold, Shape::Chain, Start::Cold)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_ConstraintSolve, chain_warm, Shape::Chain, Start::Warm)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_ConstraintSolve, chain_converged, Shape::Chain, Start::Converged)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_ConstraintSolve, curtain_cold, Shape::Curtain, Start::Cold)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_ConstraintSolve, curtain_warm, Shape::Curtain, Start::Warm)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_ConstraintSolve, curtain_converged, Shape::Curtain, Start::Converged)
-    ->Arg(1000)
-    ->Arg(10000)
-    ->UseManualTime()
-    ->Unit(benchmark::kMillisecond);
+// Arguments: rods, preconditioner (0 incomplete Cholesky, the default; 1 Jacobi).
+void solveArgs(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"rods", "jacobi"});
+  for (int rods : {1000, 10000}) {
+    for (int jacobi : {0, 1}) b->Args({rods, jacobi});
+  }
+  b->UseManualTime()->Unit(benchmark::kMillisecond);
+}
+
+BENCHMARK_CAPTURE(BM_ConstraintSolve, chain_cold, Shape::Chain, Start::Cold)->Apply(solveArgs);
+BENCHMARK_CAPTURE(BM_ConstraintSolve, chain_warm, Shape::Chain, Start::Warm)->Apply(solveArgs);
+BENCHMARK_CAPTURE(BM_ConstraintSolve, chain_converged, Shape::Chain, Start::Converged)->Apply(solveArgs);
+BENCHMARK_CAPTURE(BM_ConstraintSolve, curtain_cold, Shape::Curtain, Start::Cold)->Apply(solveArgs);
+BENCHMARK_CAPTURE(BM_ConstraintSolve, curtain_warm, Shape::Curtain, Start::Warm)->Apply(solveArgs);
+BENCHMARK_CAPTURE(BM_ConstraintSolve, curtain_converged, Shape::Curtain, Start::Converged)->Apply(solveArgs);
+BENCHMARK_CAPTURE(BM_ConstraintSolve, net_cold, Shape::Net, Start::Cold)->Apply(solveArgs);
+BENCHMARK_CAPTURE(BM_ConstraintSolve, net_warm, Shape::Net, Start::Warm)->Apply(solveArgs);
+BENCHMARK_CAPTURE(BM_ConstraintSolve, net_converged, Shape::Net, Start::Converged)->Apply(solveArgs);
 
 }  // namespace

@@ -2,6 +2,41 @@
 
 namespace particles {
 
+template <class Precond>
+void ConstraintSolver::runCg(ConstraintSolveStats& stats) {
+  // A local solver: it keeps a reference to a_, which must not outlive a move of this object.
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Precond> cg;
+  if (options_.maxIterations > 0) cg.setMaxIterations(options_.maxIterations);
+  cg.setTolerance(options_.tolerance);
+  cg.compute(a_);
+  lambda_ = cg.solveWithGuess(rhs_, lambda_);
+  stats.iterations = int(cg.iterations());
+  stats.relativeResidual = cg.error();
+}
+
+Preconditioner ConstraintSolver::automaticPreconditioner(const Model& model) const {
+  // Particles are nodes, a row touching two moving particles an edge; a row with one moving
+  // particle (a bead, a rod to a fixed point) only couples rows at that particle, which a loop-free
+  // structure tolerates. An edge between two particles already connected closes a loop.
+  parent_.resize(size_t(model.layout.numParticles));
+  for (size_t i = 0; i < parent_.size(); ++i) parent_[i] = int(i);
+  auto root = [this](int p) {
+    while (parent_[size_t(p)] != p) p = parent_[size_t(p)] = parent_[size_t(parent_[size_t(p)])];
+    return p;
+  };
+  int edges = 0;
+  for (const ConstraintRow& row : rows_) {
+    if (row.count < 2 || model.isFixed(row.particle[0]) || model.isFixed(row.particle[1])) continue;
+    const int a = root(row.particle[0]), b = root(row.particle[1]);
+    if (a == b) return Preconditioner::jacobi;  // a loop
+    parent_[size_t(a)] = b;
+    ++edges;
+  }
+  // No edge at all (rails, beads): J W Jᵀ is diagonal or nearly so, and the diagonal is exact or
+  // close while its setup costs half as much.
+  return edges > 0 ? Preconditioner::incompleteCholesky : Preconditioner::jacobi;
+}
+
 ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView& s,
                                              const ConstraintList& constraints, ForceAccumulator& acc) {
   const int m = int(constraints.size());
@@ -64,15 +99,17 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
   regularizer.setFromTriplets(diagTriplets_.begin(), diagTriplets_.end());
   a_ = Eigen::SparseMatrix<double>(jw_ * j_.transpose()) + regularizer;
 
-  // A local solver: it keeps a reference to a_, which must not outlive a move of this object.
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
-  if (options_.maxIterations > 0) cg.setMaxIterations(options_.maxIterations);
-  cg.setTolerance(options_.tolerance);
-  cg.compute(a_);
   if (lambda_.size() != m) lambda_.setZero(m);
-  lambda_ = cg.solveWithGuess(rhs_, lambda_);
-  stats.iterations = int(cg.iterations());
-  stats.relativeResidual = cg.error();
+  Preconditioner preconditioner = options_.preconditioner;
+  if (preconditioner == Preconditioner::automatic) {
+    preconditioner = automaticPreconditioner(model);
+  }
+  stats.preconditioner = preconditioner;
+  if (preconditioner == Preconditioner::incompleteCholesky) {
+    runCg<Eigen::IncompleteCholesky<double>>(stats);
+  } else {
+    runCg<Eigen::DiagonalPreconditioner<double>>(stats);
+  }
 
   // Q̂ = Jᵀ λ
   for (int i = 0; i < m; ++i) {
