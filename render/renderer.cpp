@@ -1,6 +1,7 @@
 #include "render/renderer.hpp"
 
 #include "render/errors.hpp"
+#include "render/shape_mesh.hpp"
 
 #define GL_GLEXT_PROTOTYPES 1
 #include <GL/osmesa.h>
@@ -8,11 +9,8 @@
 #include <GL/glext.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -102,140 +100,6 @@ void checkGl(const char* what) {
   if (e != GL_NO_ERROR) throw RenderError(std::string(what) + ": OpenGL error " + glErrorName(e));
 }
 
-using P2 = std::array<float, 2>;  // a point in pixels, x right, y down from the top-left corner
-
-// How far (pixels) every anti-aliased edge is pushed outwards, so that a pixel whose centre lies
-// just outside a shape but one of whose samples lies inside still gets a fragment. Samples sit at
-// most 0.5 px from the centre along each axis (0.71 px away), so 1 px is enough.
-constexpr float kFringePx = 1.0f;
-// A distance that never limits coverage: the slot of an edge that is not anti-aliased or absent.
-constexpr float kFarPx = 1.0e4f;
-
-// One vertex as the shader sees it (interleaved). `shape` says where the primitive's true
-// boundary is, so the fragment shader can test each sample against it:
-//   kind 0 (edges):  shape = signed distances in pixels to up to four edges, positive inside;
-//                    distances are affine in position, so interpolation and dFdx/dFdy are exact.
-//   kind 1 (circle): shape = (x, y) offset from the centre in pixels, outer radius, inner radius;
-//                    a sample is covered when inner ≤ |offset + sample| ≤ outer.
-struct Vertex {
-  float x, y;
-  float shape[4];
-  float kind;
-  std::uint8_t rgba[4];
-};
-
-// Triangles in pixel coordinates, each carrying its shape's true boundary; drawn in the order
-// added. Every primitive's triangles extend kFringePx past its anti-aliased edges; the fragment
-// shader discards what no sample covers.
-class Mesh {
- public:
-  void clear() { vertices_.clear(); }
-  const std::vector<Vertex>& vertices() const { return vertices_; }
-  GLsizei vertexCount() const { return GLsizei(vertices_.size()); }
-
-  // A convex polygon of 3 or 4 corners (either winding). Edge i runs from corner i to corner
-  // i + 1; bit i of `smoothEdges` anti-aliases it. An edge left out is shared with a neighbouring
-  // piece of the same shape: not pushed out and not tested, so the pieces tile without a seam.
-  void convex(const std::vector<P2>& corners, Rgb col, unsigned smoothEdges = 0xF) {
-    const size_t n = corners.size();
-    float cx = 0, cy = 0;
-    for (const P2& p : corners) cx += p[0] / float(n), cy += p[1] / float(n);
-    std::array<P2, 4> normal{};  // unit, pointing into the polygon
-    std::array<float, 4> push{};
-    for (size_t i = 0; i < n; ++i) {
-      const P2 a = corners[i], b = corners[(i + 1) % n];
-      const float len = std::hypot(b[0] - a[0], b[1] - a[1]);
-      if (!(len > 1e-4f)) return;  // degenerate: nothing to draw
-      P2 m = {-(b[1] - a[1]) / len, (b[0] - a[0]) / len};
-      if (m[0] * (cx - a[0]) + m[1] * (cy - a[1]) < 0) m = {-m[0], -m[1]};
-      normal[i] = m;
-      push[i] = (smoothEdges >> i & 1u) ? kFringePx : 0.0f;
-    }
-    // Corner i of the grown polygon: where edges i − 1 and i, each moved out by its push, meet.
-    std::array<Vertex, 4> grown{};
-    for (size_t i = 0; i < n; ++i) {
-      const size_t j = (i + n - 1) % n;
-      const P2 p = corners[i], u = normal[j], v = normal[i];
-      const float det = u[0] * v[1] - u[1] * v[0];
-      P2 q;
-      if (std::abs(det) < 1e-6f) {  // the two edges are parallel
-        q = {p[0] - v[0] * push[i], p[1] - v[1] * push[i]};
-      } else {  // solve u·(q − p) = −push[j], v·(q − p) = −push[i]
-        const float rj = -push[j], ri = -push[i];
-        q = {p[0] + (rj * v[1] - ri * u[1]) / det, p[1] + (ri * u[0] - rj * v[0]) / det};
-      }
-      Vertex& out = grown[i];
-      out = vertex(q, col, 0.0f);
-      for (size_t e = 0; e < 4; ++e) {
-        const bool tested = e < n && (smoothEdges >> e & 1u);
-        out.shape[e] = tested ? normal[e][0] * (q[0] - corners[e][0]) + normal[e][1] * (q[1] - corners[e][1]) : kFarPx;
-      }
-    }
-    for (size_t i = 1; i + 1 < n; ++i) {
-      vertices_.push_back(grown[0]);
-      vertices_.push_back(grown[i]);
-      vertices_.push_back(grown[i + 1]);
-    }
-  }
-  // A segment of the given pixel width; squareCaps extends it by half the width at both ends.
-  void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false) {
-    float dx = b[0] - a[0], dy = b[1] - a[1];
-    const float len = std::hypot(dx, dy);
-    if (!(len > 1e-4f)) return;
-    dx /= len;
-    dy /= len;
-    const float h = 0.5f * width;
-    const float nx = -dy * h, ny = dx * h;
-    if (squareCaps) {
-      a = {a[0] - dx * h, a[1] - dy * h};
-      b = {b[0] + dx * h, b[1] + dy * h};
-    }
-    convex({{a[0] + nx, a[1] + ny}, {b[0] + nx, b[1] + ny}, {b[0] - nx, b[1] - ny}, {a[0] - nx, a[1] - ny}}, col);
-  }
-  void closedOutline(const std::vector<P2>& pts, float width, Rgb col) {
-    for (size_t i = 0; i < pts.size(); ++i) line(pts[i], pts[(i + 1) % pts.size()], width, col, true);
-  }
-  void disc(P2 c, float r, Rgb col) { annulus(c, 0.0f, r, col); }
-  void ring(P2 c, float r, float width, Rgb col) {
-    annulus(c, std::max(0.0f, r - 0.5f * width), r + 0.5f * width, col);
-  }
-
- private:
-  // The points between radii `inner` and `outer` (inner 0: a disc), covered by a band of quads
-  // (a fan when inner is 0) whose polygons contain the annulus grown by kFringePx on both sides:
-  // the outer polygon is circumscribed, the inner one inscribed.
-  void annulus(P2 c, float inner, float outer, Rgb col) {
-    const float fringeOuter = outer + kFringePx;
-    const float fringeInner = std::max(0.0f, inner - kFringePx);
-    const int n = std::clamp(int(std::ceil(2.0f * std::numbers::pi_v<float> * fringeOuter / 16.0f)), 8, 256);
-    const float polyOuter = fringeOuter / std::cos(std::numbers::pi_v<float> / float(n));
-    auto at = [&](float radius, int i) {
-      const double a = 2.0 * std::numbers::pi * double(i % n) / double(n);
-      const P2 p = {c[0] + radius * float(std::cos(a)), c[1] + radius * float(std::sin(a))};
-      Vertex v = vertex(p, col, 1.0f);
-      v.shape[0] = p[0] - c[0];
-      v.shape[1] = p[1] - c[1];
-      v.shape[2] = outer;
-      v.shape[3] = inner;
-      return v;
-    };
-    for (int i = 0; i < n; ++i) {
-      const Vertex o0 = at(polyOuter, i), o1 = at(polyOuter, i + 1);
-      if (fringeInner > 0.0f) {
-        const Vertex i0 = at(fringeInner, i), i1 = at(fringeInner, i + 1);
-        vertices_.insert(vertices_.end(), {i0, o0, o1, i0, o1, i1});
-      } else {
-        vertices_.insert(vertices_.end(), {at(0.0f, 0), o0, o1});
-      }
-    }
-  }
-  static Vertex vertex(P2 p, Rgb col, float kind) {
-    return {p[0], p[1], {0, 0, 0, 0}, kind, {col.r, col.g, col.b, 255}};
-  }
-
-  std::vector<Vertex> vertices_;
-};
-
 Rgb mix(Rgb a, Rgb b, double t) {
   auto m = [t](unsigned char x, unsigned char y) {
     return static_cast<unsigned char>(std::lround(double(x) + (double(y) - double(x)) * t));
@@ -244,7 +108,7 @@ Rgb mix(Rgb a, Rgb b, double t) {
 }
 
 // Coverage is computed per sample in the fragment shader: each primitive knows its true boundary
-// (see Vertex), the pixel's samples sit at the standard positions (samplePattern), and the share
+// (see ShapeVertex), the pixel's samples sit at the standard positions (samplePattern), and the share
 // covered becomes the fragment's alpha, blended over what is already drawn. For one edge over a
 // background this is exactly what a multisampled framebuffer resolves to.
 constexpr const char* kVertexShader = R"(#version 130
@@ -339,7 +203,7 @@ struct Renderer::Impl {
   OsMesaContextPtr context;
   GLuint program = 0;
   GLint positionAttr = -1, colorAttr = -1, shapeAttr = -1, kindAttr = -1;
-  Mesh mesh;
+  ShapeMesh mesh;
 
   void makeCurrent() {
     if (!OSMesaMakeCurrent(context.get(), image.rgba.data(), GL_UNSIGNED_BYTE, image.width, image.height)) {
@@ -532,9 +396,9 @@ const Image& Renderer::render(const FrameSnapshot& frame, const Camera& camera) 
   glClearColor(float(bg.r) / 255.0f, float(bg.g) / 255.0f, float(bg.b) / 255.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
 
-  if (m.mesh.vertexCount() > 0) {
-    const Vertex* v = m.mesh.vertices().data();
-    const GLsizei stride = sizeof(Vertex);
+  if (!m.mesh.vertices().empty()) {
+    const ShapeVertex* v = m.mesh.vertices().data();
+    const GLsizei stride = sizeof(ShapeVertex);
     glUseProgram(m.program);
     const GLint attrs[] = {m.positionAttr, m.colorAttr, m.shapeAttr, m.kindAttr};
     for (GLint a : attrs) {
@@ -545,7 +409,7 @@ const Image& Renderer::render(const FrameSnapshot& frame, const Camera& camera) 
     if (m.colorAttr >= 0) glVertexAttribPointer(GLuint(m.colorAttr), 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, v->rgba);
     if (m.shapeAttr >= 0) glVertexAttribPointer(GLuint(m.shapeAttr), 4, GL_FLOAT, GL_FALSE, stride, v->shape);
     if (m.kindAttr >= 0) glVertexAttribPointer(GLuint(m.kindAttr), 1, GL_FLOAT, GL_FALSE, stride, &v->kind);
-    glDrawArrays(GL_TRIANGLES, 0, m.mesh.vertexCount());
+    glDrawArrays(GL_TRIANGLES, 0, GLsizei(m.mesh.vertices().size()));
     for (GLint a : attrs) {
       if (a >= 0) glDisableVertexAttribArray(GLuint(a));
     }

@@ -1,0 +1,112 @@
+#include "render/shape_mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace particles::render {
+
+namespace {
+
+ShapeVertex vertex(P2 p, Rgb col, float kind) {
+  return {p[0], p[1], {0, 0, 0, 0}, kind, {col.r, col.g, col.b, 255}};
+}
+
+}  // namespace
+
+void ShapeMesh::convex(const std::vector<P2>& corners, Rgb col, unsigned smoothEdges) {
+  const size_t n = corners.size();
+  if (n < 3 || n > 4) throw std::logic_error("ShapeMesh::convex takes 3 or 4 corners");
+  float cx = 0, cy = 0;
+  for (const P2& p : corners) cx += p[0] / float(n), cy += p[1] / float(n);
+  std::array<P2, 4> normal{};  // unit, pointing into the polygon
+  std::array<float, 4> push{};
+  for (size_t i = 0; i < n; ++i) {
+    const P2 a = corners[i], b = corners[(i + 1) % n];
+    const float len = std::hypot(b[0] - a[0], b[1] - a[1]);
+    if (!(len > 1e-4f)) return;  // degenerate: nothing to draw
+    P2 m = {-(b[1] - a[1]) / len, (b[0] - a[0]) / len};
+    if (m[0] * (cx - a[0]) + m[1] * (cy - a[1]) < 0) m = {-m[0], -m[1]};
+    normal[i] = m;
+    push[i] = (smoothEdges >> i & 1u) ? kFringePx : 0.0f;
+  }
+  // Corner i of the grown polygon: where edges i − 1 and i, each moved out by its push, meet.
+  std::array<ShapeVertex, 4> grown{};
+  for (size_t i = 0; i < n; ++i) {
+    const size_t j = (i + n - 1) % n;
+    const P2 p = corners[i], u = normal[j], v = normal[i];
+    const float det = u[0] * v[1] - u[1] * v[0];
+    P2 q;
+    if (std::abs(det) < 1e-6f) {  // the two edges are parallel
+      q = {p[0] - v[0] * push[i], p[1] - v[1] * push[i]};
+    } else {  // solve u·(q − p) = −push[j], v·(q − p) = −push[i]
+      const float rj = -push[j], ri = -push[i];
+      q = {p[0] + (rj * v[1] - ri * u[1]) / det, p[1] + (ri * u[0] - rj * v[0]) / det};
+    }
+    ShapeVertex& out = grown[i];
+    out = vertex(q, col, 0.0f);
+    for (size_t e = 0; e < 4; ++e) {
+      const bool tested = e < n && (smoothEdges >> e & 1u);
+      out.shape[e] = tested ? normal[e][0] * (q[0] - corners[e][0]) + normal[e][1] * (q[1] - corners[e][1]) : kFarPx;
+    }
+  }
+  for (size_t i = 1; i + 1 < n; ++i) {
+    vertices_.push_back(grown[0]);
+    vertices_.push_back(grown[i]);
+    vertices_.push_back(grown[i + 1]);
+  }
+}
+
+void ShapeMesh::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
+  float dx = b[0] - a[0], dy = b[1] - a[1];
+  const float len = std::hypot(dx, dy);
+  if (!(len > 1e-4f)) return;
+  dx /= len;
+  dy /= len;
+  const float h = 0.5f * width;
+  const float nx = -dy * h, ny = dx * h;
+  if (squareCaps) {
+    a = {a[0] - dx * h, a[1] - dy * h};
+    b = {b[0] + dx * h, b[1] + dy * h};
+  }
+  convex({{a[0] + nx, a[1] + ny}, {b[0] + nx, b[1] + ny}, {b[0] - nx, b[1] - ny}, {a[0] - nx, a[1] - ny}}, col);
+}
+
+void ShapeMesh::closedOutline(const std::vector<P2>& pts, float width, Rgb col) {
+  for (size_t i = 0; i < pts.size(); ++i) line(pts[i], pts[(i + 1) % pts.size()], width, col, true);
+}
+
+void ShapeMesh::ring(P2 c, float r, float width, Rgb col) {
+  annulus(c, std::max(0.0f, r - 0.5f * width), r + 0.5f * width, col);
+}
+
+// Covered by a band of quads (a fan when inner is 0) whose polygons contain the annulus grown by
+// kFringePx on both sides: the outer polygon is circumscribed, the inner one inscribed.
+void ShapeMesh::annulus(P2 c, float inner, float outer, Rgb col) {
+  const float fringeOuter = outer + kFringePx;
+  const float fringeInner = std::max(0.0f, inner - kFringePx);
+  const int n = std::clamp(int(std::ceil(2.0f * std::numbers::pi_v<float> * fringeOuter / 16.0f)), 8, 256);
+  const float polyOuter = fringeOuter / std::cos(std::numbers::pi_v<float> / float(n));
+  auto at = [&](float radius, int i) {
+    const double a = 2.0 * std::numbers::pi * double(i % n) / double(n);
+    const P2 p = {c[0] + radius * float(std::cos(a)), c[1] + radius * float(std::sin(a))};
+    ShapeVertex v = vertex(p, col, 1.0f);
+    v.shape[0] = p[0] - c[0];
+    v.shape[1] = p[1] - c[1];
+    v.shape[2] = outer;
+    v.shape[3] = inner;
+    return v;
+  };
+  for (int i = 0; i < n; ++i) {
+    const ShapeVertex o0 = at(polyOuter, i), o1 = at(polyOuter, i + 1);
+    if (fringeInner > 0.0f) {
+      const ShapeVertex i0 = at(fringeInner, i), i1 = at(fringeInner, i + 1);
+      vertices_.insert(vertices_.end(), {i0, o0, o1, i0, o1, i1});
+    } else {
+      vertices_.insert(vertices_.end(), {at(0.0f, 0), o0, o1});
+    }
+  }
+}
+
+}  // namespace particles::render

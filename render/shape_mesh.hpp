@@ -1,0 +1,61 @@
+#pragma once
+// Internal to render/: a frame's shapes as triangles for the renderer's coverage shader
+// (render/renderer.cpp). Each vertex carries its shape's true boundary, so the fragment shader can
+// test every sample of a pixel against it (multisampling in the shader, render/renderer.hpp).
+// Every primitive's triangles reach kFringePx past its smoothed edges, so that each pixel with a
+// sample inside gets a fragment; the shader discards those no sample covers.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "render/renderer.hpp"
+
+namespace particles::render {
+
+using P2 = std::array<float, 2>;  // a point in pixels, x right, y down from the top-left corner
+
+// How far (pixels) every anti-aliased edge is pushed outwards, so that a pixel whose centre lies
+// just outside a shape but one of whose samples lies inside still gets a fragment. Samples sit at
+// most 0.5 px from the centre along each axis (0.71 px away), so 1 px is enough.
+inline constexpr float kFringePx = 1.0f;
+// A distance that never limits coverage: the slot of an edge that is not anti-aliased or absent.
+inline constexpr float kFarPx = 1.0e4f;
+
+// One vertex as the shader sees it (interleaved). `shape` says where the primitive's true
+// boundary is:
+//   kind 0 (edges):  shape = signed distances in pixels to up to four edges, positive inside;
+//                    distances are affine in position, so interpolation and dFdx/dFdy are exact.
+//   kind 1 (circle): shape = (x, y) offset from the centre in pixels, outer radius, inner radius;
+//                    a sample is covered when inner ≤ |offset + sample| ≤ outer.
+struct ShapeVertex {
+  float x, y;
+  float shape[4];
+  float kind;
+  std::uint8_t rgba[4];
+};
+
+// Triangles in pixel coordinates, drawn in the order the shapes are added (painter's order).
+class ShapeMesh {
+ public:
+  void clear() { vertices_.clear(); }
+  const std::vector<ShapeVertex>& vertices() const { return vertices_; }
+
+  // A convex polygon of 3 or 4 corners (either winding). Edge i runs from corner i to corner
+  // i + 1; bit i of `smoothEdges` anti-aliases it. An edge left out is shared with a neighbouring
+  // piece of the same shape: not pushed out and not tested, so the pieces tile without a seam.
+  void convex(const std::vector<P2>& corners, Rgb col, unsigned smoothEdges = 0xF);
+  // A segment of the given pixel width; squareCaps extends it by half the width at both ends.
+  void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false);
+  void closedOutline(const std::vector<P2>& pts, float width, Rgb col);
+  void disc(P2 c, float r, Rgb col) { annulus(c, 0.0f, r, col); }
+  void ring(P2 c, float r, float width, Rgb col);
+
+ private:
+  // The points between radii `inner` and `outer` (inner 0: a disc).
+  void annulus(P2 c, float inner, float outer, Rgb col);
+
+  std::vector<ShapeVertex> vertices_;
+};
+
+}  // namespace particles::render
