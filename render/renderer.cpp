@@ -61,7 +61,7 @@ void validate(const RenderOptions& o) {
     throw std::invalid_argument("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                                 " is out of range (1 to 16384 pixels per side)");
   }
-  if (o.msaa != 1 && o.msaa != 2 && o.msaa != 4 && o.msaa != 8 && o.msaa != 16) {
+  if (std::find(kSampleCounts.begin(), kSampleCounts.end(), o.msaa) == kSampleCounts.end()) {
     throw std::invalid_argument("msaa " + std::to_string(o.msaa) + " is not one of 1 (off), 2, 4, 8, 16");
   }
   if (!(o.particleRadius.value > 0.0)) throw std::invalid_argument("particle radius must be positive");
@@ -172,26 +172,25 @@ GLuint compileShader(GLenum type, const char* source, const char* name) {
 }  // namespace
 
 const std::vector<Vec2>& samplePattern(int samples) {
-  // The standard sample positions of Direct3D and Vulkan, in 1/16 pixel, y down.
-  static const std::vector<Vec2> p1 = {Vec2(0, 0)};
-  static const std::vector<Vec2> p2 = {Vec2(4, 4), Vec2(-4, -4)};
-  static const std::vector<Vec2> p4 = {Vec2(-2, -6), Vec2(6, -2), Vec2(-6, 2), Vec2(2, 6)};
-  static const std::vector<Vec2> p8 = {Vec2(1, -3), Vec2(-1, 3),  Vec2(5, 1), Vec2(-3, -5),
-                                       Vec2(-5, 5), Vec2(-7, -1), Vec2(3, 7), Vec2(7, -7)};
-  static const std::vector<Vec2> p16 = {Vec2(1, 1),  Vec2(-1, -3), Vec2(-3, 2), Vec2(4, -1), Vec2(-5, -2), Vec2(2, 5),
-                                        Vec2(5, 3),  Vec2(3, -5),  Vec2(-2, 6), Vec2(0, -7), Vec2(-4, -6), Vec2(-6, 4),
-                                        Vec2(-8, 0), Vec2(7, -4),  Vec2(6, 7),  Vec2(-7, -8)};
-  static const auto scaled = [](std::vector<Vec2> v) {
-    for (Vec2& o : v) o /= 16.0;
-    return v;
+  // The standard sample positions of Direct3D and Vulkan, given in 1/16 pixel, y down.
+  auto inPixels = [](std::vector<Vec2> sixteenths) {
+    for (Vec2& o : sixteenths) o /= 16.0;
+    return sixteenths;
   };
-  static const std::vector<Vec2> s1 = p1, s2 = scaled(p2), s4 = scaled(p4), s8 = scaled(p8), s16 = scaled(p16);
+  static const std::vector<Vec2> p1 = {Vec2(0, 0)};
+  static const std::vector<Vec2> p2 = inPixels({Vec2(4, 4), Vec2(-4, -4)});
+  static const std::vector<Vec2> p4 = inPixels({Vec2(-2, -6), Vec2(6, -2), Vec2(-6, 2), Vec2(2, 6)});
+  static const std::vector<Vec2> p8 = inPixels(
+      {Vec2(1, -3), Vec2(-1, 3), Vec2(5, 1), Vec2(-3, -5), Vec2(-5, 5), Vec2(-7, -1), Vec2(3, 7), Vec2(7, -7)});
+  static const std::vector<Vec2> p16 = inPixels(
+      {Vec2(1, 1), Vec2(-1, -3), Vec2(-3, 2), Vec2(4, -1), Vec2(-5, -2), Vec2(2, 5), Vec2(5, 3), Vec2(3, -5),
+       Vec2(-2, 6), Vec2(0, -7), Vec2(-4, -6), Vec2(-6, 4), Vec2(-8, 0), Vec2(7, -4), Vec2(6, 7), Vec2(-7, -8)});
   switch (samples) {
-    case 1: return s1;
-    case 2: return s2;
-    case 4: return s4;
-    case 8: return s8;
-    case 16: return s16;
+    case 1: return p1;
+    case 2: return p2;
+    case 4: return p4;
+    case 8: return p8;
+    case 16: return p16;
     default: throw std::invalid_argument("no sample pattern for " + std::to_string(samples) + " samples");
   }
 }

@@ -18,6 +18,7 @@
 //
 // Speed: bench/README.md (render-only frames per second for the three demos).
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -60,7 +61,7 @@ struct Length {
 struct RenderOptions {
   int width = 1280;  // pixels
   int height = 720;
-  int msaa = 4;  // samples per pixel: 1 (off), 2, 4, 8 or 16
+  int msaa = 4;  // samples per pixel: one of kSampleCounts (1 is off)
   ThemeName themeName = ThemeName::dark;
   Length particleRadius{4.0, Length::Unit::pixels};
   double springWidthPx = 1.5;
@@ -72,7 +73,10 @@ struct RenderOptions {
   double strainForFullColor = 0.2;
 };
 
-// The sample positions for 1, 2, 4, 8 or 16 samples per pixel: offsets from the pixel centre in
+// The anti-aliasing sample counts there is a pattern for (RenderOptions::msaa).
+inline constexpr std::array<int, 5> kSampleCounts = {1, 2, 4, 8, 16};
+
+// The sample positions for each of kSampleCounts: offsets from the pixel centre in
 // pixels, x right, y down (Direct3D's and Vulkan's standard patterns; 1 is the centre itself).
 // Throws std::invalid_argument for another count.
 const std::vector<Vec2>& samplePattern(int samples);

@@ -14,20 +14,22 @@ void ConstraintSolver::runCg(ConstraintSolveStats& stats) {
   stats.relativeResidual = cg.error();
 }
 
-Preconditioner ConstraintSolver::automaticPreconditioner(const Model& model) const {
+Preconditioner ConstraintSolver::automaticPreconditioner(const Model& model) {
   // Particles are nodes, a row touching two moving particles an edge; a row with one moving
   // particle (a bead, a rod to a fixed point) only couples rows at that particle, which a loop-free
-  // structure tolerates. An edge between two particles already connected closes a loop.
-  parent_.resize(size_t(model.layout.numParticles));
+  // structure tolerates. An edge between two particles already connected closes a loop. The
+  // union-find runs over the compact columns (columnOf_ still set), so its cost is per row, not
+  // per particle of the system.
+  parent_.resize(touched_.size());
   for (size_t i = 0; i < parent_.size(); ++i) parent_[i] = int(i);
-  auto root = [this](int p) {
-    while (parent_[size_t(p)] != p) p = parent_[size_t(p)] = parent_[size_t(parent_[size_t(p)])];
-    return p;
+  auto root = [this](int c) {
+    while (parent_[size_t(c)] != c) c = parent_[size_t(c)] = parent_[size_t(parent_[size_t(c)])];
+    return c;
   };
   int edges = 0;
   for (const ConstraintRow& row : rows_) {
     if (row.count < 2 || model.isFixed(row.particle[0]) || model.isFixed(row.particle[1])) continue;
-    const int a = root(row.particle[0]), b = root(row.particle[1]);
+    const int a = root(columnOf_[size_t(row.particle[0])]), b = root(columnOf_[size_t(row.particle[1])]);
     if (a == b) return Preconditioner::jacobi;  // a loop
     parent_[size_t(a)] = b;
     ++edges;
@@ -37,8 +39,8 @@ Preconditioner ConstraintSolver::automaticPreconditioner(const Model& model) con
   return edges > 0 ? Preconditioner::incompleteCholesky : Preconditioner::jacobi;
 }
 
-ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView& s,
-                                             const ConstraintList& constraints, ForceAccumulator& acc) {
+ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView& s, const ConstraintList& constraints,
+                                             ForceAccumulator& acc) {
   const int m = int(constraints.size());
   ConstraintSolveStats stats;
   stats.rows = m;
@@ -89,6 +91,10 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
     }
   }
 
+  Preconditioner preconditioner = options_.preconditioner;
+  if (preconditioner == Preconditioner::automatic) preconditioner = automaticPreconditioner(model);
+  stats.preconditioner = preconditioner;
+
   const int cols = 2 * int(touched_.size());
   for (int p : touched_) columnOf_[size_t(p)] = -1;
   jw_.resize(m, cols);
@@ -100,11 +106,6 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
   a_ = Eigen::SparseMatrix<double>(jw_ * j_.transpose()) + regularizer;
 
   if (lambda_.size() != m) lambda_.setZero(m);
-  Preconditioner preconditioner = options_.preconditioner;
-  if (preconditioner == Preconditioner::automatic) {
-    preconditioner = automaticPreconditioner(model);
-  }
-  stats.preconditioner = preconditioner;
   if (preconditioner == Preconditioner::incompleteCholesky) {
     runCg<Eigen::IncompleteCholesky<double>>(stats);
   } else {

@@ -20,11 +20,10 @@
 //    Tikhonov term ε·mean(diag) on the diagonal keeps λ finite even when their right-hand sides
 //    disagree. Its effect on consistent systems is a relative 1e-10, far below CG's tolerance.
 
-#include <memory>
-#include <vector>
-
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
+#include <memory>
+#include <vector>
 
 #include "constraint.hpp"
 #include "force_accumulator.hpp"
@@ -33,15 +32,15 @@
 namespace particles {
 
 enum class Preconditioner {
-  automatic,           // incomplete Cholesky when the rows form no loop, else Jacobi (see above)
+  automatic,  // incomplete Cholesky when the rows form no loop, else Jacobi (see above)
   incompleteCholesky,
   jacobi,
 };
 
 struct ConstraintSolverOptions {
   Preconditioner preconditioner = Preconditioner::automatic;
-  double tolerance = 1e-10;      // CG stops at |r| ≤ tolerance·|b|
-  int maxIterations = 0;         // 0: Eigen's default, twice the number of rows
+  double tolerance = 1e-10;       // CG stops at |r| ≤ tolerance·|b|
+  int maxIterations = 0;          // 0: Eigen's default, twice the number of rows
   double regularization = 1e-10;  // ε above, relative to the mean diagonal
 };
 
@@ -66,8 +65,9 @@ class ConstraintSolver {
   template <class Precond>
   void runCg(ConstraintSolveStats& stats);
   // Incomplete Cholesky when rows join moving particles and no row closes a loop among them
-  // (rows meeting only at fixed particles do not couple in J W Jᵀ), else Jacobi.
-  Preconditioner automaticPreconditioner(const Model& model) const;
+  // (rows meeting only at fixed particles do not couple in J W Jᵀ), else Jacobi. Needs rows_
+  // and the compact columns of the solve in progress.
+  Preconditioner automaticPreconditioner(const Model& model);
 
   ConstraintSolverOptions options_;
   std::vector<ConstraintRow> rows_;
@@ -75,7 +75,7 @@ class ConstraintSolver {
   // constraints on a large cloth cost per constraint, not per particle.
   std::vector<int> columnOf_;  // per particle: compact column block, or -1
   std::vector<int> touched_;
-  mutable std::vector<int> parent_;  // union-find over particles, for automaticPreconditioner
+  std::vector<int> parent_;  // union-find over compact columns, for automaticPreconditioner
   std::vector<Eigen::Triplet<double>> jwTriplets_, jTriplets_, diagTriplets_;
   Eigen::SparseMatrix<double> jw_, j_, a_;
   Eigen::VectorXd rhs_, lambda_;

@@ -274,6 +274,14 @@ namespace {
 constexpr int kCoverageW = 64, kCoverageH = 48;
 const Camera kPixelCamera{Vec2(32, -24), 48.0};
 
+RenderOptions pixelCameraOptions(int samples = 4) {
+  RenderOptions o;
+  o.width = kCoverageW;
+  o.height = kCoverageH;
+  o.msaa = samples;
+  return o;
+}
+
 // Every pixel must be the background blended towards `fg` by the share of the pixel's samples
 // that `inside` accepts (sample points in pixels, x right, y down): what a multisampled
 // framebuffer resolves to. Returns the summed coverage (pixels).
@@ -308,7 +316,7 @@ double checkCoverage(const Image& image, Rgb bg, Rgb fg, int samples, const std:
 TEST_CASE("sample patterns lie inside the pixel, one sample per row and per column") {
   // Distinct x and y offsets ("N rooks"): a vertical or horizontal edge crossing the pixel passes
   // through all N + 1 coverage levels, the point of the standard patterns.
-  for (int samples : {1, 2, 4, 8, 16}) {
+  for (int samples : kSampleCounts) {
     CAPTURE(samples);
     const std::vector<Vec2>& pattern = samplePattern(samples);
     REQUIRE(int(pattern.size()) == samples);
@@ -334,12 +342,9 @@ TEST_CASE("each pixel of a disc is blended by the share of its samples inside th
   FrameSnapshot frame;
   frame.particles = {Vec2(centre.x(), -centre.y())};
   frame.particleFixed = {0};
-  for (int samples : {1, 2, 4, 8, 16}) {
+  for (int samples : kSampleCounts) {
     CAPTURE(samples);
-    RenderOptions o;
-    o.width = kCoverageW;
-    o.height = kCoverageH;
-    o.msaa = samples;
+    RenderOptions o = pixelCameraOptions(samples);
     o.particleRadius = {radius, Length::Unit::pixels};
     Renderer renderer(o);
     CHECK(renderer.samples() == samples);
@@ -361,10 +366,7 @@ TEST_CASE("each pixel of a slanted line is blended by the share of its samples i
   const Vec2 along = (b - a).normalized(), across(-along.y(), along.x());
   for (int samples : {1, 4, 16}) {
     CAPTURE(samples);
-    RenderOptions o;
-    o.width = kCoverageW;
-    o.height = kCoverageH;
-    o.msaa = samples;
+    RenderOptions o = pixelCameraOptions(samples);
     o.springWidthPx = width;
     Renderer renderer(o);
     const Theme colors = theme(o.themeName);
@@ -381,9 +383,7 @@ TEST_CASE("a shape drawn in convex pieces shows no seams between them") {
   FrameSnapshot frame;
   const Vec2 tip(21.37, 9.61);  // pixels
   frame.mice = {{Vec2(tip.x(), -tip.y()), Vec2(tip.x(), -tip.y())}};
-  RenderOptions o;
-  o.width = kCoverageW;
-  o.height = kCoverageH;
+  const RenderOptions o = pixelCameraOptions();
   Renderer renderer(o);
   const Image& image = renderer.render(frame, kPixelCamera);
   const Theme colors = theme(o.themeName);

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "compare_command.hpp"
+#include "render/renderer.hpp"
 
 namespace {
 
@@ -69,7 +70,7 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
   renderCmd->add_option("--fps", render.fps, "Frames per simulated second (default: the scenario's render.fps)");
   renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: 1 (off), 2, 4, 8 or 16")
-      ->check(CLI::IsMember({1, 2, 4, 8, 16}))
+      ->check(CLI::IsMember(particles::render::kSampleCounts))
       ->capture_default_str();
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
   renderCmd->add_option("--particle-radius", render.particleRadius,
