@@ -38,10 +38,10 @@
 #include <numbers>
 #include <utility>
 
-#include "gravity_force.hpp"
-#include "integrators.hpp"
-#include "rod_constraint.hpp"
-#include "system.hpp"
+#include "core/forces/gravity_force.hpp"
+#include "core/integrators.hpp"
+#include "core/constraints/rod_constraint.hpp"
+#include "core/system.hpp"
 
 namespace {
 

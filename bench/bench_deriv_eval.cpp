@@ -17,13 +17,13 @@
 
 #include <memory>
 
-#include "damped_spring_force.hpp"
-#include "drag_force.hpp"
-#include "gravity_force.hpp"
-#include "grid.hpp"
-#include "horizontal_line_constraint.hpp"
-#include "solver.hpp"
-#include "system.hpp"
+#include "core/forces/damped_spring_force.hpp"
+#include "core/forces/drag_force.hpp"
+#include "core/forces/gravity_force.hpp"
+#include "core/grid.hpp"
+#include "core/constraints/horizontal_line_constraint.hpp"
+#include "core/solver.hpp"
+#include "core/system.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include "render/renderer.hpp"
 #include "render/snapshot.hpp"
 #include "scenario/scenario.hpp"
-#include "solver.hpp"
+#include "core/solver.hpp"
 
 namespace {
 

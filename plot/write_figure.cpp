@@ -21,8 +21,8 @@
 #include "plot/canvas.hpp"
 #include "plot/charts.hpp"
 #include "plot/errors.hpp"
-#include "render/errors.hpp"
-#include "render/pending_output.hpp"
+#include "output/output_error.hpp"
+#include "output/pending_output.hpp"
 #include "plot/figure.hpp"
 #include "plot/font.hpp"
 
@@ -140,7 +140,7 @@ std::string lowerExtension(const std::filesystem::path& p) {
 // Writes all of `bytes` to `out` through a PendingOutput ("<out>.partial-<pid>-<n>", renamed over
 // `out` when complete). The temporary is removed on every failure path.
 void writeFileAtomically(const std::filesystem::path& out, const std::vector<std::uint8_t>& bytes) {
-  render::PendingOutput pending(out);
+  output::PendingOutput pending(out);
   const std::filesystem::path& temporary = pending.temporary();
   const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
   if (fd < 0) {
@@ -164,7 +164,7 @@ void writeFileAtomically(const std::filesystem::path& out, const std::vector<std
   if (::close(fd) != 0) fail("close " + temporary.string(), errno);
   try {
     pending.commit();
-  } catch (const render::OutputError& e) {
+  } catch (const output::OutputError& e) {
     throw FigureError("cannot write figure " + out.string() + ": " + e.what());
   }
 }

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "output/output_error.hpp"
+
 namespace particles::render {
 
 // The off-screen GL context or its framebuffers could not be made, or GL reported an error.
@@ -14,10 +16,8 @@ class RenderError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A PNG or MP4 output could not be opened, encoded or written. The partial file is removed.
-class OutputError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+// A PNG or MP4 output could not be opened, encoded or written (the output room's error; the
+// partial file is removed).
+using output::OutputError;
 
 }  // namespace particles::render

@@ -13,7 +13,7 @@
 #include "render/frame_pipeline.hpp"
 #include "render/frame_writer.hpp"
 #include "render/pipelined_frame_writer.hpp"
-#include "render/pending_output.hpp"
+#include "output/pending_output.hpp"
 
 namespace particles::render {
 
@@ -30,7 +30,7 @@ class Mp4Writer final : public PipelinedFrameWriter {
 
  private:
   struct Encoder;
-  PendingOutput out_;  // first: the temporary file is removed after the encoder has closed it
+  output::PendingOutput out_;  // first: the temporary file is removed after the encoder has closed it
   std::unique_ptr<Encoder> encoder_;
 };
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "render/errors.hpp"
-#include "render/pending_output.hpp"
+#include "output/pending_output.hpp"
 
 namespace particles::render {
 
@@ -132,7 +132,7 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
 }
 
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
-  PendingOutput out(path);
+  output::PendingOutput out(path);
   writePngDirect(out.temporary(), image, options);
   out.commit();
 }

@@ -44,7 +44,7 @@ PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWrite
     createdDirectory_ = fs::create_directory(directory_, ec);
     if (ec) throw OutputError("cannot create directory " + directory_.string() + ": " + ec.message());
   }
-  staging_ = std::make_unique<PendingOutput>(directory_ / "frames");
+  staging_ = std::make_unique<output::PendingOutput>(directory_ / "frames");
   fs::create_directory(staging_->temporary(), ec);
   if (ec) {
     abort();

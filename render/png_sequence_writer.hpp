@@ -13,7 +13,7 @@
 #include "render/frame_pipeline.hpp"
 #include "render/frame_writer.hpp"
 #include "render/pipelined_frame_writer.hpp"
-#include "render/pending_output.hpp"
+#include "output/pending_output.hpp"
 
 namespace particles::render {
 
@@ -35,7 +35,7 @@ class PngSequenceWriter final : public PipelinedFrameWriter {
  private:
   std::filesystem::path directory_;
   bool createdDirectory_ = false;
-  std::unique_ptr<PendingOutput> staging_;  // the temporary subdirectory
+  std::unique_ptr<output::PendingOutput> staging_;  // the temporary subdirectory
 };
 
 }  // namespace particles::render

@@ -2,15 +2,15 @@
 
 #include <algorithm>
 
-#include "circular_wire_constraint.hpp"
-#include "damped_spring_force.hpp"
-#include "disk_collider.hpp"
-#include "endpoint.hpp"
-#include "half_plane_collider.hpp"
-#include "horizontal_line_constraint.hpp"
-#include "mouse_spring_force.hpp"
-#include "rod_constraint.hpp"
-#include "system.hpp"
+#include "core/constraints/circular_wire_constraint.hpp"
+#include "core/forces/damped_spring_force.hpp"
+#include "core/colliders/disk_collider.hpp"
+#include "core/endpoint.hpp"
+#include "core/colliders/half_plane_collider.hpp"
+#include "core/constraints/horizontal_line_constraint.hpp"
+#include "core/forces/mouse_spring_force.hpp"
+#include "core/constraints/rod_constraint.hpp"
+#include "core/system.hpp"
 
 namespace particles::render {
 

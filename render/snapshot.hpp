@@ -8,7 +8,7 @@
 
 #include <vector>
 
-#include "state.hpp"
+#include "core/state.hpp"
 
 namespace particles {
 class System;

@@ -8,10 +8,10 @@
 #include <set>
 #include <string>
 
-#include "gravity_force.hpp"
+#include "core/forces/gravity_force.hpp"
 #include "render/image.hpp"
 #include "render/renderer.hpp"
-#include "system.hpp"
+#include "core/system.hpp"
 
 namespace particles::test {
 

@@ -3,11 +3,11 @@
 
 #include <memory>
 
-#include "damped_spring_force.hpp"
-#include "gravity_force.hpp"
-#include "grid.hpp"
-#include "solver.hpp"
-#include "system.hpp"
+#include "core/forces/damped_spring_force.hpp"
+#include "core/forces/gravity_force.hpp"
+#include "core/grid.hpp"
+#include "core/solver.hpp"
+#include "core/system.hpp"
 
 namespace particles::test {
 

@@ -3,9 +3,9 @@
 
 #include <cmath>
 
-#include "disk_collider.hpp"
-#include "drag_force.hpp"
-#include "half_plane_collider.hpp"
+#include "core/colliders/disk_collider.hpp"
+#include "core/forces/drag_force.hpp"
+#include "core/colliders/half_plane_collider.hpp"
 #include "support.hpp"
 
 using namespace particles;

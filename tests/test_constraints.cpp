@@ -5,9 +5,9 @@
 #include <cmath>
 #include <functional>
 
-#include "circular_wire_constraint.hpp"
-#include "horizontal_line_constraint.hpp"
-#include "rod_constraint.hpp"
+#include "core/constraints/circular_wire_constraint.hpp"
+#include "core/constraints/horizontal_line_constraint.hpp"
+#include "core/constraints/rod_constraint.hpp"
 #include "support.hpp"
 
 using namespace particles;

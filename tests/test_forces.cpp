@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "drag_force.hpp"
-#include "grid.hpp"
-#include "half_plane_collider.hpp"
-#include "mouse_spring_force.hpp"
+#include "core/forces/drag_force.hpp"
+#include "core/grid.hpp"
+#include "core/colliders/half_plane_collider.hpp"
+#include "core/forces/mouse_spring_force.hpp"
 #include "support.hpp"
 
 using namespace particles;

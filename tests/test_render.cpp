@@ -12,17 +12,17 @@
 #include <set>
 #include <string>
 
-#include "circular_wire_constraint.hpp"
-#include "damped_spring_force.hpp"
-#include "disk_collider.hpp"
-#include "half_plane_collider.hpp"
-#include "horizontal_line_constraint.hpp"
-#include "mouse_spring_force.hpp"
+#include "core/constraints/circular_wire_constraint.hpp"
+#include "core/forces/damped_spring_force.hpp"
+#include "core/colliders/disk_collider.hpp"
+#include "core/colliders/half_plane_collider.hpp"
+#include "core/constraints/horizontal_line_constraint.hpp"
+#include "core/forces/mouse_spring_force.hpp"
 #include "render/errors.hpp"
 #include "render/renderer.hpp"
 #include "render/snapshot.hpp"
 #include "render_support.hpp"
-#include "rod_constraint.hpp"
+#include "core/constraints/rod_constraint.hpp"
 
 using namespace particles;
 using namespace particles::render;

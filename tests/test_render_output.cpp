@@ -17,7 +17,7 @@
 #include "render/snapshot.hpp"
 #include "render/video_probe.hpp"
 #include "render_support.hpp"
-#include "solver.hpp"
+#include "core/solver.hpp"
 
 using namespace particles;
 using namespace particles::render;

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "half_plane_collider.hpp"
-#include "rigid_body.hpp"
+#include "core/colliders/half_plane_collider.hpp"
+#include "core/rigid_body.hpp"
 #include "support.hpp"
 
 using namespace particles;

@@ -5,14 +5,14 @@
 #include <cmath>
 #include <string>
 
-#include "damped_spring_force.hpp"
-#include "disk_collider.hpp"
-#include "drag_force.hpp"
-#include "gravity_force.hpp"
-#include "half_plane_collider.hpp"
-#include "horizontal_line_constraint.hpp"
-#include "mouse_spring_force.hpp"
-#include "rod_constraint.hpp"
+#include "core/forces/damped_spring_force.hpp"
+#include "core/colliders/disk_collider.hpp"
+#include "core/forces/drag_force.hpp"
+#include "core/forces/gravity_force.hpp"
+#include "core/colliders/half_plane_collider.hpp"
+#include "core/constraints/horizontal_line_constraint.hpp"
+#include "core/forces/mouse_spring_force.hpp"
+#include "core/constraints/rod_constraint.hpp"
 #include "scenario/scenario.hpp"
 
 using namespace particles;

@@ -5,8 +5,8 @@
 #include <cstring>
 #include <string>
 
-#include "grid.hpp"
-#include "rod_constraint.hpp"
+#include "core/grid.hpp"
+#include "core/constraints/rod_constraint.hpp"
 #include "support.hpp"
 
 using namespace particles;

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "stability.hpp"
+#include "core/stability.hpp"
 #include "support.hpp"
 
 using namespace particles;

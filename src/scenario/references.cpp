@@ -1,4 +1,4 @@
-#include "references.hpp"
+#include "scenario/references.hpp"
 
 #include <fmt/format.h>
 

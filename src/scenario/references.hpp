@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "endpoint.hpp"
-#include "grid.hpp"
-#include "yaml_reader.hpp"
+#include "core/endpoint.hpp"
+#include "core/grid.hpp"
+#include "scenario/yaml_reader.hpp"
 
 namespace particles::scenario::detail {
 

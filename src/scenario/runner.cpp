@@ -1,4 +1,4 @@
-#include "runner.hpp"
+#include "scenario/runner.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -5,8 +5,8 @@
 
 #include <functional>
 
-#include "scenario.hpp"
-#include "solver.hpp"
+#include "scenario/scenario.hpp"
+#include "core/solver.hpp"
 
 namespace particles::scenario {
 

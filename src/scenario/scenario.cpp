@@ -1,7 +1,7 @@
 // The scenario loader: one reader per top-level section of DESIGN §11, in the order the sections
 // depend on each other (things that have names before the references to them). Keys, defaults and
 // ranges here and in docs/scenarios.md change together.
-#include "scenario.hpp"
+#include "scenario/scenario.hpp"
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
@@ -13,18 +13,18 @@
 #include <fstream>
 #include <sstream>
 
-#include "circular_wire_constraint.hpp"
-#include "damped_spring_force.hpp"
-#include "disk_collider.hpp"
-#include "drag_force.hpp"
-#include "gravity_force.hpp"
-#include "grid.hpp"
-#include "half_plane_collider.hpp"
-#include "horizontal_line_constraint.hpp"
-#include "mouse_spring_force.hpp"
-#include "references.hpp"
-#include "rod_constraint.hpp"
-#include "yaml_reader.hpp"
+#include "core/constraints/circular_wire_constraint.hpp"
+#include "core/forces/damped_spring_force.hpp"
+#include "core/colliders/disk_collider.hpp"
+#include "core/forces/drag_force.hpp"
+#include "core/forces/gravity_force.hpp"
+#include "core/grid.hpp"
+#include "core/colliders/half_plane_collider.hpp"
+#include "core/constraints/horizontal_line_constraint.hpp"
+#include "core/forces/mouse_spring_force.hpp"
+#include "scenario/references.hpp"
+#include "core/constraints/rod_constraint.hpp"
+#include "scenario/yaml_reader.hpp"
 
 namespace particles::scenario {
 

@@ -12,8 +12,8 @@
 #include <string_view>
 #include <vector>
 
-#include "integrators.hpp"
-#include "system.hpp"
+#include "core/integrators.hpp"
+#include "core/system.hpp"
 
 namespace particles::scenario {
 

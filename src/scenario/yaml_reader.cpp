@@ -1,4 +1,4 @@
-#include "yaml_reader.hpp"
+#include "scenario/yaml_reader.hpp"
 
 #include <fmt/format.h>
 
@@ -6,7 +6,7 @@
 #include <cctype>
 #include <cmath>
 
-#include "scenario.hpp"
+#include "scenario/scenario.hpp"
 
 namespace particles::scenario::detail {
 

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "state.hpp"
+#include "core/state.hpp"
 
 namespace particles::scenario::detail {
 

@@ -1,0 +1,67 @@
+#include "app/cli_support.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cstdio>
+
+#include "core/system.hpp"
+
+namespace particles::app {
+
+std::vector<scenario::Override> overridesOf(const CommonOptions& o) {
+  std::vector<scenario::Override> out;
+  for (const std::string& s : o.sets) out.push_back(scenario::parseOverride(s));
+  if (!o.integrator.empty()) out.push_back({"simulation.integrator", o.integrator, "--integrator " + o.integrator});
+  if (!o.dt.empty()) out.push_back({"simulation.dt", o.dt, "--dt " + o.dt});
+  if (!o.duration.empty()) out.push_back({"simulation.duration", o.duration, "--duration " + o.duration});
+  return out;
+}
+
+std::optional<scenario::Scenario> loadScenario(const CommonOptions& o) {
+  try {
+    const auto overrides = overridesOf(o);
+    return scenario::loadScenarioFile(o.scenario, overrides);
+  } catch (const scenario::ScenarioError& e) {
+    fmt::print(stderr, "{}\n", e.what());
+    return std::nullopt;
+  }
+}
+
+std::string plural(size_t n, const char* one, const char* many) {
+  return fmt::format("{} {}", n, n == 1 ? one : many);
+}
+
+std::string contents(const scenario::Scenario& s) {
+  const System& sys = s.system;
+  return fmt::format("{}, {}, {}, {}, {}, {}", plural(size_t(sys.layout().numParticles), "particle", "particles"),
+                     plural(size_t(sys.layout().numBodies), "rigid body", "rigid bodies"),
+                     plural(scenario::springCount(sys), "spring", "springs"),
+                     plural(sys.constraints().size(), "constraint", "constraints"),
+                     plural(sys.colliders().size(), "collider", "colliders"),
+                     plural(scenario::mouseScriptCount(sys), "mouse script", "mouse scripts"));
+}
+
+Progress::Progress(bool enabled, std::string unit)
+    : enabled_(enabled && ::isatty(STDERR_FILENO)), unit_(std::move(unit)), start_(std::chrono::steady_clock::now()) {}
+
+void Progress::update(long done, long total, std::string_view detail) {
+  if (!enabled_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (shown_ && now - last_ < std::chrono::milliseconds(100) && done != total) return;
+  last_ = now;
+  shown_ = true;
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double rate = elapsed > 0.0 ? double(done) / elapsed : 0.0;
+  const double eta = rate > 0.0 ? double(total - done) / rate : 0.0;
+  fmt::print(stderr, "\r\033[K  {}/{} {} ({:.0f}%)  {:.1f} {}/s  ETA {:.0f} s  {}", done, total, unit_,
+             total > 0 ? 100.0 * double(done) / double(total) : 100.0, rate, unit_, eta, detail);
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (shown_) fmt::print(stderr, "\r\033[K");
+  shown_ = false;
+}
+
+}  // namespace particles::app

@@ -1,0 +1,44 @@
+#pragma once
+// What the subcommands share: loading the scenario with the command line's overrides, and the
+// progress line on stderr.
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "app/commands.hpp"
+#include "scenario/scenario.hpp"
+
+namespace particles::app {
+
+// The overrides of the command line: --set first, in order, then the shorthands, which win.
+std::vector<scenario::Override> overridesOf(const CommonOptions& o);
+
+// Loads the scenario; on bad input prints the loader's message and returns nothing (exit 2).
+std::optional<scenario::Scenario> loadScenario(const CommonOptions& o);
+
+std::string plural(size_t n, const char* one, const char* many);
+// "625 particles, 0 rigid bodies, 1200 springs, …" for messages.
+std::string contents(const scenario::Scenario& s);
+
+// Progress on stderr — done/total, rate and ETA — only for a person watching a terminal (never
+// when stderr is a file or a pipe, as in CI), at most ten times a second.
+class Progress {
+ public:
+  Progress(bool enabled, std::string unit);
+  ~Progress() { finish(); }
+  Progress(const Progress&) = delete;
+  Progress& operator=(const Progress&) = delete;
+  void update(long done, long total, std::string_view detail = {});
+  void finish();
+
+ private:
+  bool enabled_;
+  std::string unit_;
+  bool shown_ = false;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+}  // namespace particles::app

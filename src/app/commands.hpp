@@ -1,0 +1,71 @@
+#pragma once
+// The subcommands of the program (DESIGN §12). Each returns the process exit code:
+// 0 success, 1 simulation failure (explosion), 2 bad input or usage, 3 output failure.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace particles::app {
+
+enum ExitCode { kOk = 0, kSimulationFailed = 1, kBadInput = 2, kOutputFailed = 3 };
+
+// Options every scenario-reading subcommand takes.
+struct CommonOptions {
+  std::string scenario;
+  std::string integrator, dt, duration;  // shorthands for --set simulation.*=…; empty: not given
+  std::vector<std::string> sets;         // --set path=value, in order
+  bool quiet = false;
+};
+
+struct RunOptions {
+  std::string stats;                   // --stats CSV, empty: none
+  std::string trace;                   // --trace CSV, empty: none
+  std::vector<std::string> traceOnly;  // --trace-only names
+};
+
+// `stability`: defaults as in StabilityCriteria / StabilityOptions (src/stability.hpp).
+struct StabilityOptionsCli {
+  std::vector<std::string> integrators{"euler", "midpoint", "rk4"};
+  std::string csv;   // --csv, empty: none
+  std::string plot;  // --plot .svg | .png, empty: none
+  double energyTolerance = 0.1;
+  double stretchFactor = 1.5;  // × the reference run's largest stretch
+  double shakeThreshold = 0.1;
+  double minDt = 0;  // 0: the scenario's dt / 1000
+  double maxDt = 10.0;
+  int threads = 0;
+};
+
+struct RenderCommandOptions {
+  std::string output;                  // -o: file.mp4, dir/ or file.png (with --at)
+  std::optional<double> at;            // --at T, s
+  std::string size;                    // --size WxH; empty: the scenario's render.size
+  double fps = 0;                      // --fps; 0: the scenario's render.fps
+  int msaa = 4;                        // anti-aliasing samples per pixel: 1 (off), 2, 4, 8, 16
+  std::string theme = "dark";          // dark | light
+  std::string particleRadius;          // "4px" or "0.02m"; empty: the renderer's default
+  int crf = 18;                        // x264 quality (see render/frame_writer.hpp)
+  std::string preset = "medium";       // x264 preset
+  int pngLevel = 6;                    // zlib level for PNG output
+  bool verbose = false;                // libav/x264 log
+  bool hud = false;                    // time, integrator, dt and energy drawn on each frame
+  std::string stats, trace;            // CSVs, one row per frame
+  std::vector<std::string> traceOnly;
+};
+
+struct PlotOptions {
+  std::string input;   // a --stats CSV
+  std::string output;  // .svg | .png
+  std::string title;
+  int width = 0, height = 0;  // px; 0: the figure's default
+  bool quiet = false;
+};
+
+int checkCommand(const CommonOptions& common);
+int runCommand(const CommonOptions& common, const RunOptions& run);
+int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& options);
+int plotCommand(const PlotOptions& options);
+int renderCommand(const CommonOptions& common, const RenderCommandOptions& options);
+
+}  // namespace particles::app

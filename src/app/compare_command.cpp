@@ -1,0 +1,94 @@
+// `particles compare`: see compare_command.hpp.
+#include "app/compare_command.hpp"
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <stdexcept>
+
+#include "app/commands.hpp"
+#include "render/errors.hpp"
+#include "render/image_compare.hpp"
+#include "render/png_io.hpp"
+
+namespace particles::app {
+
+CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
+  o.threshold = render::kDefaultThreshold;
+  o.maxShare = render::kDefaultMaxShare;
+  CLI::App* cmd = app.add_subcommand(
+      "compare", "Compare a frame with its golden frame: exit 0 if they match, 1 if they differ (DESIGN §10)");
+  cmd->add_option("expected", o.expected, "The reference frame (PNG), e.g. golden/cloth_t2.5.png")->required();
+  cmd->add_option("actual", o.actual, "The frame to check (PNG), of the same size")->required();
+  cmd->add_option("--diff", o.diff,
+                  "Write a PNG of the differences: magenta above the threshold, teal below it, the bounding box in "
+                  "yellow, over a dimmed grey copy of the expected frame");
+  cmd->add_option("--threshold", o.threshold, "A pixel differs when any channel (0 … 255) differs by more than this")
+      ->check(CLI::Range(0, 255))
+      ->capture_default_str();
+  cmd->add_option("--max-share", o.maxShare,
+                  "Fail when more than this share (0 … 1) of the pixels differ; 0.0002 = 0.02 %")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing when the frames match");
+  cmd->footer(
+      "Exit codes: 0 the frames match, 1 they differ, 2 bad input (unreadable PNG, sizes differ),\n"
+      "3 the --diff picture could not be written. Defaults and how they were measured: golden/README.md.\n"
+      "Examples:\n"
+      "  particles compare golden/cloth_t2.5.png cloth.png\n"
+      "  particles compare golden/cloth_t2.5.png cloth.png --diff cloth_diff.png --threshold 16 --max-share 0.01\n");
+  return cmd;
+}
+
+int compareCommand(const CompareOptions& o) {
+  render::Image expected, actual;
+  try {
+    expected = render::readPng(o.expected);
+    actual = render::readPng(o.actual);
+  } catch (const render::OutputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kBadInput;
+  }
+  const std::string mismatch = render::sizeMismatch(expected, actual);
+  if (!mismatch.empty()) {
+    fmt::print(stderr, "error: {} and {}: {}\n", o.expected, o.actual, mismatch);
+    return kBadInput;
+  }
+  render::ImageComparison c;
+  try {
+    c = render::compareImages(expected, actual, {o.threshold, o.maxShare});
+  } catch (const std::invalid_argument& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kBadInput;
+  }
+
+  if (!o.quiet || !c.passed) {
+    fmt::print("{} vs {} ({}×{})\n", o.expected, o.actual, c.width, c.height);
+    fmt::print("  share:   {:.4f} % of the pixels differ by more than {} ({} of {}; bound {:.4g} %)\n", 100.0 * c.share,
+               o.threshold, c.differing, c.pixels, 100.0 * o.maxShare);
+    fmt::print("  largest: {} (of 255, any channel)\n", c.largestDifference);
+    if (c.box) {
+      fmt::print("  box:     x {}…{}, y {}…{} ({}×{} px, from the top left)\n", c.box->x0, c.box->x1, c.box->y0,
+                 c.box->y1, c.box->width(), c.box->height());
+    } else {
+      fmt::print("  box:     none\n");
+    }
+  }
+  if (!o.diff.empty()) {
+    try {
+      render::writePng(o.diff, render::diffImage(expected, actual, o.threshold));  // temporary name + rename
+    } catch (const render::OutputError& e) {
+      fmt::print(stderr, "error: --diff: {}\n", e.what());
+      return kOutputFailed;
+    }
+    if (!o.quiet || !c.passed) fmt::print("  diff:    {}\n", o.diff);
+  }
+  if (!c.passed) {
+    fmt::print("DIFFERENT: more than {:.4g} % of the pixels differ\n", 100.0 * o.maxShare);
+    return kSimulationFailed;  // exit 1: the result is wrong
+  }
+  if (!o.quiet) fmt::print("ok\n");
+  return kOk;
+}
+
+}  // namespace particles::app

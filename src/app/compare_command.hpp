@@ -1,0 +1,33 @@
+#pragma once
+// `particles compare EXPECTED.png ACTUAL.png [--diff D.png]` (DESIGN §10, §12): the golden-frame
+// comparison as a tool of its own (render/image_compare.hpp).
+//
+// Exit codes: 0 the frames match; 1 they differ (more than --max-share of the pixels have a
+// channel differing by more than --threshold): the counterpart of a simulation failure, "the
+// result is wrong"; 2 bad input (an unreadable PNG, sizes that do not match, bad options);
+// 3 the --diff picture could not be written.
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace particles::app {
+
+struct CompareOptions {
+  std::string expected;  // the golden frame
+  std::string actual;    // the frame under test
+  std::string diff;      // --diff D.png; empty: none
+  int threshold = 0;     // set from render::kDefaultThreshold by addCompareCommand
+  double maxShare = 0;   // set from render::kDefaultMaxShare by addCompareCommand
+  bool quiet = false;
+};
+
+// Registers the `compare` subcommand on `app`, parsing into `options` (which must outlive the
+// parse). Dispatch with `if (cmd->parsed()) return compareCommand(options);`.
+CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options);
+
+int compareCommand(const CompareOptions& options);
+
+}  // namespace particles::app

@@ -1,0 +1,81 @@
+#include "app/csv_recorder.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iterator>
+
+#include "scenario/runner.hpp"
+#include "scenario/scenario.hpp"
+
+namespace particles::app {
+
+std::unique_ptr<CsvRecorder> CsvRecorder::open(const System& system, const std::string& statsPath,
+                                             const std::string& tracePath, const std::vector<std::string>& traceOnly) {
+  if (!statsPath.empty() && statsPath == tracePath) {
+    fmt::print(stderr, "error: --stats and --trace name the same file '{}'\n", statsPath);
+    return nullptr;
+  }
+  std::unique_ptr<CsvRecorder> owner(new CsvRecorder());
+  CsvRecorder& r = *owner;
+  const Model& model = system.model();
+  std::vector<std::string> all;
+  for (int p = 0; p < model.layout.numPoints(); ++p) all.push_back(scenario::pointName(model, p));
+  if (traceOnly.empty()) {
+    for (int p = 0; p < model.layout.numPoints(); ++p) r.points_.push_back(p);
+  }
+  for (const std::string& name : traceOnly) {
+    const auto it = std::find(all.begin(), all.end(), name);
+    if (it == all.end()) {
+      fmt::print(stderr,
+                 "error: --trace-only: nothing in the scenario is named '{}' (names are spelled as in the "
+                 "trace: bob, cloth[3][4], link0, #7)\n",
+                 name);
+      return nullptr;
+    }
+    r.points_.push_back(int(it - all.begin()));
+  }
+  for (int p : r.points_) r.names_.push_back(all[size_t(p)]);
+
+  if (!statsPath.empty()) {
+    r.stats_.emplace(statsPath);
+    r.stats_->write("t,kinetic,potential,total,constraint_error,penetration\n");
+  }
+  if (!tracePath.empty()) {
+    r.trace_.emplace(tracePath);
+    r.trace_->write("t,name,x,y,vx,vy,angle,omega\n");
+  }
+  return owner;
+}
+
+void CsvRecorder::record(const System& system) {
+  fmt::memory_buffer buffer;
+  if (stats_) {
+    const scenario::Sample x = scenario::sampleOf(system);
+    fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{}\n", x.t, x.kinetic, x.potential, x.total,
+                   x.constraintError, x.penetration);
+    stats_->write({buffer.data(), buffer.size()});
+  }
+  if (trace_) {
+    const StateView v = system.view();
+    const int numParticles = system.layout().numParticles;
+    buffer.clear();
+    for (size_t k = 0; k < points_.size(); ++k) {
+      const int p = points_[k];
+      const Vec2 x = v.pos(p), u = v.vel(p);
+      const double angle = p < numParticles ? 0.0 : v.angle(p - numParticles);
+      const double omega = p < numParticles ? 0.0 : v.omega(p - numParticles);
+      fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{},{},{}\n", system.time(), names_[k], x.x(), x.y(),
+                     u.x(), u.y(), angle, omega);
+    }
+    trace_->write({buffer.data(), buffer.size()});
+  }
+}
+
+void CsvRecorder::commit() {
+  if (stats_) stats_->commit();
+  if (trace_) trace_->commit();
+}
+
+}  // namespace particles::app

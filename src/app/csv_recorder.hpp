@@ -1,0 +1,36 @@
+#pragma once
+// The --stats and --trace CSV files of `run` and `render` (DESIGN §12): one row (stats) or one row
+// per traced object (trace) each time record() is called, numbers in shortest round-trip form.
+// Both files are written under temporary names and appear only on commit().
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "output/output_file.hpp"
+#include "core/system.hpp"
+
+namespace particles::app {
+
+class CsvRecorder {
+ public:
+  // Returns nothing, after printing why, when the options are inconsistent (exit 2): the same
+  // file for both, or a --trace-only name nothing in the system has. Throws OutputError when a
+  // file cannot be created.
+  static std::unique_ptr<CsvRecorder> open(const System& system, const std::string& statsPath,
+                                         const std::string& tracePath, const std::vector<std::string>& traceOnly);
+
+  void record(const System& system);
+  void commit();  // throws OutputError
+  bool writesStats() const { return stats_.has_value(); }
+  bool writesTrace() const { return trace_.has_value(); }
+
+ private:
+  CsvRecorder() = default;
+  std::optional<output::OutputFile> stats_, trace_;
+  std::vector<int> points_;
+  std::vector<std::string> names_;
+};
+
+}  // namespace particles::app

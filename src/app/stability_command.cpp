@@ -1,0 +1,143 @@
+// `particles stability`: the time-step study (src/stability.hpp, docs/stability.md) as a command,
+// with the table on stdout, `--csv` and a `--plot` figure.
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "app/cli_support.hpp"
+#include "output/output_file.hpp"
+#include "plot/errors.hpp"
+#include "plot/stability_figure.hpp"
+#include "core/stability.hpp"
+
+namespace particles::app {
+
+namespace {
+
+std::optional<std::vector<Integrator>> parseIntegrators(const std::vector<std::string>& names) {
+  std::vector<Integrator> out;
+  for (const std::string& name : names) {
+    const auto i = integratorFromName(name);
+    if (!i) {
+      fmt::print(stderr, "error: --integrators: unknown integrator '{}' (expected euler, midpoint or rk4)\n", name);
+      return std::nullopt;
+    }
+    if (std::find(out.begin(), out.end(), *i) == out.end()) out.push_back(*i);
+  }
+  return out;
+}
+
+std::string describe(const RunAssessment& a) {
+  switch (a.verdict) {
+    case RunVerdict::Stable: return "stable";
+    case RunVerdict::Shaking: return fmt::format("shaking index {:.2f}", a.shakingIndex);
+    case RunVerdict::Exploded: return fmt::format("exploded after {} steps", a.steps);
+    case RunVerdict::Runaway: return fmt::format("energy {:.2g}×S above its bound after {} steps", a.maxEnergyExcess, a.steps);
+    case RunVerdict::Overstretched: return fmt::format("a spring at {:.2f}× its rest length after {} steps", a.maxStretch, a.steps);
+  }
+  return "";
+}
+
+std::string dtText(double dt) { return dt > 0.0 ? fmt::format("{:.2g} s", dt) : std::string("none ≥ min"); }
+
+}  // namespace
+
+int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& options) {
+  auto s = loadScenario(common);
+  if (!s) return kBadInput;
+  const auto integrators = parseIntegrators(options.integrators);
+  if (!integrators) return kBadInput;
+  const double minDt = options.minDt > 0 ? options.minDt : s->simulation.dt / 1000.0;
+  if (options.energyTolerance <= 0 || options.stretchFactor <= 1 || options.shakeThreshold <= 0 ||
+      options.shakeThreshold > 1 || options.minDt < 0 || options.maxDt <= minDt) {
+    fmt::print(stderr,
+               "error: need --energy-tolerance > 0, --stretch-factor > 1, 0 < --shake-threshold ≤ 1 and "
+               "0 < --min-dt < --max-dt\n");
+    return kBadInput;
+  }
+
+  // Each trial run builds a fresh system from the same text and overrides.
+  std::string text;
+  {
+    std::ifstream in(common.scenario, std::ios::binary);
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    text = buffer.str();
+  }
+  const auto overrides = overridesOf(common);
+  const SystemFactory make = [&] { return scenario::loadScenarioText(text, common.scenario, overrides).system; };
+
+  StabilityOptions study;
+  study.criteria.energyTolerance = options.energyTolerance;
+  study.stretchFactor = options.stretchFactor;
+  study.criteria.shakeThreshold = options.shakeThreshold;
+  study.startDt = s->simulation.dt;
+  study.referenceDt = s->simulation.dt / 4.0;
+  study.minDt = minDt;
+  study.maxDt = options.maxDt;
+  study.threads = options.threads;
+
+  if (!common.quiet) {
+    fmt::print(stderr, "{}: searching the largest stable dt of {} over {} s with {} (this runs the scenario many times)\n",
+               common.scenario, plural(integrators->size(), "integrator", "integrators"), s->simulation.duration,
+               contents(*s));
+  }
+  StabilityStudy found;
+  try {
+    found = findStabilityLimits(make, s->simulation.duration, *integrators, study);
+  } catch (const std::runtime_error& e) {
+    fmt::print(stderr, "{}: error: {}\n", common.scenario, e.what());
+    return kSimulationFailed;
+  }
+  const std::vector<StabilityResult>& results = found.results;
+
+  std::vector<plot::StabilityRow> rows;
+  for (const StabilityResult& r : results) {
+    rows.push_back({std::string(integratorName(r.integrator)), r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
+                    r.evalsPerSimSecond, r.speedVsEuler});
+  }
+
+  if (!common.quiet) {
+    fmt::print("{:<10} {:>10} {:>15} {:>22} {:>20} {:>15}\n", "integrator", "evals/step", "max stable dt",
+               "max dt without shaking", "evals per sim second", "speed vs euler");
+    for (const StabilityResult& r : results) {
+      fmt::print("{:<10} {:>10} {:>15} {:>22} {:>20.4g} {:>15}\n", integratorName(r.integrator), r.evalsPerStep,
+                 dtText(r.maxStableDt), dtText(r.maxSmoothDt), r.evalsPerSimSecond,
+                 r.speedVsEuler > 0 ? fmt::format("{:.2f}×", r.speedVsEuler) : std::string("–"));
+    }
+    fmt::print("\nreference: rk4 at dt = {:.3g} s, longest spring {:.3g}× its rest length → bound {:.3g}×\n",
+               study.referenceDt, found.reference.maxStretch, found.maxStretch);
+    fmt::print("why the next larger steps failed:\n");
+    for (const StabilityResult& r : results) {
+      fmt::print("  {:<9} unstable: {}; not smooth: {}  ({} runs)\n", integratorName(r.integrator),
+                 describe(r.firstUnstable), describe(r.firstShaking), r.runs);
+    }
+  }
+
+  try {
+    if (!options.csv.empty()) {
+      output::OutputFile csv(options.csv);
+      csv.write("integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler\n");
+      for (const auto& r : rows) {
+        csv.write(fmt::format("{},{},{},{},{},{}\n", r.integrator, r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
+                              r.evalsPerSimSecond, r.speedVsEuler));
+      }
+      csv.commit();
+    }
+    if (!options.plot.empty()) {
+      plot::Figure figure = plot::stabilityFigure(rows);
+      figure.title = fmt::format("Largest time step per integrator: {}", s->name);
+      plot::writeFigure(figure, options.plot);
+    }
+  } catch (const output::OutputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kOutputFailed;
+  } catch (const plot::FigureError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return kOutputFailed;
+  }
+  return kOk;
+}
+
+}  // namespace particles::app

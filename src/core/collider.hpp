@@ -1,0 +1,38 @@
+#pragma once
+// A solid obstacle that pushes points out with a penalty force (DESIGN §6):
+//   f = n k d²   (plus an optional damping −c (v·n) n while in contact; c = 0 as in the report)
+// with n the way out and d the penetration depth. The stored energy is U = k d³ / 3.
+// Each kind only describes its geometry (contact); collisions.cpp applies the response to
+// particles and to the corners of rigid rectangles, where the force also gives a torque.
+
+#include <optional>
+#include <string_view>
+
+#include "core/state.hpp"
+
+namespace particles {
+
+struct Contact {
+  Vec2 normal;   // unit, pointing out of the obstacle
+  double depth;  // m, > 0
+};
+
+struct PenaltyParams {
+  double k = 1e4;        // N/m², stiffness of f = n k d²
+  double damping = 0.0;  // N·s/m along n while in contact
+};
+
+class Collider {
+ public:
+  explicit Collider(PenaltyParams params) : params_(params) {}
+  virtual ~Collider() = default;
+  virtual std::string_view kind() const = 0;
+  // The contact of point p, or nothing when p is on the allowed side.
+  virtual std::optional<Contact> contact(const Vec2& p) const = 0;
+  const PenaltyParams& params() const { return params_; }
+
+ private:
+  PenaltyParams params_;
+};
+
+}  // namespace particles

@@ -1,0 +1,62 @@
+#include "core/collisions.hpp"
+
+#include <algorithm>
+
+#include "core/endpoint.hpp"
+#include "core/rigid_body.hpp"
+
+namespace particles {
+
+namespace {
+
+// Calls visit(endpoint) for every particle and every body corner (as a body anchor).
+template <typename Visit>
+void forEachCollisionPoint(const Model& model, Visit&& visit) {
+  for (int i = 0; i < model.layout.numParticles; ++i) visit(Endpoint::ofParticle(i));
+  for (int j = 0; j < model.layout.numBodies; ++j) {
+    for (const Vec2& corner : rectangleCorners(model.bodies[size_t(j)].size)) visit(Endpoint::ofBody(j, corner));
+  }
+}
+
+}  // namespace
+
+void applyCollisions(const Model& model, const StateView& s, const ColliderList& colliders, ForceAccumulator& acc) {
+  if (colliders.empty()) return;
+  forEachCollisionPoint(model, [&](const Endpoint& e) {
+    if (e.isParticle() && model.isFixed(e.particle)) return;
+    const Vec2 p = endpointPosition(s, e);
+    for (const auto& collider : colliders) {
+      const auto c = collider->contact(p);
+      if (!c) continue;
+      const PenaltyParams& k = collider->params();
+      Vec2 f = c->normal * (k.k * c->depth * c->depth);
+      if (k.damping != 0.0) f -= k.damping * endpointVelocity(s, e).dot(c->normal) * c->normal;
+      applyForceAt(s, e, f, acc);
+    }
+  });
+}
+
+double collisionPotential(const Model& model, const StateView& s, const ColliderList& colliders) {
+  double u = 0.0;
+  forEachCollisionPoint(model, [&](const Endpoint& e) {
+    if (e.isParticle() && model.isFixed(e.particle)) return;
+    const Vec2 p = endpointPosition(s, e);
+    for (const auto& collider : colliders) {
+      if (const auto c = collider->contact(p)) u += collider->params().k * c->depth * c->depth * c->depth / 3.0;
+    }
+  });
+  return u;
+}
+
+double maxPenetration(const Model& model, const StateView& s, const ColliderList& colliders) {
+  double worst = 0.0;
+  forEachCollisionPoint(model, [&](const Endpoint& e) {
+    const Vec2 p = endpointPosition(s, e);
+    for (const auto& collider : colliders) {
+      if (const auto c = collider->contact(p)) worst = std::max(worst, c->depth);
+    }
+  });
+  return worst;
+}
+
+}  // namespace particles

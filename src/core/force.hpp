@@ -1,0 +1,26 @@
+#pragma once
+// A force object (DESIGN §4): adds to the accumulators given a state and a time, and reports the
+// potential energy it stores so energy can be booked by source.
+
+#include <string_view>
+
+#include "core/force_accumulator.hpp"
+#include "core/model.hpp"
+
+namespace particles {
+
+class Force {
+ public:
+  virtual ~Force() = default;
+  // Short name of the kind ("gravity", "drag", "spring", "mouse"), used to label energy sources.
+  virtual std::string_view kind() const = 0;
+  virtual void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const = 0;
+  // Potential energy stored by this force, joules; zero for dissipative forces.
+  virtual double potentialEnergy(const Model& model, const StateView& s, double t) const = 0;
+  // An energy this force can plausibly put into the system, joules: the explosion guard's yardstick.
+  virtual double energyScale(const Model& model, const StateView& s) const = 0;
+  // Throws std::invalid_argument when the force refers to a particle or body the layout lacks.
+  virtual void validate(const StateLayout&) const {}
+};
+
+}  // namespace particles

@@ -1,0 +1,45 @@
+#pragma once
+// Damped springs (DESIGN §4), stored as flat arrays: one object holds any number of springs.
+// With l = x_a − x_b, rest length r, stiffness k_s and damping k_d:
+//   f_a = −[ k_s (|l| − r) + k_d (l̇·l)/|l| ] l/|l|,   f_b = −f_a
+// Ends are particles or anchors on rigid bodies (then x and l̇ use the anchor's world position and
+// velocity, and the force also gives a torque, DESIGN §7).
+// Potential: U = ½ k_s (|l| − r)² per spring.
+// When |l| falls below 1e-12 m the direction is undefined and the spring exerts no force.
+
+#include <vector>
+
+#include "core/endpoint.hpp"
+#include "core/force.hpp"
+
+namespace particles {
+
+struct SpringSpec {
+  Endpoint a, b;
+  double rest;  // m, ≥ 0
+  double ks;    // N/m, ≥ 0
+  double kd;    // N·s/m, ≥ 0
+};
+
+class DampedSpringForce final : public Force {
+ public:
+  void add(const SpringSpec& spring);
+  void reserve(size_t n);
+  size_t size() const { return a_.size(); }
+  SpringSpec spring(size_t i) const { return {a_[i], b_[i], rest_[i], ks_[i], kd_[i]}; }
+  // Current length over rest length minus one (positive: stretched), for drawing and checks.
+  double strain(const StateView& s, size_t i) const;
+
+  std::string_view kind() const override { return "spring"; }
+  void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
+  double potentialEnergy(const Model& model, const StateView& s, double t) const override;
+  double energyScale(const Model& model, const StateView& s) const override;
+  void validate(const StateLayout& layout) const override;
+
+ private:
+  std::vector<Endpoint> a_, b_;
+  std::vector<double> rest_, ks_, kd_;
+  bool allParticles_ = true;  // every end is a particle: the hot loop skips anchor kinematics
+};
+
+}  // namespace particles

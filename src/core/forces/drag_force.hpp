@@ -1,0 +1,24 @@
+#pragma once
+// Viscous drag: f_i −= k_d v_i on every point (DESIGN §4). Dissipative: no potential energy.
+// An optional angular term τ_j −= k_ω ω_j damps rigid-body spin the same way.
+
+#include "core/force.hpp"
+
+namespace particles {
+
+class DragForce final : public Force {
+ public:
+  explicit DragForce(double kd, double angularKd = 0.0) : kd_(kd), angularKd_(angularKd) {}
+  double kd() const { return kd_; }
+
+  std::string_view kind() const override { return "drag"; }
+  void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
+  double potentialEnergy(const Model&, const StateView&, double) const override { return 0.0; }
+  double energyScale(const Model&, const StateView&) const override { return 0.0; }
+
+ private:
+  double kd_;
+  double angularKd_;
+};
+
+}  // namespace particles

@@ -1,0 +1,34 @@
+#include "core/forces/gravity_force.hpp"
+
+namespace particles {
+
+void GravityForce::apply(const Model& model, const StateView&, double, ForceAccumulator& acc) const {
+  const int n = model.layout.numPoints();
+  for (int i = 0; i < n; ++i) {
+    acc.force[2 * i] += model.mass[i] * g_.x();
+    acc.force[2 * i + 1] += model.mass[i] * g_.y();
+  }
+}
+
+double GravityForce::potentialEnergy(const Model& model, const StateView& s, double) const {
+  double u = 0.0;
+  for (int i = 0; i < model.layout.numPoints(); ++i) {
+    if (model.invMass[i] != 0.0) u -= model.mass[i] * g_.dot(s.pos(i));
+  }
+  return u;
+}
+
+double GravityForce::energyScale(const Model& model, const StateView& s) const {
+  const int n = model.layout.numPoints();
+  if (n == 0) return 0.0;
+  Vec2 lo = s.pos(0), hi = s.pos(0);
+  double movableMass = 0.0;
+  for (int i = 0; i < n; ++i) {
+    lo = lo.cwiseMin(s.pos(i));
+    hi = hi.cwiseMax(s.pos(i));
+    if (model.invMass[i] != 0.0) movableMass += model.mass[i];
+  }
+  return movableMass * g_.norm() * ((hi - lo).norm() + 1.0);
+}
+
+}  // namespace particles

@@ -1,0 +1,24 @@
+#pragma once
+// Gravity: f_i += m_i g on every point, particles and rigid bodies alike.
+// Potential: U = −Σ m_i g·x_i over the movable points (fixed ones only add a constant).
+
+#include "core/force.hpp"
+
+namespace particles {
+
+class GravityForce final : public Force {
+ public:
+  explicit GravityForce(const Vec2& g) : g_(g) {}
+  const Vec2& g() const { return g_; }
+
+  std::string_view kind() const override { return "gravity"; }
+  void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
+  double potentialEnergy(const Model& model, const StateView& s, double t) const override;
+  // M |g| (extent + 1 m): the work gravity does when everything falls across the scene.
+  double energyScale(const Model& model, const StateView& s) const override;
+
+ private:
+  Vec2 g_;
+};
+
+}  // namespace particles

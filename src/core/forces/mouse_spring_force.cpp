@@ -1,0 +1,49 @@
+#include "core/forces/mouse_spring_force.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace particles {
+
+MouseSpringForce::MouseSpringForce(MouseScript script) : script_(std::move(script)) {
+  if (script_.path.empty()) throw std::invalid_argument("mouse script: the path has no points");
+  cumulativeLength_.push_back(0.0);
+  for (size_t i = 1; i < script_.path.size(); ++i) {
+    cumulativeLength_.push_back(cumulativeLength_.back() + (script_.path[i] - script_.path[i - 1]).norm());
+  }
+}
+
+Vec2 MouseSpringForce::target(double t) const {
+  const double total = cumulativeLength_.back();
+  const double span = script_.to - script_.from;
+  if (total <= 0.0 || span <= 0.0) return script_.path.front();
+  const double u = std::clamp((t - script_.from) / span, 0.0, 1.0) * total;
+  const auto it = std::upper_bound(cumulativeLength_.begin(), cumulativeLength_.end(), u);
+  if (it == cumulativeLength_.end()) return script_.path.back();
+  const size_t i = size_t(it - cumulativeLength_.begin());  // segment i-1 → i
+  const double segment = cumulativeLength_[i] - cumulativeLength_[i - 1];
+  const double w = segment > 0.0 ? (u - cumulativeLength_[i - 1]) / segment : 0.0;
+  return (1.0 - w) * script_.path[i - 1] + w * script_.path[i];
+}
+
+void MouseSpringForce::apply(const Model&, const StateView& s, double t, ForceAccumulator& acc) const {
+  if (!activeAt(t)) return;
+  const Vec2 f = -script_.ks * (endpointPosition(s, script_.grab) - target(t));
+  applyForceAt(s, script_.grab, f, acc);
+}
+
+double MouseSpringForce::potentialEnergy(const Model&, const StateView& s, double t) const {
+  if (!activeAt(t)) return 0.0;
+  return 0.5 * script_.ks * (endpointPosition(s, script_.grab) - target(t)).squaredNorm();
+}
+
+double MouseSpringForce::energyScale(const Model&, const StateView& s) const {
+  double far = 0.0;
+  const Vec2 x = endpointPosition(s, script_.grab);
+  for (const Vec2& p : script_.path) far = std::max(far, (p - x).norm());
+  return 0.5 * script_.ks * far * far;
+}
+
+void MouseSpringForce::validate(const StateLayout& layout) const { checkEndpoint(layout, script_.grab, "mouse"); }
+
+}  // namespace particles

@@ -1,0 +1,42 @@
+#pragma once
+// The scripted mouse (our off-line form of mouse interaction, DESIGN §4): while from ≤ t < to,
+// a zero-rest-length spring pulls the grabbed endpoint towards a target m(t) moving along a
+// polyline at constant speed (arc length proportional to time):
+//   f = −k_s (x − m(t)),   U = ½ k_s |x − m(t)|²
+// No damping, as in the report. A one-point path holds the target still.
+
+#include <vector>
+
+#include "core/endpoint.hpp"
+#include "core/force.hpp"
+
+namespace particles {
+
+struct MouseScript {
+  Endpoint grab;
+  double from;             // s
+  double to;               // s, > from
+  std::vector<Vec2> path;  // at least one point, metres
+  double ks;               // N/m
+};
+
+class MouseSpringForce final : public Force {
+ public:
+  explicit MouseSpringForce(MouseScript script);
+  const MouseScript& script() const { return script_; }
+  bool activeAt(double t) const { return t >= script_.from && t < script_.to; }
+  // m(t): the target point at time t (clamped to the path's ends outside [from, to]).
+  Vec2 target(double t) const;
+
+  std::string_view kind() const override { return "mouse"; }
+  void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
+  double potentialEnergy(const Model& model, const StateView& s, double t) const override;
+  double energyScale(const Model& model, const StateView& s) const override;
+  void validate(const StateLayout& layout) const override;
+
+ private:
+  MouseScript script_;
+  std::vector<double> cumulativeLength_;  // arc length at each path point
+};
+
+}  // namespace particles

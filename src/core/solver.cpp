@@ -1,0 +1,51 @@
+#include "core/solver.hpp"
+
+#include <fmt/format.h>
+
+namespace particles {
+
+namespace {
+
+std::string explosionMessage(const std::string& reason, long step, double time, Integrator integrator, double dt) {
+  std::string advice = fmt::format("try a smaller time step (e.g. --dt {:.3g})", dt / 4.0);
+  if (integrator != Integrator::Rk4) advice += " or a higher-order integrator (--integrator rk4)";
+  return fmt::format("simulation exploded at step {} (t = {:.6g} s) with integrator {} and dt = {:.6g} s: {}; {}",
+                     step, time, integratorName(integrator), dt, reason, advice);
+}
+
+}  // namespace
+
+SimulationError::SimulationError(const std::string& reason, long step, double time, Integrator integrator, double dt)
+    : std::runtime_error(explosionMessage(reason, step, time, integrator, dt)),
+      reason_(reason), step_(step), time_(time), integrator_(integrator), dt_(dt) {}
+
+void Solver::doStep(System& system, double dt) {
+  const DerivFn f = [&system](const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt) {
+    system.derivEval(y, t, dydt);
+  };
+  previous_ = system.state();
+  const double t0 = system.time();
+  integrate(integrator_, f, system.state(), t0, dt, scratch_);
+  const long step = steps_ + 1;
+  const double t1 = t0 + dt;
+
+  std::string reason;
+  if (!system.state().allFinite()) {
+    reason = "the state became non-finite (NaN or infinity)";
+  } else {
+    const double kinetic = system.kineticEnergy(system.state());
+    const double limit = guard_.energyFactor * system.energyScale();
+    if (kinetic > limit) {
+      reason = fmt::format("kinetic energy {:.3g} J exceeds {:.0e} times the system's energy scale ({:.3g} J)",
+                           kinetic, guard_.energyFactor, system.energyScale());
+    }
+  }
+  if (!reason.empty()) {
+    system.state() = previous_;
+    throw SimulationError(reason, step, t1, integrator_, dt);
+  }
+  system.setTime(t1);
+  steps_ = step;
+}
+
+}  // namespace particles

@@ -1,0 +1,216 @@
+#include "core/stability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "core/forces/damped_spring_force.hpp"
+#include "core/forces/mouse_spring_force.hpp"
+#include "core/solver.hpp"
+
+namespace particles {
+
+std::string_view verdictName(RunVerdict verdict) {
+  switch (verdict) {
+    case RunVerdict::Stable: return "stable";
+    case RunVerdict::Shaking: return "shaking";
+    case RunVerdict::Exploded: return "exploded";
+    case RunVerdict::Runaway: return "runaway energy";
+    case RunVerdict::Overstretched: return "overstretched";
+  }
+  return "unknown";
+}
+
+namespace {
+
+double maxSpringStretch(const System& sys) {
+  const StateView s = sys.view();
+  double worst = 0.0;
+  for (const auto& force : sys.forces()) {
+    const auto* springs = dynamic_cast<const DampedSpringForce*>(force.get());
+    if (!springs) continue;
+    for (size_t i = 0; i < springs->size(); ++i) {
+      if (springs->spring(i).rest > 0.0) worst = std::max(worst, 1.0 + springs->strain(s, i));
+    }
+  }
+  return worst;
+}
+
+}  // namespace
+
+RunAssessment assessRun(const SystemFactory& make, Integrator integrator, double dt, double duration,
+                        const StabilityCriteria& criteria) {
+  System sys = make();
+  Solver solver(integrator);
+  RunAssessment a;
+  const long steps = std::max(1L, std::lround(duration / dt));
+  const double scale = sys.energyScale();
+  std::vector<const MouseSpringForce*> mice;
+  for (const auto& force : sys.forces()) {
+    if (const auto* m = dynamic_cast<const MouseSpringForce*>(force.get())) mice.push_back(m);
+  }
+  const double e0 = sys.energy().total();
+  double handWork = 0.0;  // W(t): energy the scripted mouse has put in by moving its target
+  const StateLayout& layout = sys.layout();
+  const Eigen::Index vOff = layout.velocityOffset(), vLen = 2 * Eigen::Index(layout.numPoints());
+  Eigen::VectorXd vPrev2, vPrev1;
+  double alternating = 0.0, magnitude = 0.0;
+  const long checkEvery = std::max(1L, long(1e-3 / dt));
+
+  for (long n = 1; n <= steps; ++n) {
+    // The target's motion over this step at fixed positions changes the mouse potential by the
+    // work the hand does (first order in dt, enough against the tolerance).
+    for (const MouseSpringForce* m : mice) {
+      handWork += m->potentialEnergy(sys.model(), sys.view(), sys.time() + dt) -
+                  m->potentialEnergy(sys.model(), sys.view(), sys.time());
+    }
+    try {
+      solver.doStep(sys, dt);
+    } catch (const SimulationError& e) {
+      a.verdict = RunVerdict::Exploded;
+      a.detail = e.what();
+      return a;
+    }
+    a.steps = n;
+    const Eigen::VectorXd v = sys.state().segment(vOff, vLen);
+    if (2 * n > steps && vPrev2.size() == v.size()) {
+      alternating += (0.25 * (v - 2.0 * vPrev1 + vPrev2)).squaredNorm();
+      magnitude += v.squaredNorm();
+    }
+    vPrev2 = std::move(vPrev1);
+    vPrev1 = v;
+    // Energy and stretch cost a pass over every spring: at tiny steps, look at most every
+    // millisecond of simulated time (growth over 1 ms is small; the solver still checks every
+    // step for non-finite states). Always on the last step.
+    if (n % checkEvery != 0 && n != steps) continue;
+    a.maxEnergyExcess = std::max(a.maxEnergyExcess, (sys.energy().total() - e0 - handWork) / scale);
+    a.maxStretch = std::max(a.maxStretch, maxSpringStretch(sys));
+    if (a.maxEnergyExcess > criteria.energyTolerance) {
+      a.verdict = RunVerdict::Runaway;
+      return a;
+    }
+    if (a.maxStretch > criteria.maxStretch) {
+      a.verdict = RunVerdict::Overstretched;
+      return a;
+    }
+  }
+  a.shakingIndex = magnitude > 0.0 ? std::sqrt(alternating / magnitude) : 0.0;
+  if (a.shakingIndex > criteria.shakeThreshold) a.verdict = RunVerdict::Shaking;
+  return a;
+}
+
+double roundDownTwoDigits(double x) {
+  if (!(x > 0.0)) return 0.0;
+  const int exponent = int(std::floor(std::log10(x))) - 1;
+  const double scale = std::pow(10.0, std::abs(exponent));
+  // The small relative slack keeps an exact 0.013 from becoming 0.012 through round-off; dividing
+  // by a power of ten (exact) rather than multiplying by 0.001 (inexact) makes 13e-3 read 0.013.
+  const double digits = std::floor((exponent < 0 ? x * scale : x / scale) * (1.0 + 1e-12));
+  return exponent < 0 ? digits / scale : digits * scale;
+}
+
+double findLargestDt(const std::function<RunAssessment(double)>& run,
+                     const std::function<bool(const RunAssessment&)>& ok, const StabilityOptions& options, int& runs,
+                     RunAssessment& lastFail) {
+  double lo = 0.0, hi = 0.0;
+  double dt = std::clamp(options.startDt, options.minDt, options.maxDt);
+  auto test = [&](double h) {
+    ++runs;
+    RunAssessment a = run(h);
+    if (ok(a)) return true;
+    lastFail = std::move(a);
+    return false;
+  };
+  if (test(dt)) {
+    lo = dt;
+    while (true) {
+      if (lo >= options.maxDt) return lo;
+      dt = std::min(2.0 * lo, options.maxDt);
+      if (!test(dt)) {
+        hi = dt;
+        break;
+      }
+      lo = dt;
+    }
+  } else {
+    hi = dt;
+    while (true) {
+      dt = 0.5 * hi;
+      if (dt < options.minDt) return 0.0;
+      if (test(dt)) {
+        lo = dt;
+        break;
+      }
+      hi = dt;
+    }
+  }
+  while (hi - lo > options.relativePrecision * lo) {
+    const double mid = 0.5 * (lo + hi);
+    if (test(mid)) {
+      lo = mid;
+    } else {
+      hi = mid;
+    }
+  }
+  return lo;
+}
+
+StabilityStudy findStabilityLimits(const SystemFactory& make, double duration, const std::vector<Integrator>& integrators,
+                                   const StabilityOptions& given) {
+  StabilityStudy out;
+  StabilityCriteria unbounded = given.criteria;
+  unbounded.maxStretch = 1e300;
+  out.reference = assessRun(make, Integrator::Rk4, given.referenceDt, duration, unbounded);
+  if (!out.reference.stable()) {
+    throw std::runtime_error(fmt::format(
+        "the reference run (rk4, dt = {:.3g} s) is itself unstable ({}); give the scenario a smaller dt",
+        given.referenceDt, verdictName(out.reference.verdict)));
+  }
+  out.maxStretch = given.stretchFactor * out.reference.maxStretch;
+  StabilityOptions options = given;
+  options.criteria.maxStretch = out.maxStretch;
+
+  std::vector<StabilityResult>& results = out.results;
+  results.resize(integrators.size());
+  auto study = [&](size_t k) {
+    StabilityResult& r = results[k];
+    r.integrator = integrators[k];
+    r.evalsPerStep = derivEvalsPerStep(r.integrator);
+    auto run = [&](double dt) { return assessRun(make, r.integrator, dt, duration, options.criteria); };
+    r.maxStableDt = roundDownTwoDigits(
+        findLargestDt(run, [](const RunAssessment& a) { return a.stable(); }, options, r.runs, r.firstUnstable));
+    // Smooth implies stable, so the smooth limit lies at or below the stable one.
+    StabilityOptions smoothOptions = options;
+    smoothOptions.startDt = r.maxStableDt > 0.0 ? r.maxStableDt : options.startDt;
+    r.maxSmoothDt = roundDownTwoDigits(findLargestDt(
+        run, [](const RunAssessment& a) { return a.smooth(); }, smoothOptions, r.runs, r.firstShaking));
+    r.maxSmoothDt = std::min(r.maxSmoothDt, r.maxStableDt);
+    r.evalsPerSimSecond = r.maxSmoothDt > 0.0 ? r.evalsPerStep / r.maxSmoothDt : 0.0;
+  };
+
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const size_t threads = options.threads > 0 ? size_t(options.threads) : std::min<size_t>(integrators.size(), cores);
+  // Integrators are studied independently; each writes only its own result, so the outcome
+  // does not depend on the thread count.
+  for (size_t first = 0; first < integrators.size(); first += std::max<size_t>(threads, 1)) {
+    std::vector<std::thread> pool;
+    for (size_t k = first; k < std::min(integrators.size(), first + std::max<size_t>(threads, 1)); ++k) {
+      pool.emplace_back(study, k);
+    }
+    for (auto& t : pool) t.join();
+  }
+
+  double eulerCost = 0.0;
+  for (const auto& r : results) {
+    if (r.integrator == Integrator::Euler) eulerCost = r.evalsPerSimSecond;
+  }
+  for (auto& r : results) {
+    r.speedVsEuler = (eulerCost > 0.0 && r.evalsPerSimSecond > 0.0) ? eulerCost / r.evalsPerSimSecond : 0.0;
+  }
+  return out;
+}
+
+}  // namespace particles

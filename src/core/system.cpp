@@ -1,0 +1,171 @@
+#include "core/system.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "core/rigid_body.hpp"
+
+namespace particles {
+
+void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt) {
+  const StateLayout& layout = model_.layout;
+  const StateView s(layout, y);
+  // 1. clear accumulators
+  acc_.clear();
+  // 2. force objects
+  for (const auto& force : forces_) force->apply(model_, s, t, acc_);
+  // 3. collisions: before constraints, which must see every other force
+  applyCollisions(model_, s, colliders_, acc_);
+  // 4. constraint forces Q̂ = Jᵀλ
+  lastSolve_ = constraintSolver_.solve(model_, s, constraints_, acc_);
+  // 5. d/dt [x, v, θ, ω] = [v, F/m, ω, τ/I]
+  const Eigen::Index p2 = 2 * Eigen::Index(layout.numPoints());
+  const int b = layout.numBodies;
+  dydt.resize(layout.size());
+  dydt.head(p2) = y.segment(layout.velocityOffset(), p2);
+  for (int i = 0; i < layout.numPoints(); ++i) {
+    dydt[p2 + 2 * i] = acc_.force[2 * i] * model_.invMass[i];
+    dydt[p2 + 2 * i + 1] = acc_.force[2 * i + 1] * model_.invMass[i];
+  }
+  dydt.segment(layout.angleOffset(), b) = y.segment(layout.omegaOffset(), b);
+  dydt.segment(layout.omegaOffset(), b) = acc_.torque.cwiseProduct(model_.invInertia);
+}
+
+double System::kineticEnergy(const Eigen::VectorXd& y) const {
+  const StateView s(model_.layout, y);
+  double k = 0.0;
+  for (int i = 0; i < model_.layout.numPoints(); ++i) {
+    if (model_.invMass[i] != 0.0) k += 0.5 * model_.mass[i] * s.vel(i).squaredNorm();
+  }
+  for (int j = 0; j < model_.layout.numBodies; ++j) {
+    k += 0.5 * model_.bodies[size_t(j)].inertia * s.omega(j) * s.omega(j);
+  }
+  return k;
+}
+
+EnergyReport System::energy(const Eigen::VectorXd& y, double t) const {
+  const StateView s(model_.layout, y);
+  EnergyReport report;
+  report.kinetic = kineticEnergy(y);
+  auto add = [&](std::string_view kind, double u) {
+    auto it = std::find_if(report.potentialBySource.begin(), report.potentialBySource.end(),
+                           [&](const EnergySource& e) { return e.kind == kind; });
+    if (it == report.potentialBySource.end()) {
+      report.potentialBySource.push_back({std::string(kind), u});
+    } else {
+      it->energy += u;
+    }
+    report.potential += u;
+  };
+  for (const auto& force : forces_) {
+    if (force->kind() != "drag") add(force->kind(), force->potentialEnergy(model_, s, t));
+  }
+  if (!colliders_.empty()) add("collision", collisionPotential(model_, s, colliders_));
+  return report;
+}
+
+double System::constraintError(const Eigen::VectorXd& y) const {
+  const StateView s(model_.layout, y);
+  double worst = 0.0;
+  for (const auto& c : constraints_) worst = std::max(worst, c->violation(s));
+  return worst;
+}
+
+double System::penetration(const Eigen::VectorXd& y) const {
+  return maxPenetration(model_, StateView(model_.layout, y), colliders_);
+}
+
+int SystemBuilder::addParticle(const ParticleSpec& spec) {
+  particles_.push_back(spec);
+  return int(particles_.size()) - 1;
+}
+
+int SystemBuilder::addRigidBody(const RigidBodySpec& spec) {
+  bodies_.push_back(spec);
+  return int(bodies_.size()) - 1;
+}
+
+Force& SystemBuilder::addForce(std::unique_ptr<Force> force) { return *forces_.emplace_back(std::move(force)); }
+
+Constraint& SystemBuilder::addConstraint(std::unique_ptr<Constraint> constraint) {
+  return *constraints_.emplace_back(std::move(constraint));
+}
+
+Collider& SystemBuilder::addCollider(std::unique_ptr<Collider> collider) {
+  return *colliders_.emplace_back(std::move(collider));
+}
+
+System SystemBuilder::build() {
+  System sys;
+  Model& m = sys.model_;
+  m.layout = {int(particles_.size()), int(bodies_.size())};
+  const StateLayout& layout = m.layout;
+  const int n = layout.numParticles;
+  m.mass.resize(layout.numPoints());
+  m.invMass.resize(layout.numPoints());
+  m.invInertia.resize(layout.numBodies);
+  sys.y_.setZero(layout.size());
+  double* y = sys.y_.data();
+  const Eigen::Index v = layout.velocityOffset();
+
+  for (int i = 0; i < n; ++i) {
+    const ParticleSpec& p = particles_[size_t(i)];
+    if (!(p.mass > 0.0)) throw std::invalid_argument("particle " + std::to_string(i) + ": mass must be > 0");
+    m.mass[i] = p.mass;
+    m.invMass[i] = p.fixed ? 0.0 : 1.0 / p.mass;
+    y[2 * i] = p.pos.x();
+    y[2 * i + 1] = p.pos.y();
+    // A fixed particle never moves, whatever velocity it was given.
+    y[v + 2 * i] = p.fixed ? 0.0 : p.vel.x();
+    y[v + 2 * i + 1] = p.fixed ? 0.0 : p.vel.y();
+    m.particleNames.push_back(p.name);
+  }
+  for (int j = 0; j < layout.numBodies; ++j) {
+    const RigidBodySpec& b = bodies_[size_t(j)];
+    if (!(b.mass > 0.0) || !(b.size.x() > 0.0) || !(b.size.y() > 0.0)) {
+      throw std::invalid_argument("rigid body " + std::to_string(j) + ": mass and size must be > 0");
+    }
+    const int point = layout.bodyPoint(j);
+    m.mass[point] = b.mass;
+    m.invMass[point] = 1.0 / b.mass;
+    m.bodies.push_back({b.size, rectangleInertia(b.mass, b.size)});
+    m.invInertia[j] = 1.0 / m.bodies.back().inertia;
+    y[2 * point] = b.pos.x();
+    y[2 * point + 1] = b.pos.y();
+    y[v + 2 * point] = b.vel.x();
+    y[v + 2 * point + 1] = b.vel.y();
+    sys.y_[layout.angleOffset() + j] = b.angle;
+    sys.y_[layout.omegaOffset() + j] = b.omega;
+    m.bodyNames.push_back(b.name);
+  }
+
+  for (const auto& force : forces_) force->validate(layout);
+  for (const auto& c : constraints_) {
+    for (int p : c->particles()) {
+      if (p < 0 || p >= n) {
+        throw std::invalid_argument(std::string(c->kind()) + " constraint: particle " + std::to_string(p) +
+                                    " does not exist");
+      }
+    }
+  }
+
+  sys.forces_ = std::move(forces_);
+  sys.constraints_ = std::move(constraints_);
+  sys.colliders_ = std::move(colliders_);
+  sys.constraintSolver_ = ConstraintSolver(solverOptions_);
+  sys.acc_.resize(layout);
+
+  const StateView s(layout, sys.y_);
+  double scale = sys.kineticEnergy(sys.y_);
+  for (const auto& force : sys.forces_) scale += std::abs(force->energyScale(m, s));
+  // Floor: 1 J per kg of mass, so a system at rest with no forces still has a yardstick.
+  scale += m.mass.sum() * 1.0;
+  sys.energyScale_ = scale;
+
+  particles_.clear();
+  bodies_.clear();
+  return sys;
+}
+
+}  // namespace particles

@@ -1,0 +1,123 @@
+#pragma once
+// The system (DESIGN §1–2): a model, the current state vector and time, and the force objects,
+// constraints and colliders that act on it. derivEval is the one interface the integrators use.
+//
+// Built with SystemBuilder, so that the layout of the state vector is fixed before stepping.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/collisions.hpp"
+#include "core/constraint_solver.hpp"
+#include "core/force.hpp"
+#include "core/model.hpp"
+
+namespace particles {
+
+struct ParticleSpec {
+  Vec2 pos = Vec2::Zero();
+  Vec2 vel = Vec2::Zero();
+  double mass = 1.0;   // kg, > 0 (a fixed particle keeps its mass for gravity's bookkeeping)
+  bool fixed = false;  // fixed: inverse mass 0, never moves
+  std::string name;
+};
+
+struct RigidBodySpec {
+  Vec2 pos = Vec2::Zero();  // centre of mass
+  Vec2 vel = Vec2::Zero();
+  double angle = 0.0;  // rad, counter-clockwise
+  double omega = 0.0;  // rad/s
+  Vec2 size = Vec2(1.0, 1.0);  // width, height, m
+  double mass = 1.0;
+  std::string name;
+};
+
+struct EnergySource {
+  std::string kind;  // "gravity", "spring", "mouse", "collision", …
+  double energy;     // J
+};
+
+struct EnergyReport {
+  double kinetic = 0.0;    // Σ ½ m v² + ½ I ω²
+  double potential = 0.0;  // Σ over sources
+  std::vector<EnergySource> potentialBySource;  // one entry per kind, in order of first appearance
+  double total() const { return kinetic + potential; }
+};
+
+class System {
+ public:
+  const Model& model() const { return model_; }
+  const StateLayout& layout() const { return model_.layout; }
+
+  Eigen::VectorXd& state() { return y_; }
+  const Eigen::VectorXd& state() const { return y_; }
+  StateView view() const { return StateView(model_.layout, y_); }
+  double time() const { return t_; }
+  void setTime(double t) { t_ = t; }
+
+  // dy/dt at (y, t): clear accumulators, apply forces, collisions, constraints, then write
+  // [v, F/m, ω, τ/I] (DESIGN §2). Not const: it reuses scratch space and warm-starts λ.
+  void derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt);
+
+  double kineticEnergy(const Eigen::VectorXd& y) const;
+  EnergyReport energy(const Eigen::VectorXd& y, double t) const;
+  EnergyReport energy() const { return energy(y_, t_); }
+  double constraintError(const Eigen::VectorXd& y) const;  // largest violation, m
+  double penetration(const Eigen::VectorXd& y) const;      // largest collider depth, m
+  // Energy the initial system can plausibly hold (kinetic plus each force's scale), J; the
+  // explosion guard compares kinetic energy against a multiple of it.
+  double energyScale() const { return energyScale_; }
+  const ConstraintSolveStats& lastConstraintSolve() const { return lastSolve_; }
+
+  const std::vector<std::unique_ptr<Force>>& forces() const { return forces_; }
+  const ConstraintList& constraints() const { return constraints_; }
+  const ColliderList& colliders() const { return colliders_; }
+
+ private:
+  friend class SystemBuilder;
+  System() = default;
+
+  Model model_;
+  Eigen::VectorXd y_;
+  double t_ = 0.0;
+  std::vector<std::unique_ptr<Force>> forces_;
+  ConstraintList constraints_;
+  ColliderList colliders_;
+  ConstraintSolver constraintSolver_;
+  ForceAccumulator acc_;
+  ConstraintSolveStats lastSolve_;
+  double energyScale_ = 0.0;
+};
+
+class SystemBuilder {
+ public:
+  int addParticle(const ParticleSpec& spec);  // returns the particle index
+  int addRigidBody(const RigidBodySpec& spec);  // returns the body index
+  Force& addForce(std::unique_ptr<Force> force);
+  Constraint& addConstraint(std::unique_ptr<Constraint> constraint);
+  Collider& addCollider(std::unique_ptr<Collider> collider);
+  template <typename T, typename... Args>
+  T& emplaceForce(Args&&... args) {
+    return static_cast<T&>(addForce(std::make_unique<T>(std::forward<Args>(args)...)));
+  }
+  void setConstraintSolverOptions(const ConstraintSolverOptions& options) { solverOptions_ = options; }
+
+  int numParticles() const { return int(particles_.size()); }
+  int numBodies() const { return int(bodies_.size()); }
+
+  // Lays out the state vector and hands everything over. Throws std::invalid_argument when a
+  // mass or size is not positive or an index is out of range (the scenario loader reports such
+  // errors with file and line before it gets here).
+  System build();
+
+ private:
+  std::vector<ParticleSpec> particles_;
+  std::vector<RigidBodySpec> bodies_;
+  std::vector<std::unique_ptr<Force>> forces_;
+  ConstraintList constraints_;
+  ColliderList colliders_;
+  ConstraintSolverOptions solverOptions_;
+};
+
+}  // namespace particles

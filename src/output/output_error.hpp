@@ -1,0 +1,15 @@
+#pragma once
+// The one error of the output room: a file could not be opened, written or renamed into place.
+// The message names the path and the failing call with the system's (or the library's) own words.
+// The program maps it to exit code 3 ("output failure").
+
+#include <stdexcept>
+
+namespace particles::output {
+
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace particles::output

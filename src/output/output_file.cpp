@@ -1,0 +1,40 @@
+#include "output/output_file.hpp"
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace particles::output {
+
+OutputFile::OutputFile(std::filesystem::path path) : pending_(std::move(path)) {
+  if (pending_.destination().empty()) throw OutputError("cannot write to an empty file name");
+  std::error_code ec;
+  if (std::filesystem::is_directory(pending_.destination(), ec)) {
+    throw OutputError(fmt::format("cannot write {}: it is a directory", pending_.destination().string()));
+  }
+  file_.reset(std::fopen(pending_.temporary().c_str(), "wb"));
+  if (!file_) {
+    throw OutputError(fmt::format("cannot write {}: {}", pending_.destination().string(), std::strerror(errno)));
+  }
+}
+
+void OutputFile::write(std::string_view text) {
+  if (std::fwrite(text.data(), 1, text.size(), file_.get()) != text.size()) {
+    throw OutputError(fmt::format("cannot write {}: {}", pending_.destination().string(), std::strerror(errno)));
+  }
+}
+
+void OutputFile::commit() {
+  std::FILE* f = file_.release();
+  const bool flushed = std::fflush(f) == 0 && !std::ferror(f);
+  const int flushErrno = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!flushed || !closed) {
+    throw OutputError(fmt::format("cannot write {}: {}", pending_.destination().string(),
+                                  std::strerror(flushed ? errno : flushErrno)));
+  }
+  pending_.commit();
+}
+
+}  // namespace particles::output
