@@ -8,7 +8,8 @@
 #include <string>
 
 #include "render/renderer.hpp"
-#include "render/snapshot.hpp"
+#include "core/drawing.hpp"
+#include "core/system.hpp"
 #include "scenario/scenario.hpp"
 #include "core/solver.hpp"
 
@@ -27,7 +28,7 @@ void BM_Render(benchmark::State& state, const std::string& file, double at) {
   render::Renderer renderer(options);
   const render::Camera camera{s.render.viewCenter, s.render.viewHeight};
   for (auto _ : state) {
-    const render::Image& image = renderer.render(render::snapshotOf(s.system), camera);
+    const render::Image& image = renderer.render(s.system.draw(), camera);
     benchmark::DoNotOptimize(image.rgba.data());
   }
   state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);

@@ -18,7 +18,7 @@
 //   for (long i = 0; i < frames; ++i) {
 //     if (stopRequested) { writer->abort(); return 130; }   // partial output removed
 //     advance the system to t = i / fps;
-//     writer->write(renderer.render(snapshotOf(system), camera));
+//     writer->write(renderer.render(system.draw(), camera));
 //   }
 //   writer->finish();
 //

@@ -210,7 +210,7 @@ struct Renderer::Impl {
                         ", GL_UNSIGNED_BYTE) failed");
     }
   }
-  void buildMesh(const FrameSnapshot& frame, const Camera& camera);
+  void buildMesh(const Drawing& frame, const Camera& camera);
   void buildProgram();
 };
 
@@ -288,7 +288,7 @@ int Renderer::samples() const {
   return impl_->options.msaa;
 }
 
-void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
+void Renderer::Impl::buildMesh(const Drawing& f, const Camera& camera) {
   const Theme& c = colors;
   const float w = float(options.width), h = float(options.height);
   const double scale = double(options.height) / camera.height;  // pixels per world unit
@@ -302,7 +302,7 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
 
   // Colliders: the solid side filled, its boundary outlined. A half-plane is a quad reaching well
   // past the image on every side (GL clips it), built from the boundary's point nearest the origin.
-  for (const HalfPlaneShape& hp : f.halfPlanes) {
+  for (const Drawing::HalfPlane& hp : f.halfPlanes) {
     const P2 p0 = toPixel(hp.normal * hp.offset);
     const P2 n = {float(hp.normal.x()), float(-hp.normal.y())};  // towards the free side, in pixels
     const P2 t = {-n[1], n[0]};
@@ -314,30 +314,38 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
     mesh.convex({a, b, bIn, aIn}, c.colliderFill);
     mesh.line(a, b, lineWidth, c.colliderOutline);
   }
-  for (const DiskShape& d : f.disks) {
+  for (const Drawing::Disk& d : f.disks) {
     const P2 p = toPixel(d.center);
     const float r = float(d.radius * scale);
     mesh.disc(p, r, c.colliderFill);
     mesh.ring(p, r, lineWidth, c.colliderOutline);
   }
 
-  // Constraint guides: wires as circles, rails across the whole width.
-  for (const WireCircle& wire : f.wires) {
-    mesh.ring(toPixel(wire.center), float(wire.radius * scale), float(options.guideWidthPx), c.guide);
+  // Constraint guides: circles (wires), and lines across the whole view (rails), clipped to the
+  // image grown by 8 px so their ends never show.
+  for (const Drawing::Circle& circle : f.guideCircles) {
+    mesh.ring(toPixel(circle.center), float(circle.radius * scale), float(options.guideWidthPx), c.guide);
   }
-  for (const Rail& rail : f.rails) {
-    const float y = toPixel(Vec2(camera.center.x(), rail.height))[1];
-    mesh.line({-8.0f, y}, {w + 8.0f, y}, float(options.guideWidthPx), c.guide);
+  for (const Drawing::Line& line : f.guideLines) {
+    const P2 p = toPixel(line.point);
+    const double dx = line.direction.x(), dy = -line.direction.y();  // pixel y points down
+    if (std::abs(dx) >= std::abs(dy)) {  // mostly horizontal: from the left edge to the right
+      const auto yAt = [&](float x) { return float(p[1] + (double(x) - p[0]) * dy / dx); };
+      mesh.line({-8.0f, yAt(-8.0f)}, {w + 8.0f, yAt(w + 8.0f)}, float(options.guideWidthPx), c.guide);
+    } else {  // mostly vertical: from the top edge to the bottom
+      const auto xAt = [&](float y) { return float(p[0] + (double(y) - p[1]) * dx / dy); };
+      mesh.line({xAt(-8.0f), -8.0f}, {xAt(h + 8.0f), h + 8.0f}, float(options.guideWidthPx), c.guide);
+    }
   }
 
-  for (const SpringSegment& s : f.springs) {
+  for (const Drawing::Spring& s : f.springs) {
     const double t = std::clamp(s.strain / options.strainForFullColor, -1.0, 1.0);
     const Rgb col = t < 0 ? mix(c.springRest, c.springCompressed, -t) : mix(c.springRest, c.springStretched, t);
     mesh.line(toPixel(s.a), toPixel(s.b), float(options.springWidthPx), col);
   }
-  for (const RodSegment& r : f.rods) mesh.line(toPixel(r.a), toPixel(r.b), float(options.rodWidthPx), c.rod);
+  for (const Drawing::Segment& r : f.rods) mesh.line(toPixel(r.a), toPixel(r.b), float(options.rodWidthPx), c.rod);
 
-  for (const BodyBox& body : f.bodies) {
+  for (const Drawing::Box& body : f.bodies) {
     const double cs = std::cos(body.angle), sn = std::sin(body.angle);
     const Vec2 hx = 0.5 * body.size.x() * Vec2(cs, sn), hy = 0.5 * body.size.y() * Vec2(-sn, cs);
     const std::vector<P2> corners = {toPixel(body.center - hx - hy), toPixel(body.center + hx - hy),
@@ -361,7 +369,7 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
 
   // The scripted mouse: a line to the grabbed point, then an arrow pointer with its tip on the
   // target (the classic 12 × 20 px shape, pointing up and left).
-  for (const MouseCursor& mouse : f.mice) {
+  for (const Drawing::Cursor& mouse : f.cursors) {
     const P2 tip = toPixel(mouse.target);
     mesh.line(tip, toPixel(mouse.grabbed), float(options.springWidthPx), c.mouse);
     auto at = [&](float x, float y) -> P2 { return {tip[0] + x, tip[1] + y}; };
@@ -376,7 +384,7 @@ void Renderer::Impl::buildMesh(const FrameSnapshot& f, const Camera& camera) {
   }
 }
 
-const Image& Renderer::render(const FrameSnapshot& frame, const Camera& camera) {
+const Image& Renderer::render(const Drawing& frame, const Camera& camera) {
   if (!(camera.height > 0.0)) throw std::invalid_argument("camera height must be positive");
   Impl& m = *impl_;
   m.makeCurrent();

@@ -1,5 +1,5 @@
 #pragma once
-// Off-screen OpenGL rendering of a FrameSnapshot (DESIGN §9) through OSMesa, Mesa's software
+// Off-screen OpenGL rendering of a Drawing (DESIGN §9) through OSMesa, Mesa's software
 // rasteriser (llvmpipe): no display, no GPU. DISPLAY may be unset.
 //
 // Anti-aliasing is multisampling done in the fragment shader: every primitive carries its true
@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "render/image.hpp"
-#include "render/snapshot.hpp"
+#include "core/drawing.hpp"
 
 namespace particles::render {
 
@@ -96,7 +96,7 @@ class Renderer {
 
   // Draws the snapshot. The image is owned by the renderer and valid until the next call.
   // Throws RenderError if GL reports an error.
-  const Image& render(const FrameSnapshot& frame, const Camera& camera);
+  const Image& render(const Drawing& frame, const Camera& camera);
 
   const RenderOptions& options() const;
   int samples() const;  // samples per pixel (options().msaa)

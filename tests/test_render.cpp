@@ -20,7 +20,8 @@
 #include "core/forces/mouse_spring_force.hpp"
 #include "render/errors.hpp"
 #include "render/renderer.hpp"
-#include "render/snapshot.hpp"
+#include "core/drawing.hpp"
+#include "core/system.hpp"
 #include "render_support.hpp"
 #include "core/constraints/rod_constraint.hpp"
 
@@ -61,7 +62,7 @@ std::string rgbText(const std::uint8_t* p) {
 
 }  // namespace
 
-TEST_CASE("snapshotOf copies positions, spring strains, constraints, colliders and the active mouse") {
+TEST_CASE("System::draw describes positions, spring strains, constraints, colliders and the active mouse") {
   SystemBuilder b;
   const int a = b.addParticle({Vec2(0, 0), Vec2::Zero(), 1.0, true, "a"});
   const int c = b.addParticle({Vec2(1.5, 0), Vec2::Zero(), 1.0, false, "c"});
@@ -79,7 +80,7 @@ TEST_CASE("snapshotOf copies positions, spring strains, constraints, colliders a
   b.addCollider(std::make_unique<DiskCollider>(Vec2(1, -1), 0.25));
   const System system = b.build();
 
-  const FrameSnapshot f = snapshotOf(system);
+  const Drawing f = system.draw();
   CHECK(f.time == 0.0);
   REQUIRE(f.particles.size() == 3);
   CHECK(f.particles[1] == Vec2(1.5, 0));
@@ -95,20 +96,20 @@ TEST_CASE("snapshotOf copies positions, spring strains, constraints, colliders a
   CHECK(f.springs[1].b.y() == doctest::Approx(2 + 0.2 * std::sin(0.3)));
   REQUIRE(f.rods.size() == 1);
   CHECK(f.rods[0].b == Vec2(0, 1));
-  CHECK(f.wires.size() == 1);  // two beads on one wire: one circle
-  CHECK(f.rails.size() == 1);
+  CHECK(f.guideCircles.size() == 1);  // two beads on one wire: one circle
+  CHECK(f.guideLines.size() == 1);
   REQUIRE(f.halfPlanes.size() == 1);
   CHECK(f.halfPlanes[0].normal == Vec2(0, 1));
   CHECK(f.disks.size() == 1);
-  REQUIRE(f.mice.size() == 1);  // the second script starts at t = 2
-  CHECK(f.mice[0].target == Vec2(3, 3));
-  CHECK(f.mice[0].grabbed == Vec2(0, 1));
+  REQUIRE(f.cursors.size() == 1);  // the second script starts at t = 2
+  CHECK(f.cursors[0].target == Vec2(3, 3));
+  CHECK(f.cursors[0].grabbed == Vec2(0, 1));
 }
 
 TEST_CASE("particles land where the camera projects them, and nothing else is drawn") {
   NoDisplay noDisplay;
   const System system = particles::test::fallingParticles();
-  const FrameSnapshot frame = snapshotOf(system);
+  const Drawing frame = system.draw();
   const RenderOptions options = smallOptions();
   const Theme colors = theme(options.themeName);
   // Off-centre camera: a frame drawn shifted, flipped or at the wrong scale puts the discs elsewhere.
@@ -160,7 +161,7 @@ TEST_CASE("world-unit particle radius scales with the camera") {
   const Theme colors = theme(options.themeName);
   const Camera camera{Vec2(0.1, -0.1), 2.4};
   Renderer renderer(options);
-  const Image& image = renderer.render(snapshotOf(system), camera);
+  const Image& image = renderer.render(system.draw(), camera);
   const Vec2 c = projectToPixel(Vec2(0.2, 0.6), camera, 320, 240);
   CHECK(sameRgb(image.pixel(int(c.x() + 3), int(c.y())), colors.particle));    // 3.5 px from the centre
   CHECK(sameRgb(image.pixel(int(c.x() + 7), int(c.y())), colors.background));  // 7.5 px
@@ -168,7 +169,7 @@ TEST_CASE("world-unit particle radius scales with the camera") {
 
 TEST_CASE("springs are coloured by strain: compressed, at rest, stretched") {
   // Three horizontal springs of rest length 1, drawn 4 px wide, at world y = 0.6, 0, −0.6.
-  FrameSnapshot f;
+  Drawing f;
   f.springs = {{Vec2(-0.5, 0.6), Vec2(0.5, 0.6), -0.5},
                {Vec2(-0.5, 0), Vec2(0.5, 0), 0.0},
                {Vec2(-0.5, -0.6), Vec2(0.5, -0.6), 0.5}};
@@ -189,14 +190,14 @@ TEST_CASE("springs are coloured by strain: compressed, at rest, stretched") {
 }
 
 TEST_CASE("every kind of shape is drawn in its theme colour") {
-  FrameSnapshot f;
+  Drawing f;
   f.halfPlanes = {{Vec2(0, 1), -0.8}};  // solid below y = −0.8
   f.disks = {{Vec2(-0.8, 0.5), 0.2}};
   f.bodies = {{Vec2(0.8, 0.5), 0.0, Vec2(0.4, 0.2)}};
   f.rods = {{Vec2(-0.5, -0.3), Vec2(0.5, -0.3)}};
-  f.rails = {{0.8}};
-  f.wires = {{Vec2(0, 0.3), 0.3}};
-  f.mice = {{Vec2(0.0, -0.55), Vec2(-0.9, -0.55)}};
+  f.guideLines = {{Vec2(0, 0.8), Vec2(1, 0)}};
+  f.guideCircles = {{Vec2(0, 0.3), 0.3}};
+  f.cursors = {{Vec2(0.0, -0.55), Vec2(-0.9, -0.55)}};
   for (ThemeName name : {ThemeName::dark, ThemeName::light}) {
     RenderOptions options = smallOptions();
     options.themeName = name;
@@ -230,7 +231,7 @@ TEST_CASE("multisampling smooths edges; msaa 1 gives hard edges") {
   const Camera camera{Vec2(0, 0), 2.4};
   auto distinctColours = [&](int msaa) {
     Renderer renderer(smallOptions(msaa));
-    const Image& image = renderer.render(snapshotOf(system), camera);
+    const Image& image = renderer.render(system.draw(), camera);
     std::set<std::uint32_t> colours;
     for (size_t i = 0; i < image.rgba.size(); i += 4) {
       colours.insert(std::uint32_t(image.rgba[i]) << 16 | std::uint32_t(image.rgba[i + 1]) << 8 | image.rgba[i + 2]);
@@ -243,11 +244,11 @@ TEST_CASE("multisampling smooths edges; msaa 1 gives hard edges") {
 
 TEST_CASE("the same snapshot renders to the same bytes") {
   const System system = particles::test::fallingParticles();
-  const FrameSnapshot frame = snapshotOf(system);
+  const Drawing frame = system.draw();
   const Camera camera{Vec2(0.1, 0), 2.4};
   Renderer renderer(smallOptions());
   const Image first = renderer.render(frame, camera);
-  FrameSnapshot other = frame;
+  Drawing other = frame;
   other.particles[0] += Vec2(0.3, 0);
   const Image moved = renderer.render(other, camera);
   CHECK(moved != first);
@@ -265,7 +266,7 @@ TEST_CASE("renderer options are checked") {
   o.width = 0;
   CHECK_THROWS_AS(Renderer{o}, std::invalid_argument);
   Renderer renderer(smallOptions());
-  CHECK_THROWS_AS(renderer.render(FrameSnapshot{}, Camera{Vec2::Zero(), 0.0}), std::invalid_argument);
+  CHECK_THROWS_AS(renderer.render(Drawing{}, Camera{Vec2::Zero(), 0.0}), std::invalid_argument);
 }
 
 namespace {
@@ -339,7 +340,7 @@ TEST_CASE("sample patterns lie inside the pixel, one sample per row and per colu
 TEST_CASE("each pixel of a disc is blended by the share of its samples inside the circle") {
   const Vec2 centre(20.3, 17.8);  // pixels; off the pixel grid on purpose
   const double radius = 6.2;
-  FrameSnapshot frame;
+  Drawing frame;
   frame.particles = {Vec2(centre.x(), -centre.y())};
   frame.particleFixed = {0};
   for (int samples : kSampleCounts) {
@@ -361,7 +362,7 @@ TEST_CASE("each pixel of a disc is blended by the share of its samples inside th
 TEST_CASE("each pixel of a slanted line is blended by the share of its samples inside the line") {
   const Vec2 a(8.2, 30.7), b(55.6, 11.1);  // pixels
   const double width = 3.3;
-  FrameSnapshot frame;
+  Drawing frame;
   frame.springs = {{Vec2(a.x(), -a.y()), Vec2(b.x(), -b.y()), 0.0}};  // at rest: the rest colour
   const Vec2 along = (b - a).normalized(), across(-along.y(), along.x());
   for (int samples : {1, 4, 16}) {
@@ -380,9 +381,9 @@ TEST_CASE("each pixel of a slanted line is blended by the share of its samples i
 TEST_CASE("a shape drawn in convex pieces shows no seams between them") {
   // The mouse cursor's arrow is four pieces; inside it, away from its outline, every pixel must be
   // exactly the cursor colour (a smoothed shared edge would leave a darker seam).
-  FrameSnapshot frame;
+  Drawing frame;
   const Vec2 tip(21.37, 9.61);  // pixels
-  frame.mice = {{Vec2(tip.x(), -tip.y()), Vec2(tip.x(), -tip.y())}};
+  frame.cursors = {{Vec2(tip.x(), -tip.y()), Vec2(tip.x(), -tip.y())}};
   const RenderOptions o = pixelCameraOptions();
   Renderer renderer(o);
   const Image& image = renderer.render(frame, kPixelCamera);

@@ -14,7 +14,8 @@
 #include "render/png_io.hpp"
 #include "render/png_sequence_writer.hpp"
 #include "render/renderer.hpp"
-#include "render/snapshot.hpp"
+#include "core/drawing.hpp"
+#include "core/system.hpp"
 #include "render/video_probe.hpp"
 #include "render_support.hpp"
 #include "core/solver.hpp"
@@ -44,7 +45,7 @@ std::vector<Image> renderInto(FrameWriter& writer, long count, int fps, bool kee
   std::vector<Image> kept;
   for (long i = 0; i < count; ++i) {
     while (system.time() < double(i) / fps - 1e-9) solver.doStep(system, 1.0 / (4.0 * fps));
-    const Image& image = renderer.render(snapshotOf(system), camera);
+    const Image& image = renderer.render(system.draw(), camera);
     if (keep) kept.push_back(image);
     writer.write(image);
   }
@@ -97,7 +98,7 @@ TEST_CASE("a rendered frame survives a PNG round trip through libpng") {
   setLibavVerbose(false);
   System system = particles::test::fallingParticles();
   Renderer renderer(outputRenderOptions());
-  const Image frame = renderer.render(snapshotOf(system), camera);
+  const Image frame = renderer.render(system.draw(), camera);
 
   writePng(dir / "frame.png", frame, {.compressionLevel = 9});
   writePng(dir / "stored.png", frame, {.compressionLevel = 0});
@@ -163,7 +164,7 @@ TEST_CASE("an unwritable output is a clear error and leaves no file") {
   ScratchDir dir;
   setLibavVerbose(false);
   std::ofstream(dir / "plain_file") << "x";
-  const Image frame = Renderer(outputRenderOptions()).render(FrameSnapshot{}, camera);
+  const Image frame = Renderer(outputRenderOptions()).render(Drawing{}, camera);
   for (const auto& path : {dir / "missing" / "out.mp4", dir / "plain_file" / "out.mp4"}) {
     CAPTURE(path);
     try {

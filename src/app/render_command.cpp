@@ -22,7 +22,8 @@
 #include "render/frame_writer.hpp"
 #include "render/png_io.hpp"
 #include "render/renderer.hpp"
-#include "render/snapshot.hpp"
+#include "core/drawing.hpp"
+#include "core/system.hpp"
 #include "scenario/runner.hpp"
 
 namespace particles::app {
@@ -56,7 +57,7 @@ class FramePainter {
     style_.sizePx = std::clamp(renderer.options().height / 40.0, 10.0, 28.0);
   }
   const render::Image& paint(const System& system) {
-    const render::Image& image = renderer_.render(render::snapshotOf(system), camera_);
+    const render::Image& image = renderer_.render(system.draw(), camera_);
     if (!hud_) return image;
     framed_ = image;
     const EnergyReport e = system.energy();

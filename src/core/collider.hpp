@@ -8,6 +8,7 @@
 #include <optional>
 #include <string_view>
 
+#include "core/drawing.hpp"
 #include "core/state.hpp"
 
 namespace particles {
@@ -29,6 +30,8 @@ class Collider {
   virtual std::string_view kind() const = 0;
   // The contact of point p, or nothing when p is on the allowed side.
   virtual std::optional<Contact> contact(const Vec2& p) const = 0;
+  // Adds the obstacle's shape to the frame's drawing.
+  virtual void draw(Drawing& out) const = 0;
   const PenaltyParams& params() const { return params_; }
 
  private:

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/drawing.hpp"
 #include "core/state.hpp"
 
 namespace particles {
@@ -39,8 +40,10 @@ class Constraint {
   // line): C itself is not a length for every kind.
   virtual double violation(const StateView& s) const = 0;
   const ConstraintFeedback& feedback() const { return feedback_; }
-  // The particles this constraint touches (for validation and for tools that draw it).
+  // The particles this constraint touches (for validation).
   virtual std::vector<int> particles() const = 0;
+  // Adds what this constraint shows (a rod, a wire, a rail) to the frame's drawing.
+  virtual void draw(const StateView& s, Drawing& out) const = 0;
 
  private:
   ConstraintFeedback feedback_;

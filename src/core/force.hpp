@@ -4,6 +4,7 @@
 
 #include <string_view>
 
+#include "core/drawing.hpp"
 #include "core/force_accumulator.hpp"
 #include "core/model.hpp"
 
@@ -12,13 +13,18 @@ namespace particles {
 class Force {
  public:
   virtual ~Force() = default;
-  // Short name of the kind ("gravity", "drag", "spring", "mouse"), used to label energy sources.
+  // The kind's name as scenario files spell it ("gravity", "drag", "spring", "mouse"); it also
+  // labels the force's potential energy in energy reports.
   virtual std::string_view kind() const = 0;
   virtual void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const = 0;
   // Potential energy stored by this force, joules; zero for dissipative forces.
   virtual double potentialEnergy(const Model& model, const StateView& s, double t) const = 0;
   // An energy this force can plausibly put into the system, joules: the explosion guard's yardstick.
   virtual double energyScale(const Model& model, const StateView& s) const = 0;
+  // True for a force that only takes energy out (drag): it stores none, so energy reports skip it.
+  virtual bool isDissipative() const { return false; }
+  // Adds what this force shows (springs, cursors) to the frame's drawing; nothing by default.
+  virtual void draw(const StateView& s, double t, Drawing& out) const = 0;
   // Throws std::invalid_argument when the force refers to a particle or body the layout lacks.
   virtual void validate(const StateLayout&) const {}
 };

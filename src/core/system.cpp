@@ -59,10 +59,30 @@ EnergyReport System::energy(const Eigen::VectorXd& y, double t) const {
     report.potential += u;
   };
   for (const auto& force : forces_) {
-    if (force->kind() != "drag") add(force->kind(), force->potentialEnergy(model_, s, t));
+    if (!force->isDissipative()) add(force->kind(), force->potentialEnergy(model_, s, t));
   }
   if (!colliders_.empty()) add("collision", collisionPotential(model_, s, colliders_));
   return report;
+}
+
+Drawing System::draw() const {
+  const StateView s = view();
+  const StateLayout& layout = model_.layout;
+  Drawing d;
+  d.time = t_;
+  d.particles.reserve(size_t(layout.numParticles));
+  d.particleFixed.reserve(size_t(layout.numParticles));
+  for (int i = 0; i < layout.numParticles; ++i) {
+    d.particles.push_back(s.pos(i));
+    d.particleFixed.push_back(model_.isFixed(i) ? 1 : 0);
+  }
+  for (int j = 0; j < layout.numBodies; ++j) {
+    d.bodies.push_back({s.pos(layout.bodyPoint(j)), s.angle(j), model_.bodies[size_t(j)].size});
+  }
+  for (const auto& force : forces_) force->draw(s, t_, d);
+  for (const auto& constraint : constraints_) constraint->draw(s, d);
+  for (const auto& collider : colliders_) collider->draw(d);
+  return d;
 }
 
 double System::constraintError(const Eigen::VectorXd& y) const {

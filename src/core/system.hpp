@@ -63,6 +63,10 @@ class System {
   double kineticEnergy(const Eigen::VectorXd& y) const;
   EnergyReport energy(const Eigen::VectorXd& y, double t) const;
   EnergyReport energy() const { return energy(y_, t_); }
+  // The current state as plain geometry for drawing: particles, bodies, and what every force,
+  // constraint and collider shows of itself (core/drawing.hpp).
+  Drawing draw() const;
+
   double constraintError(const Eigen::VectorXd& y) const;  // largest violation, m
   double penetration(const Eigen::VectorXd& y) const;      // largest collider depth, m
   // Energy the initial system can plausibly hold (kinetic plus each force's scale), J; the

@@ -14,6 +14,7 @@ class DiskCollider final : public Collider {
   double radius() const { return radius_; }
 
   std::string_view kind() const override { return "disk"; }
+  void draw(Drawing& out) const override { out.disks.push_back({center_, radius_}); }
   std::optional<Contact> contact(const Vec2& p) const override {
     const Vec2 d = p - center_;
     const double dist = d.norm();

@@ -15,6 +15,7 @@ class HalfPlaneCollider final : public Collider {
   double offset() const { return offset_; }
 
   std::string_view kind() const override { return "half_plane"; }
+  void draw(Drawing& out) const override { out.halfPlanes.push_back({normal_, offset_}); }
   std::optional<Contact> contact(const Vec2& p) const override {
     const double depth = offset_ - normal_.dot(p);
     if (depth <= 0.0) return std::nullopt;

@@ -21,4 +21,6 @@ double CircularWireConstraint::violation(const StateView& s) const {
   return std::abs((s.pos(particle_) - center_).norm() - radius_);
 }
 
+void CircularWireConstraint::draw(const StateView&, Drawing& out) const { out.addGuideCircle({center_, radius_}); }
+
 }  // namespace particles

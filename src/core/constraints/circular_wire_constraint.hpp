@@ -18,6 +18,7 @@ class CircularWireConstraint final : public Constraint {
   ConstraintRow evaluate(const StateView& s) const override;
   double violation(const StateView& s) const override;
   std::vector<int> particles() const override { return {particle_}; }
+  void draw(const StateView& s, Drawing& out) const override;
 
  private:
   int particle_;

@@ -19,4 +19,8 @@ double HorizontalLineConstraint::violation(const StateView& s) const {
   return std::abs(s.pos(particle_).y() - height_);
 }
 
+void HorizontalLineConstraint::draw(const StateView&, Drawing& out) const {
+  out.addGuideLine({Vec2(0.0, height_), Vec2(1.0, 0.0)});
+}
+
 }  // namespace particles

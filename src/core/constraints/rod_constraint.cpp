@@ -21,4 +21,6 @@ double RodConstraint::violation(const StateView& s) const {
   return std::abs((s.pos(a_) - s.pos(b_)).norm() - length_);
 }
 
+void RodConstraint::draw(const StateView& s, Drawing& out) const { out.rods.push_back({s.pos(a_), s.pos(b_)}); }
+
 }  // namespace particles

@@ -19,6 +19,7 @@ class RodConstraint final : public Constraint {
   ConstraintRow evaluate(const StateView& s) const override;
   double violation(const StateView& s) const override;
   std::vector<int> particles() const override { return {a_, b_}; }
+  void draw(const StateView& s, Drawing& out) const override;
 
  private:
   int a_, b_;

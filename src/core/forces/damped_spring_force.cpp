@@ -87,4 +87,11 @@ void DampedSpringForce::validate(const StateLayout& layout) const {
   }
 }
 
+void DampedSpringForce::draw(const StateView& s, double, Drawing& out) const {
+  out.springs.reserve(out.springs.size() + size());
+  for (size_t i = 0; i < size(); ++i) {
+    out.springs.push_back({endpointPosition(s, a_[i]), endpointPosition(s, b_[i]), strain(s, i)});
+  }
+}
+
 }  // namespace particles

@@ -34,6 +34,7 @@ class DampedSpringForce final : public Force {
   void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
   double energyScale(const Model& model, const StateView& s) const override;
+  void draw(const StateView& s, double t, Drawing& out) const override;
   void validate(const StateLayout& layout) const override;
 
  private:

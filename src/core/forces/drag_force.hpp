@@ -15,6 +15,8 @@ class DragForce final : public Force {
   void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
   double potentialEnergy(const Model&, const StateView&, double) const override { return 0.0; }
   double energyScale(const Model&, const StateView&) const override { return 0.0; }
+  bool isDissipative() const override { return true; }
+  void draw(const StateView&, double, Drawing&) const override {}  // nothing to show
 
  private:
   double kd_;

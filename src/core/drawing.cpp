@@ -1,0 +1,19 @@
+#include "core/drawing.hpp"
+
+#include <algorithm>
+
+namespace particles {
+
+void Drawing::addGuideCircle(const Circle& c) {
+  const bool seen = std::any_of(guideCircles.begin(), guideCircles.end(),
+                                [&](const Circle& o) { return o.center == c.center && o.radius == c.radius; });
+  if (!seen) guideCircles.push_back(c);
+}
+
+void Drawing::addGuideLine(const Line& l) {
+  const bool seen = std::any_of(guideLines.begin(), guideLines.end(),
+                                [&](const Line& o) { return o.point == l.point && o.direction == l.direction; });
+  if (!seen) guideLines.push_back(l);
+}
+
+}  // namespace particles

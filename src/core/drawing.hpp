@@ -1,0 +1,68 @@
+#pragma once
+// What a system shows of itself at one instant: plain geometry in world units, filled in by the
+// system (particles, bodies) and by each force, constraint and collider kind (its draw method), so
+// that the renderer needs no knowledge of the kinds. The renderer chooses colours and widths by
+// the list a shape is in, and draws the lists in a fixed order, back to front:
+//   obstacles (half-planes, disks) → guides (circles, lines) → springs → rods → bodies →
+//   particles → cursors.
+// A new kind draws itself by adding to these lists; a new list is a change to the renderer.
+
+#include <vector>
+
+#include "core/state.hpp"
+
+namespace particles {
+
+struct Drawing {
+  struct Spring {   // a spring, coloured by strain
+    Vec2 a, b;      // world positions of the ends (anchors on bodies included)
+    double strain;  // |l| / rest − 1: negative compressed, 0 at rest, positive stretched
+  };
+  struct Segment {  // a rigid link (rods)
+    Vec2 a, b;
+  };
+  struct Circle {  // a circular guide, outline only (wires)
+    Vec2 center;
+    double radius;
+  };
+  struct Line {       // a straight guide across the whole view (rails)
+    Vec2 point;       // any point on it
+    Vec2 direction;   // unit
+  };
+  struct HalfPlane {  // a solid obstacle filling normal·p < offset
+    Vec2 normal;      // unit, towards the free side
+    double offset;
+  };
+  struct Disk {  // a solid round obstacle
+    Vec2 center;
+    double radius;
+  };
+  struct Box {  // a rigid rectangle
+    Vec2 center;
+    double angle;  // rad, counter-clockwise
+    Vec2 size;     // full width and height
+  };
+  struct Cursor {  // a scripted mouse while it holds its point
+    Vec2 target;   // where the cursor is
+    Vec2 grabbed;  // the point it pulls
+  };
+
+  double time = 0.0;                // s
+  std::vector<Vec2> particles;      // positions, in particle order
+  std::vector<char> particleFixed;  // 1 for a fixed particle, same length as particles
+  std::vector<Box> bodies;
+  std::vector<Spring> springs;
+  std::vector<Segment> rods;
+  std::vector<Circle> guideCircles;
+  std::vector<Line> guideLines;
+  std::vector<HalfPlane> halfPlanes;
+  std::vector<Disk> disks;
+  std::vector<Cursor> cursors;
+
+  // Guides are drawn once however many constraints share them (the cloth puts one rail
+  // constraint on each of its top particles): these skip an exact duplicate.
+  void addGuideCircle(const Circle& c);
+  void addGuideLine(const Line& l);
+};
+
+}  // namespace particles
