@@ -115,3 +115,34 @@ TEST_CASE("fixed particles never move") {
   CHECK(sys.view().pos(0) == Vec2(1, 2));
   CHECK(sys.view().vel(0) == Vec2(0, 0));
 }
+
+TEST_CASE("the solver owns time: t = t0 + k·dt, not a rounding sum, and a new dt starts a new run") {
+  SystemBuilder b;
+  b.addParticle(particleAt(0, 0));
+  System sys = b.build();
+  sys.setTime(0.25);
+  Solver solver(Integrator::Euler);
+  double summed = 0.25;
+  for (int k = 1; k <= 1000; ++k) {
+    solver.doStep(sys, 0.01);
+    summed += 0.01;
+    REQUIRE(sys.time() == 0.25 + double(k) * 0.01);
+  }
+  CHECK(sys.time() == 10.25);
+  CHECK(summed != 10.25);  // what adding dt up would have given: the reason for k·dt
+  solver.doStep(sys, 0.1);  // another dt: a new run from 10.25
+  CHECK(sys.time() == 10.25 + 0.1);
+  sys.setTime(1.0);  // moved from outside: the next run starts there
+  solver.doStep(sys, 0.1);
+  CHECK(sys.time() == 1.0 + 0.1);
+  CHECK(solver.steps() == 1002);
+
+  // The Stepper reaches frame times through the same solver.
+  sys.setTime(0.0);
+  Stepper stepper(sys, Integrator::Rk4, 0.01);
+  stepper.advanceTo(1.0 / 3.0);
+  CHECK(stepper.steps() == 33);
+  CHECK(sys.time() == 33 * 0.01);
+  stepper.advanceTo(0.7);  // 0.7 / 0.01 is 69.99999…: within 1e-9 of step 70, so reached
+  CHECK(stepper.steps() == 70);
+}

@@ -177,7 +177,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
     }
     auto recorder = CsvRecorder::open(s->system, options.stats, options.trace, options.traceOnly);
     if (!recorder) return kBadInput;
-    scenario::Stepper stepper(s->system, s->simulation);
+    Stepper stepper(s->system, s->simulation.integrator, s->simulation.dt);
     FramePainter painter(*renderer, camera, *s, options.hud, look.themeName == render::ThemeName::dark);
     const auto start = std::chrono::steady_clock::now();
 

@@ -2,6 +2,7 @@
 // A force object (DESIGN §4): adds to the accumulators given a state and a time, and reports the
 // potential energy it stores so energy can be booked by source.
 
+#include <cstddef>
 #include <string_view>
 
 #include "core/drawing.hpp"
@@ -21,6 +22,14 @@ class Force {
   virtual double potentialEnergy(const Model& model, const StateView& s, double t) const = 0;
   // An energy this force can plausibly put into the system, joules: the explosion guard's yardstick.
   virtual double energyScale(const Model& model, const StateView& s) const = 0;
+  // How many elements this object holds (springs in a spring set; 1 for most forces), for summaries.
+  virtual size_t count() const { return 1; }
+  // The largest current length over rest length of the force's elastic elements (springs), or 0
+  // when it has none: the stability study's "overstretched" criterion.
+  virtual double maxStretchRatio(const StateView&) const { return 0.0; }
+  // True for a force whose potential depends on time itself (a scripted mouse): moving it does
+  // work on the system, which energy budgets count as put in from outside.
+  virtual bool isTimeDependent() const { return false; }
   // True for a force that only takes energy out (drag): it stores none, so energy reports skip it.
   virtual bool isDissipative() const { return false; }
   // Adds what this force shows (springs, cursors) to the frame's drawing; nothing by default.

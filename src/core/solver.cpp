@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace particles {
 
 namespace {
@@ -25,9 +27,14 @@ void Solver::doStep(System& system, double dt) {
   };
   previous_ = system.state();
   const double t0 = system.time();
+  if (runSteps_ == 0 || dt != runDt_ || t0 != runStart_ + double(runSteps_) * runDt_) {
+    runStart_ = t0;
+    runDt_ = dt;
+    runSteps_ = 0;
+  }
   integrate(integrator_, f, system.state(), t0, dt, scratch_);
   const long step = steps_ + 1;
-  const double t1 = t0 + dt;
+  const double t1 = runStart_ + double(runSteps_ + 1) * dt;
 
   std::string reason;
   if (!system.state().allFinite()) {
@@ -46,6 +53,12 @@ void Solver::doStep(System& system, double dt) {
   }
   system.setTime(t1);
   steps_ = step;
+  ++runSteps_;
+}
+
+void Stepper::advanceTo(double t) {
+  const long target = long(std::floor((t - t0_) / dt_ + 1e-9));
+  while (steps() < target) step();
 }
 
 }  // namespace particles

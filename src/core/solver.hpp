@@ -44,6 +44,10 @@ class Solver {
 
   // Advances the system's state and time by dt. Throws SimulationError (and leaves the system at
   // the last good state) when the step blows up.
+  //
+  // The solver is the one owner of simulated time: after k steps of the same dt from t₀ the time
+  // is t₀ + k·dt, computed afresh (not summed, which would drift by rounding: 1000 steps of 0.01
+  // would not end at 10). A new dt, or a time set from outside, starts a new run of steps there.
   void doStep(System& system, double dt);
 
  private:
@@ -52,6 +56,29 @@ class Solver {
   IntegratorScratch scratch_;
   Eigen::VectorXd previous_;
   long steps_ = 0;
+  // The current run of equal steps: t = runStart_ + runSteps_ · runDt_.
+  double runStart_ = 0.0, runDt_ = 0.0;
+  long runSteps_ = 0;
+};
+
+// Advances a system with one integrator and time step to given times (the frames of a video, the
+// ticks of a --stats file): the time after k steps is t₀ + k·dt, the Solver's.
+class Stepper {
+ public:
+  Stepper(System& system, Integrator integrator, double dt)
+      : system_(system), solver_(integrator), dt_(dt), t0_(system.time()) {}
+  // One step. Throws SimulationError (the system stays at the last good state).
+  void step() { solver_.doStep(system_, dt_); }
+  // Steps until the time is the last multiple of dt at or before t (a time within 1e-9 of a step
+  // counts as reached).
+  void advanceTo(double t);
+  long steps() const { return solver_.steps(); }
+  double elapsed() const { return system_.time() - t0_; }
+
+ private:
+  System& system_;
+  Solver solver_;
+  double dt_, t0_;
 };
 
 }  // namespace particles

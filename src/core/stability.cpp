@@ -7,8 +7,6 @@
 
 #include <fmt/format.h>
 
-#include "core/forces/damped_spring_force.hpp"
-#include "core/forces/mouse_spring_force.hpp"
 #include "core/solver.hpp"
 
 namespace particles {
@@ -29,13 +27,7 @@ namespace {
 double maxSpringStretch(const System& sys) {
   const StateView s = sys.view();
   double worst = 0.0;
-  for (const auto& force : sys.forces()) {
-    const auto* springs = dynamic_cast<const DampedSpringForce*>(force.get());
-    if (!springs) continue;
-    for (size_t i = 0; i < springs->size(); ++i) {
-      if (springs->spring(i).rest > 0.0) worst = std::max(worst, 1.0 + springs->strain(s, i));
-    }
-  }
+  for (const auto& force : sys.forces()) worst = std::max(worst, force->maxStretchRatio(s));
   return worst;
 }
 
@@ -48,9 +40,9 @@ RunAssessment assessRun(const SystemFactory& make, Integrator integrator, double
   RunAssessment a;
   const long steps = std::max(1L, std::lround(duration / dt));
   const double scale = sys.energyScale();
-  std::vector<const MouseSpringForce*> mice;
+  std::vector<const Force*> scripted;  // forces that move by themselves: the hand's work
   for (const auto& force : sys.forces()) {
-    if (const auto* m = dynamic_cast<const MouseSpringForce*>(force.get())) mice.push_back(m);
+    if (force->isTimeDependent()) scripted.push_back(force.get());
   }
   const double e0 = sys.energy().total();
   double handWork = 0.0;  // W(t): energy the scripted mouse has put in by moving its target
@@ -63,7 +55,7 @@ RunAssessment assessRun(const SystemFactory& make, Integrator integrator, double
   for (long n = 1; n <= steps; ++n) {
     // The target's motion over this step at fixed positions changes the mouse potential by the
     // work the hand does (first order in dt, enough against the tolerance).
-    for (const MouseSpringForce* m : mice) {
+    for (const Force* m : scripted) {
       handWork += m->potentialEnergy(sys.model(), sys.view(), sys.time() + dt) -
                   m->potentialEnergy(sys.model(), sys.view(), sys.time());
     }

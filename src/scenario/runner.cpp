@@ -16,23 +16,12 @@ Sample sampleOf(const System& system) {
           system.penetration(system.state())};
 }
 
-void Stepper::step() {
-  solver_.doStep(system_, dt_);
-  ++steps_;
-  system_.setTime(t0_ + double(steps_) * dt_);  // t as k·dt, free of summed rounding
-}
-
-void Stepper::advanceTo(double t) {
-  const long target = long(std::floor((t - t0_) / dt_ + 1e-9));
-  while (steps_ < target) step();
-}
-
 RunSummary runScenario(Scenario& scenario, const RunObserver& observer) {
   System& system = scenario.system;
   const SimulationSettings& sim = scenario.simulation;
   const double fps = scenario.render.fps;
   const long steps = sim.steps();
-  Stepper stepper(system, sim);
+  Stepper stepper(system, sim.integrator, sim.dt);
 
   RunSummary summary;
   summary.initialEnergy = system.energy();

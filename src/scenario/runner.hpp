@@ -21,27 +21,6 @@ struct Sample {
 };
 Sample sampleOf(const System& system);
 
-// Advances a scenario's system with its integrator and dt, keeping t = t0 + k·dt (free of summed
-// rounding). Shared by runScenario and `particles render`, whose frames fall at t = i / fps.
-class Stepper {
- public:
-  Stepper(System& system, const SimulationSettings& sim)
-      : system_(system), solver_(sim.integrator), dt_(sim.dt), t0_(system.time()) {}
-  // One step. Throws SimulationError (the system stays at the last good state).
-  void step();
-  // Steps until the time is the last multiple of dt at or before t (a time within 1e-9 of a step
-  // counts as reached).
-  void advanceTo(double t);
-  long steps() const { return steps_; }
-  double elapsed() const { return system_.time() - t0_; }
-
- private:
-  System& system_;
-  Solver solver_;
-  double dt_, t0_;
-  long steps_ = 0;
-};
-
 struct RunObserver {
   // At t = 0, at every tick k / fps of the render rate, and at the end.
   std::function<void(const System&)> onTick;

@@ -642,14 +642,14 @@ std::string pointName(const Model& model, int point) {
 size_t springCount(const System& system) {
   size_t n = 0;
   for (const auto& f : system.forces()) {
-    if (const auto* springs = dynamic_cast<const DampedSpringForce*>(f.get())) n += springs->size();
+    if (f->kind() == "spring") n += f->count();
   }
   return n;
 }
 
 size_t mouseScriptCount(const System& system) {
   size_t n = 0;
-  for (const auto& f : system.forces()) n += dynamic_cast<const MouseSpringForce*>(f.get()) ? 1 : 0;
+  for (const auto& f : system.forces()) n += f->kind() == "mouse" ? f->count() : 0;
   return n;
 }
 

@@ -87,6 +87,14 @@ void DampedSpringForce::validate(const StateLayout& layout) const {
   }
 }
 
+double DampedSpringForce::maxStretchRatio(const StateView& s) const {
+  double worst = 0.0;
+  for (size_t i = 0; i < size(); ++i) {
+    if (rest_[i] > 0.0) worst = std::max(worst, 1.0 + strain(s, i));
+  }
+  return worst;
+}
+
 void DampedSpringForce::draw(const StateView& s, double, Drawing& out) const {
   out.springs.reserve(out.springs.size() + size());
   for (size_t i = 0; i < size(); ++i) {

@@ -31,6 +31,8 @@ class DampedSpringForce final : public Force {
   double strain(const StateView& s, size_t i) const;
 
   std::string_view kind() const override { return "spring"; }
+  size_t count() const override { return size(); }
+  double maxStretchRatio(const StateView& s) const override;
   void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
   double energyScale(const Model& model, const StateView& s) const override;

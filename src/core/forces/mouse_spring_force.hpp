@@ -29,6 +29,7 @@ class MouseSpringForce final : public Force {
   Vec2 target(double t) const;
 
   std::string_view kind() const override { return "mouse"; }
+  bool isTimeDependent() const override { return true; }
   void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
   double energyScale(const Model& model, const StateView& s) const override;
