@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "core/drawing.hpp"
+#include "core/kind.hpp"
 #include "core/state.hpp"
 
 namespace particles {
@@ -22,6 +23,10 @@ struct PenaltyParams {
   double k = 1e4;        // N/m², stiffness of f = n k d²
   double damping = 0.0;  // N·s/m along n while in contact
 };
+
+// Every collider kind's keys end with the penalty's `k` and `damping` (defaults above).
+std::vector<ParamSpec> withPenaltyParams(std::vector<ParamSpec> params);
+PenaltyParams penaltyFrom(const KindArgs& args);
 
 class Collider {
  public:

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/drawing.hpp"
+#include "core/kind.hpp"
 #include "core/state.hpp"
 
 namespace particles {
@@ -29,6 +30,10 @@ struct ConstraintFeedback {
   double ks = 100.0;
   double kd = 20.0;
 };
+
+// Every constraint kind's keys end with the feedback gains `ks` and `kd` (defaults above).
+std::vector<ParamSpec> withFeedbackParams(std::vector<ParamSpec> params);
+ConstraintFeedback feedbackFrom(const KindArgs& args);
 
 class Constraint {
  public:

@@ -7,6 +7,7 @@
 
 #include "core/drawing.hpp"
 #include "core/force_accumulator.hpp"
+#include "core/kind.hpp"
 #include "core/model.hpp"
 
 namespace particles {

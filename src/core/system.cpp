@@ -185,6 +185,7 @@ System SystemBuilder::build() {
 
   particles_.clear();
   bodies_.clear();
+  shared_.clear();
   return sys;
 }
 

@@ -6,6 +6,8 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "core/collisions.hpp"
@@ -105,6 +107,18 @@ class SystemBuilder {
   T& emplaceForce(Args&&... args) {
     return static_cast<T&>(addForce(std::make_unique<T>(std::forward<Args>(args)...)));
   }
+  // The one force object of type T kept under `slot`, made on first use (and placed in the force
+  // order there): every explicit spring of a scenario goes into one DampedSpringForce, whose flat
+  // arrays are the spring loop's fast path.
+  template <typename T>
+  T& sharedForce(std::string_view slot) {
+    for (auto& [name, force] : shared_) {
+      if (name == slot) return static_cast<T&>(*force);
+    }
+    T& made = emplaceForce<T>();
+    shared_.emplace_back(std::string(slot), &made);
+    return made;
+  }
   void setConstraintSolverOptions(const ConstraintSolverOptions& options) { solverOptions_ = options; }
 
   int numParticles() const { return int(particles_.size()); }
@@ -122,6 +136,7 @@ class SystemBuilder {
   ConstraintList constraints_;
   ColliderList colliders_;
   ConstraintSolverOptions solverOptions_;
+  std::vector<std::pair<std::string, Force*>> shared_;
 };
 
 }  // namespace particles

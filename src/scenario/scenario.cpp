@@ -13,17 +13,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/constraints/circular_wire_constraint.hpp"
-#include "core/forces/damped_spring_force.hpp"
-#include "core/colliders/disk_collider.hpp"
-#include "core/forces/drag_force.hpp"
-#include "core/forces/gravity_force.hpp"
 #include "core/grid.hpp"
-#include "core/colliders/half_plane_collider.hpp"
-#include "core/constraints/horizontal_line_constraint.hpp"
-#include "core/forces/mouse_spring_force.hpp"
+#include "core/forces/damped_spring_force.hpp"
+#include "core/kind.hpp"
+#include "scenario/entry_args.hpp"
 #include "scenario/references.hpp"
-#include "core/constraints/rod_constraint.hpp"
 #include "scenario/yaml_reader.hpp"
 
 namespace particles::scenario {
@@ -69,8 +63,10 @@ class Loader {
 
   Scenario load(const YAML::Node& document) {
     const Value root(source_, document, "", document.Mark());
-    const MapReader top(root, {"name", "description", "simulation", "render", "particles", "grids", "rigid_bodies",
-                               "forces", "constraints", "colliders", "mouse"});
+    std::vector<std::string_view> keys = {"name", "description", "simulation", "render", "particles", "grids",
+                                          "rigid_bodies"};
+    for (const KindSection& section : kindSections()) keys.push_back(section.key);
+    const MapReader top(root, keys);
     std::string name = top.required("name").string();
     std::string description = top.optional("description") ? top.optional("description")->string() : "";
     const SimulationSettings simulation = readSimulation(top.optional("simulation"));
@@ -79,10 +75,9 @@ class Loader {
     if (auto v = top.optional("particles")) readParticles(*v);
     if (auto v = top.optional("grids")) readGrids(*v);
     if (auto v = top.optional("rigid_bodies")) readBodies(*v);
-    if (auto v = top.optional("forces")) readForces(*v);
-    if (auto v = top.optional("constraints")) readConstraints(*v);
-    if (auto v = top.optional("colliders")) readColliders(*v);
-    if (auto v = top.optional("mouse")) readMouse(*v);
+    for (const KindSection& section : kindSections()) {
+      if (auto v = top.optional(section.key)) readKinds(section, *v);
+    }
 
     try {
       return Scenario{std::move(name), std::move(description), source_.file, simulation, render, builder_.build()};
@@ -155,7 +150,7 @@ class Loader {
         names_.add(*v, p.name, {NameTable::Kind::Particle, builder_.numParticles(), {}, lineOf(*v)});
       }
       addParticle(p);
-      particleNames_.push_back(p.name.empty() ? fmt::format("#{}", particleNames_.size()) : p.name);
+      book_.particleNames.push_back(p.name.empty() ? fmt::format("#{}", book_.particleNames.size()) : p.name);
     }
   }
 
@@ -185,11 +180,11 @@ class Loader {
       }
       const bool hasSprings = g.structural || g.shear || g.flexion;
       DampedSpringForce scratch;
-      const GridIndices indices = addGrid(builder_, hasSprings ? gridSprings() : scratch, g);
+      const GridIndices indices = addGrid(builder_, hasSprings ? builder_.sharedForce<DampedSpringForce>("grid springs") : scratch, g);
       for (int r = 0; r < g.rows; ++r)
         for (int c = 0; c < g.cols; ++c) {
-          particlePos_.push_back(g.origin + Vec2(c * g.spacing.x(), -r * g.spacing.y()));
-          particleNames_.push_back(fmt::format("{}[{}][{}]", g.name, r, c));
+          book_.particlePos.push_back(g.origin + Vec2(c * g.spacing.x(), -r * g.spacing.y()));
+          book_.particleNames.push_back(fmt::format("{}[{}][{}]", g.name, r, c));
         }
       names_.add(name, g.name, {NameTable::Kind::Grid, -1, indices, lineOf(name)});
       names_.numParticles = builder_.numParticles();
@@ -226,221 +221,35 @@ class Loader {
         names_.add(*v, b.name, {NameTable::Kind::Body, builder_.numBodies(), {}, lineOf(*v)});
       }
       builder_.addRigidBody(b);
-      bodyPos_.push_back(b.pos);
-      bodyAngle_.push_back(b.angle);
-      bodyNames_.push_back(b.name.empty() ? fmt::format("body#{}", bodyNames_.size()) : b.name);
+      book_.bodyPos.push_back(b.pos);
+      book_.bodyAngle.push_back(b.angle);
+      book_.bodyNames.push_back(b.name.empty() ? fmt::format("body#{}", book_.bodyNames.size()) : b.name);
     }
   }
 
-  // --- forces --------------------------------------------------------------------------------------
-  void readForces(const Value& list) {
+  // --- forces, constraints, colliders, the mouse: kinds described in the core ----------------------
+  void readKinds(const KindSection& section, const Value& list) {
+    const std::vector<const KindSpec*> kinds = kindsOf(section.key);
+    std::vector<std::string> types;
+    for (const KindSpec* k : kinds) types.emplace_back(k->type);
     for (const Value& item : list.items()) {
-      const std::string type = readType(item, {"gravity", "drag", "spring"});
-      if (type == "gravity") {
-        const MapReader m(item, {"type", "g"});
-        const Vec2 g = m.optional("g") ? m.optional("g")->vec2() : Vec2(0.0, -9.81);
-        builder_.emplaceForce<GravityForce>(g);
-      } else if (type == "drag") {
-        const MapReader m(item, {"type", "kd", "angular"});
-        const double kd = m.required("kd").nonNegative();
-        const double angular = m.optional("angular") ? m.optional("angular")->nonNegative() : 0.0;
-        builder_.emplaceForce<DragForce>(kd, angular);
-      } else {
-        readSpring(item);
-      }
-    }
-  }
-
-  // `a` and `b` may each be one point or a list; two lists pair up element by element, and a
-  // single point pairs with every point of a list.
-  void readSpring(const Value& item) {
-    const MapReader m(item, {"type", "a", "b", "rest", "ks", "kd"});
-    const Value av = m.required("a"), bv = m.required("b");
-    const auto a = detail::resolvePoints(av, names_, PointKind::Endpoint, true);
-    const auto b = detail::resolvePoints(bv, names_, PointKind::Endpoint, true);
-    if (a.size() != 1 && b.size() != 1 && a.size() != b.size()) {
-      bv.fail(
-          fmt::format("'a' names {} points and 'b' names {}; lists must have the same length (or one side a "
-                      "single point)",
-                      a.size(), b.size()));
-    }
-    const bool hasRest = m.has("rest");
-    const double rest = hasRest ? m.optional("rest")->nonNegative() : 0.0;
-    const double ks = m.required("ks").nonNegative();
-    const double kd = m.optional("kd") ? m.optional("kd")->nonNegative() : 0.0;
-    const size_t n = std::max(a.size(), b.size());
-    for (size_t i = 0; i < n; ++i) {
-      const Endpoint& ea = a[a.size() == 1 ? 0 : i];
-      const Endpoint& eb = b[b.size() == 1 ? 0 : i];
-      if (sameEndpoint(ea, eb)) {
-        bv.fail(fmt::format("a spring joins {} to itself", describe(ea)));
-      }
-      explicitSprings().add({ea, eb, hasRest ? rest : (position(ea) - position(eb)).norm(), ks, kd});
-    }
-  }
-
-  // --- constraints ---------------------------------------------------------------------------------
-  void readConstraints(const Value& list) {
-    for (const Value& item : list.items()) {
-      const std::string type = readType(item, {"circular_wire", "rod", "horizontal_line"});
-      if (type == "circular_wire") {
-        const MapReader m(item, {"type", "particle", "particles", "center", "radius", "ks", "kd"});
-        const Vec2 center = m.required("center").vec2();
-        for (const Endpoint& p : constrainedParticles(m)) {
-          double radius = 0.0;
-          if (auto r = m.optional("radius")) {
-            radius = r->positive();
-          } else {
-            radius = (particlePos_[size_t(p.particle)] - center).norm();
-            if (!(radius > 0.0)) {
-              m.self().fail(fmt::format("{} sits at the wire's centre; give a 'radius' > 0", describe(p)));
-            }
-          }
-          addConstraint<CircularWireConstraint>(p.particle, center, radius, feedback(m));
-        }
-      } else if (type == "rod") {
-        const MapReader m(item, {"type", "a", "b", "length", "ks", "kd"});
-        const Value av = m.required("a"), bv = m.required("b");
-        const int a = detail::resolvePoints(av, names_, PointKind::Particle, false).front().particle;
-        const int b = detail::resolvePoints(bv, names_, PointKind::Particle, false).front().particle;
-        if (a == b) bv.fail(fmt::format("a rod joins {} to itself", describe(Endpoint::ofParticle(a))));
-        double length = 0.0;
-        if (auto l = m.optional("length")) {
-          length = l->positive();
-        } else {
-          length = (particlePos_[size_t(a)] - particlePos_[size_t(b)]).norm();
-          if (!(length > 0.0)) bv.fail("the rod's particles coincide; give a 'length' > 0");
-        }
-        addConstraint<RodConstraint>(a, b, length, feedback(m));
-      } else {
-        const MapReader m(item, {"type", "particle", "particles", "y", "ks", "kd"});
-        const bool hasY = m.has("y");
-        const double y = hasY ? m.optional("y")->number() : 0.0;
-        for (const Endpoint& p : constrainedParticles(m)) {
-          addConstraint<HorizontalLineConstraint>(p.particle, hasY ? y : particlePos_[size_t(p.particle)].y(),
-                                                  feedback(m));
-        }
-      }
-    }
-  }
-
-  // `particle: x` or `particles: [..]` (either accepts a list or a `*` reference).
-  std::vector<Endpoint> constrainedParticles(const MapReader& m) {
-    const bool one = m.has("particle"), many = m.has("particles");
-    if (one && many) m.optional("particles")->fail("give either 'particle' or 'particles', not both");
-    if (!one && !many) {
-      m.self()
-          .child(m.self().node(), m.self().path() + ".particles", YAML::Mark::null_mark())
-          .fail("missing required key 'particles' (or 'particle')");
-    }
-    return detail::resolvePoints(*m.optional(one ? "particle" : "particles"), names_, PointKind::Particle, true);
-  }
-
-  ConstraintFeedback feedback(const MapReader& m) {
-    ConstraintFeedback f;
-    if (auto ks = m.optional("ks")) f.ks = ks->nonNegative();
-    if (auto kd = m.optional("kd")) f.kd = kd->nonNegative();
-    return f;
-  }
-
-  // --- colliders -----------------------------------------------------------------------------------
-  void readColliders(const Value& list) {
-    for (const Value& item : list.items()) {
-      const std::string type = readType(item, {"half_plane", "disk"});
-      if (type == "half_plane") {
-        const MapReader m(item, {"type", "normal", "offset", "k", "damping"});
-        const Value nv = m.required("normal");
-        const Vec2 normal = nv.vec2();
-        if (!(normal.norm() > 0.0)) nv.fail("the normal must not be [0, 0]");
-        const double offset = m.optional("offset") ? m.optional("offset")->number() : 0.0;
-        builder_.addCollider(std::make_unique<HalfPlaneCollider>(normal, offset, penalty(m)));
-      } else {
-        const MapReader m(item, {"type", "center", "radius", "k", "damping"});
-        const Vec2 center = m.required("center").vec2();
-        const double radius = m.required("radius").positive();
-        builder_.addCollider(std::make_unique<DiskCollider>(center, radius, penalty(m)));
-      }
-    }
-  }
-
-  PenaltyParams penalty(const MapReader& m) {
-    PenaltyParams p;
-    if (auto k = m.optional("k")) p.k = k->positive();
-    if (auto d = m.optional("damping")) p.damping = d->nonNegative();
-    return p;
-  }
-
-  // --- the scripted mouse --------------------------------------------------------------------------
-  void readMouse(const Value& list) {
-    for (const Value& item : list.items()) {
-      const MapReader m(item, {"grab", "from", "to", "path", "ks"});
-      MouseScript script;
-      script.grab = detail::resolvePoints(m.required("grab"), names_, PointKind::Endpoint, false).front();
-      script.from = m.optional("from") ? m.optional("from")->nonNegative() : 0.0;
-      const Value to = m.required("to");
-      script.to = to.number();
-      if (!(script.to > script.from)) {
-        to.fail(fmt::format("expected a time after 'from' ({} s), got {}", detail::formatNumber(script.from),
-                            detail::formatNumber(script.to)));
-      }
-      const Value path = m.required("path");
-      for (const Value& point : path.items()) script.path.push_back(point.vec2());
-      if (script.path.empty()) path.fail("a mouse path needs at least one point [x, y]");
-      script.ks = m.required("ks").positive();
-      builder_.emplaceForce<MouseSpringForce>(std::move(script));
+      const KindSpec& kind = section.typed ? *findKind(section.key, readType(item, types)) : *kinds.front();
+      const detail::EntryArgs args(kind, item, section.typed, names_, book_);
+      kind.build(args, builder_);
     }
   }
 
   // --- helpers -------------------------------------------------------------------------------------
   void addParticle(const ParticleSpec& p) {
     builder_.addParticle(p);
-    particlePos_.push_back(p.pos);
+    book_.particlePos.push_back(p.pos);
     names_.numParticles = builder_.numParticles();
-  }
-
-  template <typename T, typename... Args>
-  void addConstraint(Args&&... args) {
-    builder_.addConstraint(std::make_unique<T>(std::forward<Args>(args)...));
-  }
-
-  DampedSpringForce& gridSprings() {
-    if (!gridSprings_) gridSprings_ = &builder_.emplaceForce<DampedSpringForce>();
-    return *gridSprings_;
-  }
-  // Kept apart from the grids' springs, which then stay on the all-particle fast path.
-  DampedSpringForce& explicitSprings() {
-    if (!explicitSprings_) explicitSprings_ = &builder_.emplaceForce<DampedSpringForce>();
-    return *explicitSprings_;
-  }
-
-  Vec2 position(const Endpoint& e) const {
-    if (e.isParticle()) return particlePos_[size_t(e.particle)];
-    const double c = std::cos(bodyAngle_[size_t(e.body)]), s = std::sin(bodyAngle_[size_t(e.body)]);
-    return bodyPos_[size_t(e.body)] + Vec2(c * e.anchor.x() - s * e.anchor.y(), s * e.anchor.x() + c * e.anchor.y());
-  }
-
-  static bool sameEndpoint(const Endpoint& a, const Endpoint& b) {
-    return a.particle == b.particle && a.body == b.body && a.anchor == b.anchor;
-  }
-
-  std::string describe(const Endpoint& e) const {
-    if (!e.isParticle()) {
-      return fmt::format("the anchor [{}, {}] of rigid body {}", detail::formatNumber(e.anchor.x()),
-                         detail::formatNumber(e.anchor.y()), bodyNames_[size_t(e.body)]);
-    }
-    return fmt::format("particle {}", particleNames_[size_t(e.particle)]);
   }
 
   detail::Source source_;
   NameTable names_;
   SystemBuilder builder_;
-  DampedSpringForce* gridSprings_ = nullptr;
-  DampedSpringForce* explicitSprings_ = nullptr;
-  std::vector<Vec2> particlePos_;
-  std::vector<Vec2> bodyPos_;
-  std::vector<double> bodyAngle_;
-  std::vector<std::string> particleNames_;  // as a reference spells them, for messages
-  std::vector<std::string> bodyNames_;
+  detail::PointBook book_;
 };
 
 // A key path `a.b[2].c` (or `a.b.2.c`) as segments; numbers are list indices.

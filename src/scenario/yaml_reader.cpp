@@ -88,24 +88,28 @@ double Value::number() const {
   fail(fmt::format("expected a number, {}", found()));
 }
 
-double Value::positive() const {
+double Value::positive() const { return bounded(Bound{0.0, false}, std::nullopt); }
+
+double Value::nonNegative() const { return bounded(Bound{0.0, true}, std::nullopt); }
+
+double Value::inRange(double lo, double hi) const { return bounded(Bound{lo, true}, Bound{hi, true}); }
+
+double Value::bounded(const std::optional<Bound>& min, const std::optional<Bound>& max) const {
   const double x = number();
-  if (!(x > 0.0)) fail(fmt::format("expected a number > 0, got {}", formatNumber(x)));
+  const bool aboveMin = !min || (min->inclusive ? x >= min->value : x > min->value);
+  const bool belowMax = !max || (max->inclusive ? x <= max->value : x < max->value);
+  if (!aboveMin || !belowMax) fail(fmt::format("expected a number {}, got {}", boundsText(min, max), formatNumber(x)));
   return x;
 }
 
-double Value::nonNegative() const {
-  const double x = number();
-  if (!(x >= 0.0)) fail(fmt::format("expected a number ≥ 0, got {}", formatNumber(x)));
-  return x;
-}
-
-double Value::inRange(double lo, double hi) const {
-  const double x = number();
-  if (!(x >= lo && x <= hi)) {
-    fail(fmt::format("expected a number from {} to {}, got {}", formatNumber(lo), formatNumber(hi), formatNumber(x)));
+std::string boundsText(const std::optional<Bound>& min, const std::optional<Bound>& max) {
+  if (min && max && min->inclusive && max->inclusive) {
+    return fmt::format("from {} to {}", formatNumber(min->value), formatNumber(max->value));
   }
-  return x;
+  std::string text;
+  if (min) text = fmt::format("{} {}", min->inclusive ? "≥" : ">", formatNumber(min->value));
+  if (max) text += fmt::format("{}{} {}", text.empty() ? "" : " and ", max->inclusive ? "≤" : "<", formatNumber(max->value));
+  return text;
 }
 
 long long Value::integer(long long lo, long long hi) const {
@@ -156,7 +160,7 @@ Value Value::child(YAML::Node node, std::string path, YAML::Mark fallback) const
   return Value(*source_, std::move(node), std::move(path), fallback);
 }
 
-MapReader::MapReader(const Value& value, std::initializer_list<std::string_view> allowed) : value_(value) {
+MapReader::MapReader(const Value& value, const std::vector<std::string_view>& allowed) : value_(value) {
   if (!value.isMap()) value.fail(fmt::format("expected a map of keys, {}", value.found()));
   std::vector<std::string> allowedNames(allowed.begin(), allowed.end());
   const std::string prefix = value.path().empty() ? "" : value.path() + ".";

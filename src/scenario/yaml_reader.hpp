@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/kind.hpp"
 #include "core/state.hpp"
 
 namespace particles::scenario::detail {
@@ -43,6 +44,9 @@ class Value {
   double positive() const;                     // > 0
   double nonNegative() const;                  // ≥ 0
   double inRange(double lo, double hi) const;  // lo ≤ x ≤ hi
+  // Any finite number within the bounds (each optional, inclusive or not); the message states
+  // the condition as boundsText does.
+  double bounded(const std::optional<Bound>& min, const std::optional<Bound>& max) const;
   long long integer(long long lo, long long hi) const;
   bool boolean() const;
   std::string string() const;        // a non-empty scalar
@@ -64,7 +68,9 @@ class Value {
 // keys (suggesting the closest allowed one) and duplicate keys.
 class MapReader {
  public:
-  MapReader(const Value& value, std::initializer_list<std::string_view> allowed);
+  MapReader(const Value& value, std::initializer_list<std::string_view> allowed)
+      : MapReader(value, std::vector<std::string_view>(allowed)) {}
+  MapReader(const Value& value, const std::vector<std::string_view>& allowed);
 
   const Value& self() const { return value_; }
   bool has(std::string_view key) const;
@@ -80,5 +86,8 @@ class MapReader {
 std::string closestName(std::string_view word, const std::vector<std::string>& candidates);
 
 std::string formatNumber(double x);  // shortest round-trip form
+// "> 0", "≥ 0", "from 0.001 to 1000", "> 0 and ≤ 1": the condition on a bounded number; empty
+// when there is none.
+std::string boundsText(const std::optional<Bound>& min, const std::optional<Bound>& max);
 
 }  // namespace particles::scenario::detail

@@ -28,4 +28,7 @@ class DiskCollider final : public Collider {
   double radius_;
 };
 
+// How scenario files write it (`{type: disk, center, radius, k, damping}`).
+const KindSpec& diskKind();
+
 }  // namespace particles

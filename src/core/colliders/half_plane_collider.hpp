@@ -27,4 +27,7 @@ class HalfPlaneCollider final : public Collider {
   double offset_;
 };
 
+// How scenario files write it (`{type: half_plane, normal, offset, k, damping}`).
+const KindSpec& halfPlaneKind();
+
 }  // namespace particles

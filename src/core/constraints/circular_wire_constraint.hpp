@@ -26,4 +26,7 @@ class CircularWireConstraint final : public Constraint {
   double radius_;
 };
 
+// How scenario files write it (`{type: circular_wire, particle(s), center, radius, ks, kd}`: one constraint per particle).
+const KindSpec& circularWireKind();
+
 }  // namespace particles

@@ -1,6 +1,9 @@
 #include "core/constraints/horizontal_line_constraint.hpp"
 
 #include <cmath>
+#include <memory>
+
+#include "core/system.hpp"
 
 namespace particles {
 
@@ -21,6 +24,27 @@ double HorizontalLineConstraint::violation(const StateView& s) const {
 
 void HorizontalLineConstraint::draw(const StateView&, Drawing& out) const {
   out.addGuideLine({Vec2(0.0, height_), Vec2(1.0, 0.0)});
+}
+
+const KindSpec& horizontalLineKind() {
+  static const KindSpec spec{
+      .section = "constraints",
+      .type = "horizontal_line",
+      .summary = "particles sliding on y = h (the cloth's rail): C = p_y − h",
+      .params = withFeedbackParams(
+          {{.key = "particle", .type = ParamType::particles, .note = "particles", .insteadOf = "particles"},
+           {.key = "particles", .type = ParamType::particles, .note = "particles", .insteadOf = "particle"},
+           {.key = "y", .type = ParamType::number, .unit = "m", .defaultText = "each particle's current y"}}),
+      .build = [](const KindArgs& args, SystemBuilder& out) {
+        const bool hasY = args.has("y");
+        const double y = hasY ? args.number("y") : 0.0;
+        for (const Endpoint& p : args.points(args.has("particle") ? "particle" : "particles")) {
+          const double height = hasY ? y : args.initialPosition(p).y();
+          out.addConstraint(std::make_unique<HorizontalLineConstraint>(p.particle, height, feedbackFrom(args)));
+        }
+      },
+  };
+  return spec;
 }
 
 }  // namespace particles

@@ -24,4 +24,7 @@ class HorizontalLineConstraint final : public Constraint {
   double height_;
 };
 
+// How scenario files write it (`{type: horizontal_line, particle(s), y, ks, kd}`: one constraint per particle).
+const KindSpec& horizontalLineKind();
+
 }  // namespace particles

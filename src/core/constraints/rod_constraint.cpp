@@ -1,6 +1,11 @@
 #include "core/constraints/rod_constraint.hpp"
 
 #include <cmath>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "core/system.hpp"
 
 namespace particles {
 
@@ -22,5 +27,31 @@ double RodConstraint::violation(const StateView& s) const {
 }
 
 void RodConstraint::draw(const StateView& s, Drawing& out) const { out.rods.push_back({s.pos(a_), s.pos(b_)}); }
+
+const KindSpec& rodKind() {
+  static const KindSpec spec{
+      .section = "constraints",
+      .type = "rod",
+      .summary = "a fixed distance between two particles: C = |p1−p2|² − r²",
+      .params = withFeedbackParams(
+          {{.key = "a", .type = ParamType::particle, .required = true, .note = "a particle"},
+           {.key = "b", .type = ParamType::particle, .required = true, .note = "a particle other than `a`"},
+           {.key = "length", .type = ParamType::number, .unit = "m", .defaultText = "the current distance",
+            .min = Bound{0.0, false}}}),
+      .build = [](const KindArgs& args, SystemBuilder& out) {
+        const Endpoint a = args.points("a").front(), b = args.points("b").front();
+        if (a.particle == b.particle) args.fail("b", fmt::format("a rod joins {} to itself", args.describe(a)));
+        double length = 0.0;
+        if (args.has("length")) {
+          length = args.number("length");
+        } else {
+          length = (args.initialPosition(a) - args.initialPosition(b)).norm();
+          if (!(length > 0.0)) args.fail("b", "the rod's particles coincide; give a 'length' > 0");
+        }
+        out.addConstraint(std::make_unique<RodConstraint>(a.particle, b.particle, length, feedbackFrom(args)));
+      },
+  };
+  return spec;
+}
 
 }  // namespace particles

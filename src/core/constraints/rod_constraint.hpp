@@ -26,4 +26,7 @@ class RodConstraint final : public Constraint {
   double length_;
 };
 
+// How scenario files write it (`{type: rod, a, b, length, ks, kd}`).
+const KindSpec& rodKind();
+
 }  // namespace particles

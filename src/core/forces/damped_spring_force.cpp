@@ -1,6 +1,11 @@
 #include "core/forces/damped_spring_force.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include <fmt/format.h>
+
+#include "core/system.hpp"
 
 namespace particles {
 
@@ -100,6 +105,56 @@ void DampedSpringForce::draw(const StateView& s, double, Drawing& out) const {
   for (size_t i = 0; i < size(); ++i) {
     out.springs.push_back({endpointPosition(s, a_[i]), endpointPosition(s, b_[i]), strain(s, i)});
   }
+}
+
+namespace {
+
+bool sameEndpoint(const Endpoint& a, const Endpoint& b) {
+  return a.particle == b.particle && a.body == b.body && a.anchor == b.anchor;
+}
+
+// `a` and `b` may each be one point or a list; two lists pair up element by element, and a single
+// point pairs with every point of a list.
+void buildSprings(const KindArgs& args, SystemBuilder& out) {
+  const std::vector<Endpoint> a = args.points("a");
+  const std::vector<Endpoint> b = args.points("b");
+  if (a.size() != 1 && b.size() != 1 && a.size() != b.size()) {
+    args.fail("b", fmt::format("'a' names {} points and 'b' names {}; lists must have the same length (or one side "
+                               "a single point)",
+                               a.size(), b.size()));
+  }
+  const bool hasRest = args.has("rest");
+  const double rest = hasRest ? args.number("rest") : 0.0;
+  const double ks = args.number("ks");
+  const double kd = args.number("kd");
+  // Kept apart from the grids' springs, which then stay on the all-particle fast path.
+  auto& springs = out.sharedForce<DampedSpringForce>("explicit springs");
+  const size_t n = std::max(a.size(), b.size());
+  for (size_t i = 0; i < n; ++i) {
+    const Endpoint& ea = a[a.size() == 1 ? 0 : i];
+    const Endpoint& eb = b[b.size() == 1 ? 0 : i];
+    if (sameEndpoint(ea, eb)) args.fail("b", fmt::format("a spring joins {} to itself", args.describe(ea)));
+    springs.add({ea, eb, hasRest ? rest : (args.initialPosition(ea) - args.initialPosition(eb)).norm(), ks, kd});
+  }
+}
+
+}  // namespace
+
+const KindSpec& springKind() {
+  static const KindSpec spec{
+      .section = "forces",
+      .type = "spring",
+      .summary = "damped springs f_a = −[k_s(|l| − r) + k_d (l̇·l)/|l|] l/|l|, f_b = −f_a",
+      .params = {{.key = "a", .type = ParamType::endpoints, .required = true, .note = "particles or body anchors"},
+                 {.key = "b", .type = ParamType::endpoints, .required = true, .note = "particles or body anchors"},
+                 {.key = "rest", .type = ParamType::number, .unit = "m", .defaultText = "the current distance",
+                  .min = Bound{0.0, true}},
+                 {.key = "ks", .type = ParamType::number, .unit = "N/m", .required = true, .min = Bound{0.0, true}},
+                 {.key = "kd", .type = ParamType::number, .unit = "N·s/m", .defaultNumber = 0.0,
+                  .min = Bound{0.0, true}}},
+      .build = buildSprings,
+  };
+  return spec;
 }
 
 }  // namespace particles

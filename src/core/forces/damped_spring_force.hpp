@@ -45,4 +45,7 @@ class DampedSpringForce final : public Force {
   bool allParticles_ = true;  // every end is a particle: the hot loop skips anchor kinematics
 };
 
+// How scenario files write it (`{type: spring, a, b, rest, ks, kd}`: every explicit spring joins one shared DampedSpringForce).
+const KindSpec& springKind();
+
 }  // namespace particles

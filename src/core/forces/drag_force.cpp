@@ -1,5 +1,7 @@
 #include "core/forces/drag_force.hpp"
 
+#include "core/system.hpp"
+
 namespace particles {
 
 void DragForce::apply(const Model& model, const StateView& s, double, ForceAccumulator& acc) const {
@@ -8,6 +10,22 @@ void DragForce::apply(const Model& model, const StateView& s, double, ForceAccum
   if (angularKd_ != 0.0) {
     acc.torque -= angularKd_ * s.vector().segment(model.layout.omegaOffset(), model.layout.numBodies);
   }
+}
+
+const KindSpec& dragKind() {
+  static const KindSpec spec{
+      .section = "forces",
+      .type = "drag",
+      .summary = "f = −k_d v on every particle and body; τ = −k_ω ω on every body",
+      .params = {{.key = "kd", .type = ParamType::number, .unit = "N·s/m", .required = true, .min = Bound{0.0, true}},
+                 {.key = "angular", .type = ParamType::number, .unit = "N·m·s", .defaultNumber = 0.0,
+                  .min = Bound{0.0, true}, .note = "k_ω"}},
+      .build = [](const KindArgs& args, SystemBuilder& out) {
+        const double kd = args.number("kd");
+        out.emplaceForce<DragForce>(kd, args.number("angular"));
+      },
+  };
+  return spec;
 }
 
 }  // namespace particles

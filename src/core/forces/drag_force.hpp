@@ -23,4 +23,7 @@ class DragForce final : public Force {
   double angularKd_;
 };
 
+// How scenario files write it (`{type: drag, kd, angular}`).
+const KindSpec& dragKind();
+
 }  // namespace particles

@@ -1,5 +1,7 @@
 #include "core/forces/gravity_force.hpp"
 
+#include "core/system.hpp"
+
 namespace particles {
 
 void GravityForce::apply(const Model& model, const StateView&, double, ForceAccumulator& acc) const {
@@ -29,6 +31,17 @@ double GravityForce::energyScale(const Model& model, const StateView& s) const {
     if (model.invMass[i] != 0.0) movableMass += model.mass[i];
   }
   return movableMass * g_.norm() * ((hi - lo).norm() + 1.0);
+}
+
+const KindSpec& gravityKind() {
+  static const KindSpec spec{
+      .section = "forces",
+      .type = "gravity",
+      .summary = "f = m g on every particle and body",
+      .params = {{.key = "g", .type = ParamType::vec2, .unit = "m/s²", .defaultVec2 = Vec2(0.0, -9.81)}},
+      .build = [](const KindArgs& args, SystemBuilder& out) { out.emplaceForce<GravityForce>(args.vec2("g")); },
+  };
+  return spec;
 }
 
 }  // namespace particles

@@ -22,4 +22,7 @@ class GravityForce final : public Force {
   Vec2 g_;
 };
 
+// How scenario files write it (`{type: gravity, g}`).
+const KindSpec& gravityKind();
+
 }  // namespace particles

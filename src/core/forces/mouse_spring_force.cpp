@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "core/system.hpp"
 
 namespace particles {
 
@@ -48,6 +53,34 @@ void MouseSpringForce::validate(const StateLayout& layout) const { checkEndpoint
 
 void MouseSpringForce::draw(const StateView& s, double t, Drawing& out) const {
   if (activeAt(t)) out.cursors.push_back({target(t), endpointPosition(s, script_.grab)});
+}
+
+const KindSpec& mouseKind() {
+  static const KindSpec spec{
+      .section = "mouse",
+      .type = "mouse",
+      .summary = "from `from` to `to`, f = −k_s (x − m(t)) pulls the grabbed point towards m(t) moving along "
+                 "`path` at constant speed",
+      .params = {{.key = "grab", .type = ParamType::endpoint, .required = true, .note = "one particle or body anchor"},
+                 {.key = "from", .type = ParamType::number, .unit = "s", .defaultNumber = 0.0, .min = Bound{0.0, true}},
+                 {.key = "to", .type = ParamType::number, .unit = "s", .required = true, .note = "> from"},
+                 {.key = "path", .type = ParamType::path, .unit = "m", .required = true,
+                  .note = "at least one point"},
+                 {.key = "ks", .type = ParamType::number, .unit = "N/m", .required = true, .min = Bound{0.0, false}}},
+      .build = [](const KindArgs& args, SystemBuilder& out) {
+        MouseScript script;
+        script.grab = args.points("grab").front();
+        script.from = args.number("from");
+        script.to = args.number("to");
+        if (!(script.to > script.from)) {
+          args.fail("to", fmt::format("expected a time after 'from' ({} s), got {}", script.from, script.to));
+        }
+        script.path = args.path("path");
+        script.ks = args.number("ks");
+        out.emplaceForce<MouseSpringForce>(std::move(script));
+      },
+  };
+  return spec;
 }
 
 }  // namespace particles

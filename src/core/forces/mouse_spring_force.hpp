@@ -42,4 +42,7 @@ class MouseSpringForce final : public Force {
   std::vector<double> cumulativeLength_;  // arc length at each path point
 };
 
+// How scenario files write it (the `mouse` section: `{grab, from, to, path, ks}`).
+const KindSpec& mouseKind();
+
 }  // namespace particles
