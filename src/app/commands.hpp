@@ -62,10 +62,15 @@ struct PlotOptions {
   bool quiet = false;
 };
 
+struct SchemaOptions {
+  bool markdown = false;  // the docs' key tables instead of JSON Schema
+};
+
 int checkCommand(const CommonOptions& common);
 int runCommand(const CommonOptions& common, const RunOptions& run);
 int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& options);
 int plotCommand(const PlotOptions& options);
+int schemaCommand(const SchemaOptions& options);
 int renderCommand(const CommonOptions& common, const RenderCommandOptions& options);
 
 }  // namespace particles::app

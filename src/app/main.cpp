@@ -149,6 +149,16 @@ int main(int argc, char** argv) {
       "  particles run scenarios/cloth.yaml --stats cloth.csv && particles plot cloth.csv -o energy.svg\n"
       "  particles plot cloth.csv -o energy.png --title 'Cloth, RK4, dt = 0.01 s'\n");
 
+  particles::app::SchemaOptions schema;
+  CLI::App* schemaCmd = app.add_subcommand(
+      "schema", "Print the scenario format as JSON Schema (draft 7), for editors and validators");
+  schemaCmd->add_flag("--markdown", schema.markdown, "Print each kind's key table as docs/scenarios.md has it");
+  schemaCmd->footer(
+      "Examples:\n"
+      "  particles schema > scenario.schema.json\n"
+      "  # then, at the top of a scenario: # yaml-language-server: $schema=scenario.schema.json\n"
+      "  particles schema --markdown\n");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -157,6 +167,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (check->parsed()) return particles::app::checkCommand(common);
+    if (schemaCmd->parsed()) return particles::app::schemaCommand(schema);
     if (stabilityCmd->parsed()) return particles::app::stabilityCommand(common, stability);
     if (plotCmd->parsed()) return particles::app::plotCommand(plotOptions);
     if (compareCmd->parsed()) return particles::app::compareCommand(compare);

@@ -5,9 +5,9 @@ namespace particles {
 std::vector<ParamSpec> withFeedbackParams(std::vector<ParamSpec> params) {
   const ConstraintFeedback defaults;
   params.push_back({.key = "ks", .type = ParamType::number, .unit = "1/s²", .defaultNumber = defaults.ks,
-                    .min = Bound{0.0, true}, .note = "drift feedback: C̈ + k_d Ċ + k_s C = 0"});
+                    .min = Bound{0.0, true}, .note = "k_s of the drift feedback"});
   params.push_back({.key = "kd", .type = ParamType::number, .unit = "1/s", .defaultNumber = defaults.kd,
-                    .min = Bound{0.0, true}, .note = "drift feedback"});
+                    .min = Bound{0.0, true}, .note = "k_d of the drift feedback"});
   return params;
 }
 

@@ -29,10 +29,6 @@ using detail::NameTable;
 using detail::PointKind;
 using detail::Value;
 
-constexpr long kMaxSteps = 1'000'000'000;  // a run longer than this is a typo, not a plan
-constexpr long long kMaxGridSide = 10'000;
-constexpr long long kMaxGridParticles = 1'000'000;
-constexpr long long kMaxImageSide = 16'384;  // px
 
 // The type key of a list entry, checked against the kinds the section knows.
 std::string readType(const Value& entry, const std::vector<std::string>& types) {
@@ -127,7 +123,7 @@ class Loader {
       r.width = int(size->item(0).integer(1, kMaxImageSide));
       r.height = int(size->item(1).integer(1, kMaxImageSide));
     }
-    if (auto fps = m.optional("fps")) r.fps = fps->inRange(1e-3, 1000.0);
+    if (auto fps = m.optional("fps")) r.fps = fps->inRange(kMinFps, kMaxFps);
     if (auto view = m.optional("view")) {
       const MapReader vm(*view, {"center", "height"});
       if (auto c = vm.optional("center")) r.viewCenter = c->vec2();

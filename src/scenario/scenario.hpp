@@ -17,6 +17,13 @@
 
 namespace particles::scenario {
 
+// Limits the loader enforces beyond each key's own range (docs/scenarios.md, `particles schema`).
+inline constexpr long kMaxSteps = 1'000'000'000;  // a run longer than this is a typo, not a plan
+inline constexpr long long kMaxGridSide = 10'000;
+inline constexpr long long kMaxGridParticles = 1'000'000;
+inline constexpr long long kMaxImageSide = 16'384;  // px, the renderer's largest frame side
+inline constexpr double kMinFps = 1e-3, kMaxFps = 1000.0;
+
 struct SimulationSettings {
   Integrator integrator = Integrator::Rk4;
   double dt = 0.01;        // s, > 0

@@ -1,0 +1,277 @@
+#include "scenario/schema.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "core/integrators.hpp"
+#include "core/system.hpp"
+#include "scenario/scenario.hpp"
+#include "scenario/yaml_reader.hpp"
+
+namespace particles::scenario {
+
+namespace {
+
+// Keys keep the order they are written in, so the schema reads like docs/scenarios.md.
+using Json = nlohmann::ordered_json;
+
+constexpr const char* kReferenceForms = "a reference: a name, grid[row][col], body@[x, y] or #index";
+constexpr const char* kNamePattern = "^[A-Za-z_][A-Za-z0-9_-]*$";  // references.cpp's isNameStart/isNameChar
+
+Json number(std::optional<Bound> min = {}, std::optional<Bound> max = {}) {
+  Json j = {{"type", "number"}};
+  if (min) j[min->inclusive ? "minimum" : "exclusiveMinimum"] = min->value;
+  if (max) j[max->inclusive ? "maximum" : "exclusiveMaximum"] = max->value;
+  return j;
+}
+
+Json pairOf(const Json& item) { return {{"type", "array"}, {"items", item}, {"minItems", 2}, {"maxItems", 2}}; }
+Json vec2() { return pairOf(number()); }
+Json vec2Value(const Vec2& v) { return Json::array({v.x(), v.y()}); }
+Json wholeNumber(long long lo, long long hi) { return {{"type", "integer"}, {"minimum", lo}, {"maximum", hi}}; }
+Json text() { return {{"type", "string"}, {"minLength", 1}}; }
+Json name() { return {{"type", "string"}, {"pattern", kNamePattern}, {"description", "a unique name"}}; }
+Json reference() { return {{"type", "string"}, {"minLength", 1}, {"description", kReferenceForms}}; }
+Json referenceOrList() {
+  return {{"oneOf", Json::array({reference(), {{"type", "array"}, {"items", reference()}, {"minItems", 1}}})}};
+}
+Json withDescription(Json j, const std::string& description) {
+  if (!description.empty()) j["description"] = description;
+  return j;
+}
+Json withDefault(Json j, Json value) {
+  j["default"] = std::move(value);
+  return j;
+}
+
+// A map with exactly these keys; `required` among them. An optional key written without a value
+// counts as absent in the loader, so optional keys also accept null.
+Json object(const std::vector<std::pair<std::string, Json>>& properties, const std::vector<std::string>& required) {
+  Json props = Json::object();
+  for (const auto& [key, schema] : properties) {
+    const bool isRequired = std::find(required.begin(), required.end(), key) != required.end();
+    if (isRequired) {
+      props[key] = schema;
+    } else {
+      Json nullable = {{"anyOf", Json::array({schema, {{"type", "null"}}})}};
+      for (const char* k : {"description", "default"}) {
+        if (schema.contains(k)) nullable[k] = schema[k];
+      }
+      props[key] = nullable;
+    }
+  }
+  Json j = {{"type", "object"}, {"properties", props}, {"additionalProperties", false}};
+  if (!required.empty()) j["required"] = required;
+  return j;
+}
+
+std::string typeText(ParamType type) {
+  switch (type) {
+    case ParamType::number: return "number";
+    case ParamType::vec2: return "[x, y]";
+    case ParamType::particle:
+    case ParamType::endpoint: return "reference";
+    case ParamType::particles:
+    case ParamType::endpoints: return "reference or list";
+    case ParamType::path: return "list of [x, y]";
+  }
+  return "?";
+}
+
+std::string vec2Text(const Vec2& v) {
+  return fmt::format("[{}, {}]", detail::formatNumber(v.x()), detail::formatNumber(v.y()));
+}
+
+std::string defaultText(const ParamSpec& p) {
+  if (p.required) return "required";
+  if (!p.insteadOf.empty()) return fmt::format("required, or `{}`", p.insteadOf);
+  if (!p.defaultText.empty()) return std::string(p.defaultText);
+  if (p.defaultNumber) return detail::formatNumber(*p.defaultNumber);
+  if (p.defaultVec2) return vec2Text(*p.defaultVec2);
+  return "none";
+}
+
+std::string allowedText(const ParamSpec& p) {
+  std::string text = detail::boundsText(p.min, p.max);
+  if (!p.note.empty()) text += (text.empty() ? "" : "; ") + std::string(p.note);
+  return text;
+}
+
+Json paramSchema(const ParamSpec& p) {
+  Json j;
+  switch (p.type) {
+    case ParamType::number: j = number(p.min, p.max); break;
+    case ParamType::vec2: j = vec2(); break;
+    case ParamType::particle:
+    case ParamType::endpoint: j = reference(); break;
+    case ParamType::particles:
+    case ParamType::endpoints: j = referenceOrList(); break;
+    case ParamType::path: j = {{"type", "array"}, {"items", vec2()}, {"minItems", 1}}; break;
+  }
+  std::vector<std::string> parts;
+  if (!p.unit.empty()) parts.push_back(fmt::format("in {}", p.unit));
+  if (!p.note.empty()) parts.emplace_back(p.note);
+  if (!p.required) parts.push_back(fmt::format("default: {}", defaultText(p)));
+  j = withDescription(std::move(j), fmt::format("{}", fmt::join(parts, "; ")));
+  if (p.defaultNumber) j = withDefault(std::move(j), *p.defaultNumber);
+  if (p.defaultVec2) j = withDefault(std::move(j), vec2Value(*p.defaultVec2));
+  return j;
+}
+
+Json kindSchema(const KindSpec& kind, bool typed) {
+  std::vector<std::pair<std::string, Json>> props;
+  std::vector<std::string> required;
+  if (typed) {
+    props.emplace_back("type", Json{{"const", kind.type}});
+    required.emplace_back("type");
+  }
+  Json eitherOr = Json::array();
+  for (const ParamSpec& p : kind.params) {
+    props.emplace_back(std::string(p.key), paramSchema(p));
+    if (p.required) required.emplace_back(p.key);
+    if (!p.insteadOf.empty() && p.key < p.insteadOf) {  // once per pair
+      eitherOr.push_back({{"required", {p.key}}});
+      eitherOr.push_back({{"required", {p.insteadOf}}});
+    }
+  }
+  Json j = withDescription(object(props, required), std::string(kind.summary));
+  if (!eitherOr.empty()) j["oneOf"] = eitherOr;
+  return j;
+}
+
+Json kindSectionSchema(const KindSection& section) {
+  const std::vector<const KindSpec*> kinds = kindsOf(section.key);
+  if (!section.typed) return {{"type", "array"}, {"items", kindSchema(*kinds.front(), false)}};
+  Json types = Json::array(), cases = Json::array();
+  for (const KindSpec* k : kinds) {
+    types.push_back(k->type);
+    cases.push_back({{"if", {{"properties", {{"type", {{"const", k->type}}}}}, {"required", {"type"}}}},
+                     {"then", kindSchema(*k, true)}});
+  }
+  Json item = {{"type", "object"},
+               {"required", {"type"}},
+               {"properties", {{"type", {{"enum", types}, {"description", "the kind of entry"}}}}},
+               {"allOf", cases}};
+  return {{"type", "array"}, {"items", item}};
+}
+
+Json simulationSchema() {
+  const SimulationSettings d;
+  Json integrators = Json::array();
+  for (Integrator i : allIntegrators()) integrators.push_back(integratorName(i));
+  return object({{"integrator", withDefault({{"enum", integrators}}, integratorName(d.integrator))},
+                 {"dt", withDefault(withDescription(number(Bound{0, false}), "time step, s"), d.dt)},
+                 {"duration", withDefault(withDescription(number(Bound{0, false}), "simulated seconds"), d.duration)}},
+                {});
+}
+
+Json renderSchema() {
+  const RenderSettings d;
+  const Json view = object({{"center", withDefault(withDescription(vec2(), "world point at the frame's centre, m"),
+                                                   vec2Value(d.viewCenter))},
+                            {"height", withDefault(withDescription(number(Bound{0, false}),
+                                                                   "world height shown vertically, m"),
+                                                   d.viewHeight)}},
+                           {});
+  return object({{"size", withDefault(withDescription(pairOf(wholeNumber(1, kMaxImageSide)), "[width, height] in px"),
+                                      Json::array({d.width, d.height}))},
+                 {"fps", withDefault(withDescription(number(Bound{kMinFps, true}, Bound{kMaxFps, true}),
+                                                     "frames per simulated second"),
+                                     d.fps)},
+                 {"view", view}},
+                {});
+}
+
+Json particleSchema() {
+  const ParticleSpec d;
+  return object({{"name", name()},
+                 {"pos", withDescription(vec2(), "m")},
+                 {"vel", withDefault(withDescription(vec2(), "m/s"), vec2Value(d.vel))},
+                 {"mass", withDefault(withDescription(number(Bound{0, false}), "kg"), d.mass)},
+                 {"fixed", withDefault({{"type", "boolean"}}, d.fixed)}},
+                {"pos"});
+}
+
+Json gridSchema() {
+  const GridSpec d;
+  const Json stiffness = {{"oneOf", Json::array({number(Bound{0, true}), pairOf(number(Bound{0, true}))})},
+                          {"description", "N/m: a number, or [top, bottom] varying linearly with height"}};
+  const Json family = object({{"ks", stiffness}, {"kd", withDefault(withDescription(number(Bound{0, true}), "N·s/m"), 0)}},
+                             {"ks"});
+  return object({{"name", name()},
+                 {"origin", withDefault(withDescription(vec2(), "position of row 0, column 0, m"), vec2Value(d.origin))},
+                 {"size", withDescription(pairOf(wholeNumber(1, kMaxGridSide)),
+                                          fmt::format("[columns, rows], at most {} particles", kMaxGridParticles))},
+                 {"spacing", withDefault(withDescription(pairOf(number(Bound{0, false})), "m"), vec2Value(d.spacing))},
+                 {"mass", withDefault(withDescription(number(Bound{0, false}), "kg per particle"), d.mass)},
+                 {"springs", object({{"structural", family}, {"shear", family}, {"flexion", family}}, {})}},
+                {"name", "size"});
+}
+
+Json bodySchema() {
+  const RigidBodySpec d;
+  return object({{"name", name()},
+                 {"pos", withDescription(vec2(), "centre of mass, m")},
+                 {"size", withDescription(pairOf(number(Bound{0, false})), "[width, height], m")},
+                 {"angle", withDefault(withDescription(number(), "rad, counter-clockwise"), d.angle)},
+                 {"mass", withDefault(withDescription(number(Bound{0, false}), "kg"), d.mass)},
+                 {"vel", withDefault(withDescription(vec2(), "m/s"), vec2Value(d.vel))},
+                 {"omega", withDefault(withDescription(number(), "rad/s"), d.omega)}},
+                {"pos", "size"});
+}
+
+Json listOf(const Json& item) { return {{"type", "array"}, {"items", item}}; }
+
+}  // namespace
+
+std::string scenarioJsonSchema() {
+  std::vector<std::pair<std::string, Json>> sections = {
+      {"name", withDescription(text(), "the scenario's name")},
+      {"description", withDescription({{"type", "string"}}, "one line for people")},
+      {"simulation", simulationSchema()},
+      {"render", renderSchema()},
+      {"particles", listOf(particleSchema())},
+      {"grids", listOf(gridSchema())},
+      {"rigid_bodies", listOf(bodySchema())},
+  };
+  for (const KindSection& section : kindSections()) sections.emplace_back(section.key, kindSectionSchema(section));
+  Json schema = {{"$schema", "http://json-schema.org/draft-07/schema#"},
+                 {"title", "particles scenario"},
+                 {"description", "A particles scenario file (docs/scenarios.md)"}};
+  schema.update(object(sections, {"name"}));
+  return schema.dump(2) + "\n";
+}
+
+std::string kindDocsTable(const KindSpec& kind) {
+  std::vector<std::array<std::string, 5>> rows = {{"key", "type", "unit", "default", "allowed"}};
+  for (const ParamSpec& p : kind.params) {
+    rows.push_back({fmt::format("`{}`", p.key), typeText(p.type), std::string(p.unit), defaultText(p), allowedText(p)});
+  }
+  // Pad by characters, not bytes: units and bounds hold ≥, ², · and the like.
+  auto width = [](const std::string& s) {
+    return size_t(std::count_if(s.begin(), s.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+  };
+  std::array<size_t, 5> widths{};
+  for (const auto& row : rows) {
+    for (size_t c = 0; c < 5; ++c) widths[c] = std::max(widths[c], width(row[c]));
+  }
+  std::string out;
+  auto line = [&](const std::array<std::string, 5>& row) {
+    out += "|";
+    for (size_t c = 0; c < 5; ++c) out += " " + row[c] + std::string(widths[c] - width(row[c]), ' ') + " |";
+    out += "\n";
+  };
+  line(rows[0]);
+  out += "|";
+  for (size_t c = 0; c < 5; ++c) out += std::string(widths[c] + 2, '-') + "|";
+  out += "\n";
+  for (size_t r = 1; r < rows.size(); ++r) line(rows[r]);
+  return out;
+}
+
+}  // namespace particles::scenario
