@@ -1,0 +1,104 @@
+// The rooms of docs/architecture.md, checked on the sources: every `#include "room/…"` points
+// along an allowed arrow (program → scenario, render, plot → core; render, plot, program →
+// output), and the core includes no library for files, YAML, GL, images or video.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kSource = PARTICLES_SOURCE_DIR;
+
+// Each room, its folder, and the rooms it may include besides itself.
+struct Room {
+  std::string name;
+  fs::path folder;
+  std::set<std::string> mayInclude;
+};
+
+const std::vector<Room>& rooms() {
+  static const std::vector<Room> all = {
+      {"core", kSource / "src/core", {}},
+      {"output", kSource / "src/output", {}},
+      {"scenario", kSource / "src/scenario", {"core"}},
+      {"render", kSource / "render", {"core", "output"}},
+      {"plot", kSource / "plot", {"output"}},
+      {"app", kSource / "src/app", {"core", "scenario", "render", "plot", "output"}},
+  };
+  return all;
+}
+
+struct Include {
+  fs::path file;
+  int line;
+  std::string target;  // as written between the quotes or brackets
+  bool angled;
+};
+
+std::vector<Include> includesUnder(const fs::path& folder) {
+  static const std::regex include(R"(^\s*#\s*include\s*([<"])([^>"]+)[>"])");
+  std::vector<Include> out;
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    const auto ext = entry.path().extension();
+    if (ext != ".cpp" && ext != ".hpp") continue;
+    std::ifstream in(entry.path());
+    std::string text;
+    for (int line = 1; std::getline(in, text); ++line) {
+      std::smatch m;
+      if (std::regex_search(text, m, include)) out.push_back({entry.path(), line, m[2].str(), m[1].str() == "<"});
+    }
+  }
+  return out;
+}
+
+// The room a quoted include names by its first folder ("core/system.hpp" → core).
+std::string roomOf(const std::string& target) {
+  const auto slash = target.find('/');
+  return slash == std::string::npos ? std::string() : target.substr(0, slash);
+}
+
+}  // namespace
+
+TEST_CASE("every include follows the rooms' arrows") {
+  int checked = 0;
+  for (const Room& room : rooms()) {
+    REQUIRE(fs::is_directory(room.folder));
+    for (const Include& inc : includesUnder(room.folder)) {
+      if (inc.angled) continue;
+      ++checked;
+      const std::string target = roomOf(inc.target);
+      CAPTURE(inc.file.string());
+      CAPTURE(inc.line);
+      CAPTURE(inc.target);
+      // Includes name their room ("core/state.hpp"), so the arrow is visible where it is drawn.
+      CHECK_MESSAGE(!target.empty(), "include without its room");
+      CHECK_MESSAGE((target == room.name || room.mayInclude.count(target) == 1),
+                    room.name << " may not include " << target);
+    }
+  }
+  CHECK(checked > 100);
+}
+
+TEST_CASE("the core uses no files, YAML, GL, images or video") {
+  const std::vector<std::string> forbidden = {"fstream", "cstdio", "filesystem", "yaml-cpp", "GL/", "EGL/", "png",
+                                              "libav", "libsw", "cairo", "nlohmann", "unistd"};
+  int checked = 0;
+  for (const Include& inc : includesUnder(kSource / "src/core")) {
+    if (!inc.angled) continue;
+    ++checked;
+    for (const std::string& word : forbidden) {
+      CAPTURE(inc.file.string());
+      CAPTURE(inc.target);
+      CHECK(inc.target.find(word) == std::string::npos);
+    }
+  }
+  CHECK(checked > 20);
+}
