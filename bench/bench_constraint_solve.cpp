@@ -53,7 +53,7 @@ enum class Start { Cold, Warm, Converged };
 constexpr int kCurtainMinRods = 40, kCurtainMaxRods = 60;
 constexpr double kRodLength = 0.02;  // m
 constexpr double kMass = 0.01;       // kg per particle
-constexpr double kDt = 0.01;         // s, the DESIGN §11 example's step
+constexpr double kDt = 0.01;         // s, the cloth demo's step (scenarios/cloth.yaml)
 
 // One chain of `rods` rods from a new fixed particle at `top`, straight, at `angle` (rad).
 void addChain(SystemBuilder& b, const Vec2& top, double angle, int rods) {
