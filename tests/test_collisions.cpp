@@ -116,12 +116,50 @@ TEST_CASE("a particle hitting a disk leaves with its normal velocity reversed") 
   }
 }
 
-TEST_CASE("fixed particles are ignored by colliders") {
+namespace {
+
+struct ContactReadings {
+  Vec2 force;          // what applyCollisions adds to the particle, N
+  double potential;    // collision energy, J
+  double penetration;  // System::penetration, m
+};
+
+// One particle at rest `depth` below the ground y = 0, fixed or free: what the collision code
+// reports for it. The force is read from applyCollisions directly: derivEval multiplies it by
+// the inverse mass, which is 0 for a fixed particle, and would hide it.
+ContactReadings particleBelowGround(double depth, double k, bool fixed) {
   SystemBuilder b;
-  b.addParticle(particleAt(0, -1, 1.0, true));
-  b.addCollider(std::make_unique<HalfPlaneCollider>(Vec2(0, 1), 0.0));
-  System sys = b.build();
-  Eigen::VectorXd dydt;
-  sys.derivEval(sys.state(), 0.0, dydt);
-  CHECK(dydt.norm() == 0.0);
+  b.addParticle(particleAt(0.3, -depth, 1.0, fixed));
+  b.addCollider(std::make_unique<HalfPlaneCollider>(Vec2(0, 1), 0.0, PenaltyParams{k, 2.0}));
+  const System sys = b.build();
+  ForceAccumulator acc;
+  acc.resize(sys.layout());
+  applyCollisions(sys.model(), sys.view(), sys.colliders(), acc);
+  return {acc.forceOn(0), sys.energy().potential, sys.penetration(sys.state())};
+}
+
+}  // namespace
+
+TEST_CASE("a fixed particle inside a collider feels no force, stores no energy and is no contact") {
+  // A fixed particle cannot respond to the penalty force, so it stores none of its energy, and
+  // its depth is not a contact: force, potential and penetration agree on skipping it. A free
+  // particle at the same place gets f = n k d², U = k d³/3 and depth d (the damping term is 0
+  // at rest). Approx's default 1e-5 relative: the values are a few roundings from exact.
+  const double k = 1000.0, d = 0.2;
+  const ContactReadings free = particleBelowGround(d, k, false);
+  CAPTURE(free.force.transpose());
+  CAPTURE(free.potential);
+  CAPTURE(free.penetration);
+  CHECK(free.force.x() == 0.0);
+  CHECK(free.force.y() == doctest::Approx(k * d * d));
+  CHECK(free.potential == doctest::Approx(k * d * d * d / 3.0));
+  CHECK(free.penetration == doctest::Approx(d));
+
+  const ContactReadings fixed = particleBelowGround(d, k, true);
+  CAPTURE(fixed.force.transpose());
+  CAPTURE(fixed.potential);
+  CAPTURE(fixed.penetration);
+  CHECK(fixed.force.norm() == 0.0);
+  CHECK(fixed.potential == 0.0);
+  CHECK(fixed.penetration == 0.0);
 }

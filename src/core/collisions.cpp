@@ -9,10 +9,14 @@ namespace particles {
 
 namespace {
 
-// Calls visit(endpoint) for every particle and every body corner (as a body anchor).
+// Calls visit(endpoint) for every free particle and every body corner (as a body anchor). A fixed
+// particle is skipped here, once for force, energy and penetration alike: it cannot respond to
+// the penalty force, so it stores none of its energy and its depth is not a contact.
 template <typename Visit>
 void forEachCollisionPoint(const Model& model, Visit&& visit) {
-  for (int i = 0; i < model.layout.numParticles; ++i) visit(Endpoint::ofParticle(i));
+  for (int i = 0; i < model.layout.numParticles; ++i) {
+    if (!model.isFixed(i)) visit(Endpoint::ofParticle(i));
+  }
   for (int j = 0; j < model.layout.numBodies; ++j) {
     for (const Vec2& corner : rectangleCorners(model.bodies[size_t(j)].size)) visit(Endpoint::ofBody(j, corner));
   }
@@ -23,7 +27,6 @@ void forEachCollisionPoint(const Model& model, Visit&& visit) {
 void applyCollisions(const Model& model, const StateView& s, const ColliderList& colliders, ForceAccumulator& acc) {
   if (colliders.empty()) return;
   forEachCollisionPoint(model, [&](const Endpoint& e) {
-    if (e.isParticle() && model.isFixed(e.particle)) return;
     const Vec2 p = endpointPosition(s, e);
     for (const auto& collider : colliders) {
       const auto c = collider->contact(p);
@@ -39,7 +42,6 @@ void applyCollisions(const Model& model, const StateView& s, const ColliderList&
 double collisionPotential(const Model& model, const StateView& s, const ColliderList& colliders) {
   double u = 0.0;
   forEachCollisionPoint(model, [&](const Endpoint& e) {
-    if (e.isParticle() && model.isFixed(e.particle)) return;
     const Vec2 p = endpointPosition(s, e);
     for (const auto& collider : colliders) {
       if (const auto c = collider->contact(p)) u += collider->params().k * c->depth * c->depth * c->depth / 3.0;

@@ -1,6 +1,7 @@
 #pragma once
-// Penalty collision response for every collider against every particle and every corner of
-// every rigid rectangle (DESIGN §2 stage 3, §6, §7).
+// Penalty collision response for every collider against every free particle and every corner
+// of every rigid rectangle (DESIGN §2 stage 3, §6, §7). Fixed particles are no contacts: no
+// force, no energy, no penetration.
 
 #include <memory>
 #include <vector>
@@ -16,7 +17,7 @@ using ColliderList = std::vector<std::unique_ptr<Collider>>;
 void applyCollisions(const Model& model, const StateView& s, const ColliderList& colliders, ForceAccumulator& acc);
 // Σ k d³/3 over all contacts, joules.
 double collisionPotential(const Model& model, const StateView& s, const ColliderList& colliders);
-// The largest penetration depth of any particle or corner, metres (0 when nothing touches).
+// The largest penetration depth of any free particle or corner, metres (0 when nothing touches).
 double maxPenetration(const Model& model, const StateView& s, const ColliderList& colliders);
 
 }  // namespace particles

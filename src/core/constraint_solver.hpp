@@ -9,9 +9,9 @@
 //    of rods), an incomplete Cholesky factor (Eigen::IncompleteCholesky, no fill-in
 //    beyond J W Jᵀ's own pattern). The exact factor has no fill-in either there, so one CG step
 //    solves the system: a 10,000-rod chain that diagonal preconditioning needs 9,999 iterations
-//    for (O(R²), 219 ms) takes one (2.7 ms);
+//    for (O(R²)) takes one, about 80× faster (timings in bench/README.md);
 //  - otherwise the diagonal (Jacobi): with loops (nets) incomplete Cholesky needed more
-//    iterations and 5× the time (measured, bench/README.md); with no row joining two moving
+//    iterations and about 5× the time (measured, bench/README.md); with no row joining two moving
 //    particles (rails, beads) J W Jᵀ is (nearly) diagonal and Jacobi's setup is cheaper.
 //
 // J W Jᵀ is only positive semi-definite. Two cases make it singular and are handled:

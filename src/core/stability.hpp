@@ -88,7 +88,9 @@ struct StabilityStudy {
 
 // Largest dt in [minDt, maxDt] for which `ok` holds, assuming it holds below some threshold and
 // fails above (bracketing by factors of 2, then bisection). Returns 0 when even minDt fails.
-// `last_fail` receives the assessment of the smallest failing dt tried.
+// `lastFail` receives the assessment of the last failing run, which is the one at the smallest
+// failing dt tried (each failure lowers the upper bracket); it is left as it was when no dt
+// failed. `runs` is increased by the number of simulations run.
 double findLargestDt(const std::function<RunAssessment(double)>& run, const std::function<bool(const RunAssessment&)>& ok,
                      const StabilityOptions& options, int& runs, RunAssessment& lastFail);
 
