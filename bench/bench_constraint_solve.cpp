@@ -1,4 +1,4 @@
-// Cost of one constraint solve (DESIGN §2 stage 4, ConstraintSolver::solve): assemble
+// Cost of one constraint solve (docs/physics.md §2 stage 4, ConstraintSolver::solve): assemble
 // J W Jᵀ λ = −J̇ q̇ − J W Q − k_s C − k_d Ċ, solve it with preconditioned CG, add Jᵀλ. Every
 // scene runs with both preconditioners (argument jacobi: 0 incomplete Cholesky, 1 Jacobi); the
 // automatic default picks incomplete Cholesky for chain and curtain (no loops), Jacobi for net.

@@ -1,4 +1,4 @@
-// Cost of one System::derivEval on the report's cloth (DESIGN §8), scaled up: N×N particles,
+// Cost of one System::derivEval on the report's cloth (docs/physics.md §8), scaled up: N×N particles,
 // structural springs only, stiffness 25 at the top row to 1 at the bottom, k_d 0.2, gravity and
 // drag, top row on horizontal-line constraints (the rail). Spacing 0.08 m, 0.05 kg per particle and
 // drag 0.05: heavier than scenarios/cloth.yaml (2 g), which changes how far the springs stretch

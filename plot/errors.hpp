@@ -1,6 +1,6 @@
 #pragma once
 // Errors at the figures boundary. The command line maps FigureError to exit code 3 ("output
-// failure") and CsvError to exit code 2 ("bad input"), DESIGN §12.
+// failure") and CsvError to exit code 2 ("bad input"), docs/physics.md §12.
 
 #include <cstddef>
 #include <filesystem>

@@ -1,5 +1,5 @@
 #pragma once
-// The figure of the time-step stability study (`particles stability --plot`, DESIGN §12): per
+// The figure of the time-step stability study (`particles stability --plot`, docs/physics.md §12): per
 // integrator, the largest stable dt and the largest dt without shaking, as bars on a log axis.
 
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// The figure of a `--stats` CSV (DESIGN §12): energy over time above, constraint error and
+// The figure of a `--stats` CSV (docs/physics.md §12): energy over time above, constraint error and
 // penetration over time below.
 
 #include <cstddef>

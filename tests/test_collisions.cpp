@@ -1,4 +1,4 @@
-// Penalty collisions by numbers (DESIGN §6): f = n k d², U = k d³/3.
+// Penalty collisions by numbers (docs/physics.md §6): f = n k d², U = k d³/3.
 #include <doctest/doctest.h>
 
 #include <cmath>

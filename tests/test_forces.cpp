@@ -1,4 +1,4 @@
-// Force objects by numbers (DESIGN §4): conservative parts against −∇U, damping along the spring,
+// Force objects by numbers (docs/physics.md §4): conservative parts against −∇U, damping along the spring,
 // drag, the scripted mouse path, energy bookkeeping by source, grid generation.
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-// The golden-frame comparison (render/image_compare.hpp, DESIGN §10) on small hand-made images:
+// The golden-frame comparison (render/image_compare.hpp, docs/physics.md §10) on small hand-made images:
 // the per-channel threshold, the share and its bound, the largest difference, the bounding box,
 // size mismatches and the diff picture.
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-// Rigid rectangles by numbers (DESIGN §7).
+// Rigid rectangles by numbers (docs/physics.md §7).
 #include <doctest/doctest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // Bad scenario input: every error names the file, the line, the key path and what was expected
-// (DESIGN §11; docs/scenarios.md "Errors"). Each case asserts the reported line and key path.
+// (docs/physics.md §11; docs/scenarios.md "Errors"). Each case asserts the reported line and key path.
 #include <doctest/doctest.h>
 
 #include <string>

@@ -1,4 +1,4 @@
-// Loading valid scenarios: defaults, references, grids, overrides (DESIGN §11, docs/scenarios.md).
+// Loading valid scenarios: defaults, references, grids, overrides (docs/physics.md §11, docs/scenarios.md).
 #include <doctest/doctest.h>
 
 #include <algorithm>

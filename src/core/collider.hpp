@@ -1,5 +1,5 @@
 #pragma once
-// A solid obstacle that pushes points out with a penalty force (DESIGN §6):
+// A solid obstacle that pushes points out with a penalty force (docs/physics.md §6):
 //   f = n k d²   (plus an optional damping −c (v·n) n while in contact; c = 0 as in the report)
 // with n the way out and d the penetration depth. The stored energy is U = k d³ / 3.
 // Each kind only describes its geometry (contact); collisions.cpp applies the response to

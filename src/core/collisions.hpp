@@ -1,6 +1,6 @@
 #pragma once
 // Penalty collision response for every collider against every free particle and every corner
-// of every rigid rectangle (DESIGN §2 stage 3, §6, §7). Fixed particles are no contacts: no
+// of every rigid rectangle (docs/physics.md §2 stage 3, §6, §7). Fixed particles are no contacts: no
 // force, no energy, no penetration.
 
 #include <memory>

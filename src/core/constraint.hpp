@@ -1,5 +1,5 @@
 #pragma once
-// A scalar holonomic constraint C(q) = 0 on particle positions (DESIGN §5). Each kind reports C,
+// A scalar holonomic constraint C(q) = 0 on particle positions (docs/physics.md §5). Each kind reports C,
 // Ċ and the non-zero 2-blocks of its Jacobian row J = ∂C/∂q and of J̇, for at most two particles.
 // The solver (constraint_solver.hpp) turns the rows into J W Jᵀ λ = −J̇q̇ − J W Q − k_s C − k_d Ċ.
 

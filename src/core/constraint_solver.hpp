@@ -1,5 +1,5 @@
 #pragma once
-// Lagrange-multiplier constraint forces (DESIGN §5, Witkin & Baraff "Constrained dynamics"):
+// Lagrange-multiplier constraint forces (docs/physics.md §5, Witkin & Baraff "Constrained dynamics"):
 //   J W Jᵀ λ = −J̇ q̇ − J W Q − k_s C − k_d Ċ,     Q̂ = Jᵀ λ
 // q are the particles' positions, W their inverse masses and Q the forces accumulated so far.
 // J W Jᵀ is assembled as an Eigen sparse matrix and solved with Eigen's ConjugateGradient,

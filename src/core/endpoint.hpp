@@ -1,6 +1,6 @@
 #pragma once
 // A place a force acts at: a particle, or an anchor on a rigid body given in body coordinates.
-// Kinematics and force application follow DESIGN §7:
+// Kinematics and force application follow docs/physics.md §7:
 //   p′ = R(θ) r + p,   v′ = v + ω (−r′_y, r′_x),   τ += r′_x f_y − r′_y f_x,   r′ = R(θ) r
 
 #include "core/force_accumulator.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// A force object (DESIGN §4): adds to the accumulators given a state and a time, and reports the
+// A force object (docs/physics.md §4): adds to the accumulators given a state and a time, and reports the
 // potential energy it stores so energy can be booked by source.
 
 #include <cstddef>

@@ -1,5 +1,5 @@
 #pragma once
-// Force and torque accumulators filled by one derivEval (DESIGN §2, stages 1–4).
+// Force and torque accumulators filled by one derivEval (docs/physics.md §2, stages 1–4).
 
 #include <Eigen/Core>
 

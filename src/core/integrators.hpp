@@ -1,5 +1,5 @@
 #pragma once
-// Explicit one-step integrators over a derivative function f(y, t) (DESIGN §3), h = dt:
+// Explicit one-step integrators over a derivative function f(y, t) (docs/physics.md §3), h = dt:
 //   Euler     y₁ = y₀ + h f(y₀, t₀)                                     global error O(h)
 //   Midpoint  y₁ = y₀ + h f(y₀ + h/2 f(y₀, t₀), t₀ + h/2)               global error O(h²)
 //   RK4       k1 = h f(y₀, t₀),         k2 = h f(y₀ + k1/2, t₀ + h/2),

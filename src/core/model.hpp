@@ -11,13 +11,13 @@ namespace particles {
 
 struct RigidBody {
   Vec2 size;       // full width and height of the rectangle, metres
-  double inertia;  // about the centre of mass, I = m (w² + h²) / 12 (DESIGN §7)
+  double inertia;  // about the centre of mass, I = m (w² + h²) / 12 (docs/physics.md §7)
 };
 
 struct Model {
   StateLayout layout;
   Eigen::VectorXd mass;     // per point, kg
-  Eigen::VectorXd invMass;  // per point; 0 for a fixed particle (W in DESIGN §5)
+  Eigen::VectorXd invMass;  // per point; 0 for a fixed particle (W in docs/physics.md §5)
   Eigen::VectorXd invInertia;  // per body
   std::vector<RigidBody> bodies;
   std::vector<std::string> particleNames;  // may be empty strings for unnamed particles

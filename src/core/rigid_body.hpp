@@ -1,5 +1,5 @@
 #pragma once
-// Rigid rectangles (DESIGN §7): uniform density, centre of mass at the centre, orientation θ
+// Rigid rectangles (docs/physics.md §7): uniform density, centre of mass at the centre, orientation θ
 // counter-clockwise. Their kinematics at anchors live in endpoint.hpp.
 
 #include <array>

@@ -1,5 +1,5 @@
 #pragma once
-// The solver advances a System with one integrator (DESIGN §1): doStep(system, dt) calls
+// The solver advances a System with one integrator (docs/physics.md §1): doStep(system, dt) calls
 // system.derivEval 1, 2 or 4 times, then checks the new state with the explosion guard.
 
 #include <stdexcept>

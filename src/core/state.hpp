@@ -1,5 +1,5 @@
 #pragma once
-// The flat state vector (DESIGN §2) and typed, read-only access to it.
+// The flat state vector (docs/physics.md §2) and typed, read-only access to it.
 //
 // Points are the particles followed by the rigid bodies' centres of mass: point i < numParticles
 // is particle i, point numParticles + j is the centre of body j. The integrator sees one vector

@@ -1,5 +1,5 @@
 #pragma once
-// The system (DESIGN §1–2): a model, the current state vector and time, and the force objects,
+// The system (docs/physics.md §1–2): a model, the current state vector and time, and the force objects,
 // constraints and colliders that act on it. derivEval is the one interface the integrators use.
 //
 // Built with SystemBuilder, so that the layout of the state vector is fixed before stepping.
@@ -59,7 +59,7 @@ class System {
   void setTime(double t) { t_ = t; }
 
   // dy/dt at (y, t): clear accumulators, apply forces, collisions, constraints, then write
-  // [v, F/m, ω, τ/I] (DESIGN §2). Not const: it reuses scratch space and warm-starts λ.
+  // [v, F/m, ω, τ/I] (docs/physics.md §2). Not const: it reuses scratch space and warm-starts λ.
   void derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt);
 
   double kineticEnergy(const Eigen::VectorXd& y) const;

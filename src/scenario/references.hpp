@@ -1,5 +1,5 @@
 #pragma once
-// References to points in a scenario (DESIGN §11), resolved against the names declared so far:
+// References to points in a scenario (docs/physics.md §11), resolved against the names declared so far:
 //   bob                a particle by name (or, where bodies are allowed, a rigid body's centre;
 //                      where lists are allowed, a whole grid)
 //   cloth[3][4]        a grid particle; `*` for a whole row or column where a list is accepted,

@@ -1,6 +1,6 @@
 #pragma once
 // Running a loaded scenario for its duration with its integrator and time step, sampling what
-// `particles run --stats` reports (DESIGN §12). Shared by the program and the tests, so that the
+// `particles run --stats` reports (docs/physics.md §12). Shared by the program and the tests, so that the
 // numbers a test bounds are the numbers a user sees.
 
 #include <functional>

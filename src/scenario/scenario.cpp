@@ -1,4 +1,4 @@
-// The scenario loader: one reader per top-level section of DESIGN §11, in the order the sections
+// The scenario loader: one reader per top-level section of docs/physics.md §11, in the order the sections
 // depend on each other (things that have names before the references to them). Keys, defaults and
 // ranges here and in docs/scenarios.md change together.
 #include "scenario/scenario.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Scenario files (DESIGN §11): YAML in, a built System plus the simulation and render settings out.
+// Scenario files (docs/physics.md §11): YAML in, a built System plus the simulation and render settings out.
 // Every key, type, unit, default and range is documented in docs/scenarios.md.
 //
 // Bad input never crashes and never half-builds: the loader throws ScenarioError naming the file,
@@ -84,7 +84,7 @@ Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Ove
 // The same from text in memory; `file` only labels messages.
 Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides = {});
 
-// How a reference spells point `point` of the system (DESIGN §12 --trace): the particle's or
+// How a reference spells point `point` of the system (docs/physics.md §12 --trace): the particle's or
 // body's name, `cloth[3][4]` for a grid particle, `#index` for an unnamed particle and `body#j`
 // for an unnamed rigid body.
 std::string pointName(const Model& model, int point);

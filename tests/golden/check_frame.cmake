@@ -1,4 +1,4 @@
-# One golden-frame test (DESIGN §10, golden/README.md), run by CTest as `cmake -P`:
+# One golden-frame test (docs/physics.md §10, golden/README.md), run by CTest as `cmake -P`:
 # renders a frame through `particles render`, exactly as users do, and compares it with its golden
 # frame through `particles compare`.
 #

@@ -1,6 +1,6 @@
 #pragma once
 // Solid disk {c, r}: a point with |p − c| < r is inside, leaves along n = (p − c)/|p − c| and has
-// depth r − |p − c| (DESIGN §6). At the exact centre the way out is taken as +y.
+// depth r − |p − c| (docs/physics.md §6). At the exact centre the way out is taken as +y.
 
 #include "core/collider.hpp"
 

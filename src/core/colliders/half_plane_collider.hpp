@@ -1,6 +1,6 @@
 #pragma once
 // Half-plane {n, d₀}: the allowed side is n·p ≥ d₀ (n is normalised on construction), so the
-// solid fills n·p < d₀ and a point there has depth d = d₀ − n·p and leaves along n (DESIGN §6).
+// solid fills n·p < d₀ and a point there has depth d = d₀ − n·p and leaves along n (docs/physics.md §6).
 // The ground y = −1.5 is {normal [0, 1], offset −1.5}.
 
 #include "core/collider.hpp"

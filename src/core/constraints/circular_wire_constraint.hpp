@@ -1,5 +1,5 @@
 #pragma once
-// Bead on a circular wire, centre c, radius r (DESIGN §5):
+// Bead on a circular wire, centre c, radius r (docs/physics.md §5):
 //   C = ½((p−c)·(p−c) − r²),  Ċ = v·(p−c),  J = (p−c)ᵀ,  J̇ = vᵀ
 
 #include "core/constraint.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// A particle sliding on the horizontal line y = h (the cloth's rail) (DESIGN §5):
+// A particle sliding on the horizontal line y = h (the cloth's rail) (docs/physics.md §5):
 //   C = p_y − h,  Ċ = v_y,  J = [0, 1],  J̇ = 0
 
 #include "core/constraint.hpp"

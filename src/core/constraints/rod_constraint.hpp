@@ -1,5 +1,5 @@
 #pragma once
-// Rigid rod of length r between particles 1 and 2 (DESIGN §5):
+// Rigid rod of length r between particles 1 and 2 (docs/physics.md §5):
 //   C = |p1−p2|² − r²,  Ċ = 2(p1−p2)·(v1−v2),
 //   J = [2(p1−p2)ᵀ, −2(p1−p2)ᵀ],  J̇ = [2(v1−v2)ᵀ, −2(v1−v2)ᵀ]
 

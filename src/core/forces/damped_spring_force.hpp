@@ -1,9 +1,9 @@
 #pragma once
-// Damped springs (DESIGN §4), stored as flat arrays: one object holds any number of springs.
+// Damped springs (docs/physics.md §4), stored as flat arrays: one object holds any number of springs.
 // With l = x_a − x_b, rest length r, stiffness k_s and damping k_d:
 //   f_a = −[ k_s (|l| − r) + k_d (l̇·l)/|l| ] l/|l|,   f_b = −f_a
 // Ends are particles or anchors on rigid bodies (then x and l̇ use the anchor's world position and
-// velocity, and the force also gives a torque, DESIGN §7).
+// velocity, and the force also gives a torque, docs/physics.md §7).
 // Potential: U = ½ k_s (|l| − r)² per spring.
 // When |l| falls below 1e-12 m the direction is undefined and the spring exerts no force.
 

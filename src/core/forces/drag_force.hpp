@@ -1,5 +1,5 @@
 #pragma once
-// Viscous drag: f_i −= k_d v_i on every point (DESIGN §4). Dissipative: no potential energy.
+// Viscous drag: f_i −= k_d v_i on every point (docs/physics.md §4). Dissipative: no potential energy.
 // An optional angular term τ_j −= k_ω ω_j damps rigid-body spin the same way.
 
 #include "core/force.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// The scripted mouse (our off-line form of mouse interaction, DESIGN §4): while from ≤ t < to,
+// The scripted mouse (our off-line form of mouse interaction, docs/physics.md §4): while from ≤ t < to,
 // a zero-rest-length spring pulls the grabbed endpoint towards a target m(t) moving along a
 // polyline at constant speed (arc length proportional to time):
 //   f = −k_s (x − m(t)),   U = ½ k_s |x − m(t)|²
