@@ -2,28 +2,27 @@
 //   OUT.mp4   H.264 video, frames i = 0 … round(duration·fps) − 1 at t = i / fps
 //   OUT/      the same frames as frame_000000.png …
 //   OUT.png   one frame at --at T, for report figures
-// A frame shows the state after the last time step at or before its time (to rounding), so with
-// a dt that divides 1/fps every frame is exact. Encoding runs on the writer's own thread; outputs
-// appear only when complete, and SIGINT/SIGTERM or any failure removes them (exit 128 + signal,
-// or the codes of commands.hpp).
+// The work is render::renderSimulation (render/render_simulation.hpp); this file reads the options,
+// adds what only the program has (the --stats/--trace CSVs, the --hud text, progress, stopping on
+// SIGINT/SIGTERM) as its hooks and reports the outcome. Outputs appear only when complete, and a
+// signal or any failure removes them (exit 128 + signal, or the codes of commands.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <optional>
 
 #include "app/cli_support.hpp"
+#include "app/csv_recorder.hpp"
+#include "core/solver.hpp"
+#include "core/system.hpp"
 #include "plot/errors.hpp"
 #include "plot/text_overlay.hpp"
-#include "app/csv_recorder.hpp"
 #include "render/errors.hpp"
 #include "render/frame_writer.hpp"
-#include "render/png_io.hpp"
-#include "render/renderer.hpp"
-#include "core/drawing.hpp"
-#include "core/system.hpp"
+#include "render/render_options.hpp"
+#include "render/render_simulation.hpp"
 #include "scenario/runner.hpp"
 
 namespace particles::app {
@@ -47,38 +46,21 @@ std::optional<render::Length> parseRadius(const std::string& text) {
   return std::nullopt;
 }
 
-// The frame for the current state, with the --hud text drawn over it when asked for.
-class FramePainter {
- public:
-  FramePainter(render::Renderer& renderer, const render::Camera& camera, const scenario::Scenario& s, bool hud,
-               bool darkTheme)
-      : renderer_(renderer), camera_(camera), scenario_(s), hud_(hud) {
-    style_.darkBackground = darkTheme;
-    style_.sizePx = std::clamp(renderer.options().height / 40.0, 10.0, 28.0);
-  }
-  const render::Image& paint(const System& system) {
-    const render::Image& image = renderer_.render(system.draw(), camera_);
-    if (!hud_) return image;
-    framed_ = image;
+// The --hud text: time, integrator, dt and energy, in the top-left corner of every frame.
+auto hudOverlay(const scenario::Scenario& s, const render::RenderOptions& look) {
+  plot::OverlayStyle style;
+  style.darkBackground = look.themeName == render::ThemeName::dark;
+  style.sizePx = std::clamp(look.height / 40.0, 10.0, 28.0);
+  return [&sim = s.simulation, style](render::Image& frame, const System& system) {
     const EnergyReport e = system.energy();
-    const auto& sim = scenario_.simulation;
-    plot::drawTextOverlay(framed_.rgba.data(), framed_.width, framed_.height,
-                          {fmt::format("t = {:.3f} s", system.time()),
-                           fmt::format("{}, dt = {} s", integratorName(sim.integrator), sim.dt),
-                           fmt::format("E = {:.4g} J (kinetic {:.3g}, potential {:.3g})", e.total(), e.kinetic,
-                                       e.potential)},
-                          style_);
-    return framed_;
-  }
-
- private:
-  render::Renderer& renderer_;
-  render::Camera camera_;
-  const scenario::Scenario& scenario_;
-  bool hud_;
-  plot::OverlayStyle style_;
-  render::Image framed_;
-};
+    plot::drawTextOverlay(
+        frame.rgba.data(), frame.width, frame.height,
+        {fmt::format("t = {:.3f} s", system.time()),
+         fmt::format("{}, dt = {} s", integratorName(sim.integrator), sim.dt),
+         fmt::format("E = {:.4g} J (kinetic {:.3g}, potential {:.3g})", e.total(), e.kinetic, e.potential)},
+        style);
+  };
+}
 
 struct SignalGuard {
   SignalGuard() {
@@ -168,28 +150,43 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   render::setLibavVerbose(options.verbose);
 
   try {
-    std::optional<render::Renderer> renderer;
     try {
-      renderer.emplace(look);
+      render::validate(look);
     } catch (const std::invalid_argument& e) {
       fmt::print(stderr, "error: {}\n", e.what());
       return kBadInput;
     }
     auto recorder = CsvRecorder::open(s->system, options.stats, options.trace, options.traceOnly);
     if (!recorder) return kBadInput;
-    Stepper stepper(s->system, s->simulation.integrator, s->simulation.dt);
-    FramePainter painter(*renderer, camera, *s, options.hud, look.themeName == render::ThemeName::dark);
-    const auto start = std::chrono::steady_clock::now();
+
+    render::RenderJob job;
+    job.output = options.output;
+    job.at = options.at;
+    job.duration = s->simulation.duration;
+    job.fps = fps;
+    job.camera = camera;
+    job.look = look;
+    job.video.crf = options.crf;
+    job.video.preset = options.preset;
+    job.png.compressionLevel = options.pngLevel;
+    long framesReached = 0;  // frames whose time the simulation reached
+    render::RenderHooks hooks;
+    hooks.onFrame = [&](const System& system) {
+      recorder->record(system);
+      ++framesReached;
+    };
+    if (options.hud) hooks.decorate = hudOverlay(*s, look);
+    const auto run = [&] {
+      return render::renderSimulation(s->system, s->simulation.integrator, s->simulation.dt, job, hooks);
+    };
 
     if (kind == render::OutputKind::png) {
       try {
-        stepper.advanceTo(*options.at);
+        run();
       } catch (const SimulationError& e) {
         fmt::print(stderr, "{}: error: {}\n", common.scenario, e.what());
         return kSimulationFailed;
       }
-      recorder->record(s->system);
-      render::writePng(options.output, painter.paint(s->system), render::PngOptions{options.pngLevel});
       recorder->commit();
       if (!common.quiet) {
         fmt::print("{}: frame at t = {:.6g} s ({}×{}) → {}\n", s->name, s->system.time(), look.width, look.height,
@@ -198,52 +195,38 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
       return kOk;
     }
 
-    render::FrameWriterOptions out;
-    out.width = look.width;
-    out.height = look.height;
-    out.video.fps = fps;
-    out.video.crf = options.crf;
-    out.video.preset = options.preset;
-    out.png.compressionLevel = options.pngLevel;
-    std::unique_ptr<render::FrameWriter> writer;
-    try {
-      writer = render::openFrameWriter(options.output, out);
-    } catch (const std::invalid_argument& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      return kBadInput;
-    }
-
     const long frames = render::frameCount(s->simulation.duration, fps);
     Progress progress(!common.quiet, "frames");
+    hooks.progress = [&](long done, long total, const System& system) {
+      progress.update(done, total, fmt::format("t = {:.2f} s", system.time()));
+    };
     SignalGuard signals;
-    for (long i = 0; i < frames; ++i) {
-      if (stopSignal != 0) {
-        progress.finish();
-        writer->abort();
-        fmt::print(stderr, "{}: interrupted at frame {} of {}; no output written\n", common.scenario, i, frames);
-        return 128 + int(stopSignal);
-      }
-      try {
-        stepper.advanceTo(double(i) / fps);
-      } catch (const SimulationError& e) {
-        progress.finish();
-        writer->abort();
-        fmt::print(stderr, "{}: error: {} (at frame {} of {}; no output written)\n", common.scenario, e.what(), i,
-                   frames);
-        return kSimulationFailed;
-      }
-      recorder->record(s->system);
-      writer->write(painter.paint(s->system));
-      progress.update(i + 1, frames, fmt::format("t = {:.2f} s", s->system.time()));
+    hooks.shouldStop = [] { return stopSignal != 0; };
+    render::RenderSummary summary;
+    try {
+      summary = run();
+    } catch (const std::invalid_argument& e) {  // options the writer refuses (an odd size for MP4)
+      fmt::print(stderr, "error: {}\n", e.what());
+      return kBadInput;
+    } catch (const SimulationError& e) {
+      progress.finish();
+      fmt::print(stderr, "{}: error: {} (at frame {} of {}; no output written)\n", common.scenario, e.what(),
+                 framesReached, frames);
+      return kSimulationFailed;
     }
-    writer->finish();
+    if (summary.stopped) {
+      progress.finish();
+      fmt::print(stderr, "{}: interrupted at frame {} of {}; no output written\n", common.scenario, summary.frames,
+                 frames);
+      return 128 + int(stopSignal);
+    }
     recorder->commit();
     progress.finish();
     if (!common.quiet) {
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double wall = summary.wallSeconds;
       fmt::print("{}: {} frames ({}×{}, {} fps, {:.6g} s) in {:.2f} s, {:.1f} frames/s, {} steps of {} s ({}) → {}\n",
                  s->name, frames, look.width, look.height, fps, double(frames) / fps, wall, double(frames) / wall,
-                 stepper.steps(), s->simulation.dt, integratorName(s->simulation.integrator), options.output);
+                 summary.steps, s->simulation.dt, integratorName(s->simulation.integrator), options.output);
     }
     return kOk;
   } catch (const render::RenderError& e) {
