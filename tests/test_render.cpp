@@ -222,7 +222,7 @@ TEST_CASE("every kind of shape is drawn in its theme colour") {
   CHECK(theme(ThemeName::light).background.r > 192);
 }
 
-TEST_CASE("multisampling smooths edges; msaa 1 gives hard edges") {
+TEST_CASE("multisampling smooths edges, and msaa 1 gives hard edges") {
   const System system = particles::test::fallingParticles();
   const Camera camera{Vec2(0, 0), 2.4};
   auto distinctColours = [&](int msaa) {
