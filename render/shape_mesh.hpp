@@ -1,7 +1,8 @@
 #pragma once
 // Internal to render/: a frame's shapes as triangles for the renderer's coverage shader
-// (render/renderer.cpp). Each vertex carries its shape's true boundary, so the fragment shader can
-// test every sample of a pixel against it (multisampling in the shader, render/renderer.hpp).
+// (render/shader_program.cpp). Each vertex carries its shape's true boundary, so the fragment
+// shader can test every sample of a pixel against it (multisampling in the shader,
+// render/renderer.hpp).
 // Every primitive's triangles reach kFringePx past its smoothed edges, so that each pixel with a
 // sample inside gets a fragment; the shader discards those no sample covers.
 
@@ -9,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "render/renderer.hpp"
+#include "render/theme.hpp"
 
 namespace particles::render {
 

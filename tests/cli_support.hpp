@@ -35,6 +35,19 @@ inline std::vector<std::string> lines(const std::string& text) {
   return out;
 }
 
+// A rod pendulum for 1 s at 10 fps, drawn at 160 × 120.
+inline const std::string kSwingScenario =
+    "name: swing\n"
+    "simulation: {integrator: rk4, dt: 0.01, duration: 1}\n"
+    "render: {size: [160, 120], fps: 10, view: {center: [0, -0.5], height: 3}}\n"
+    "particles:\n"
+    "  - {name: pivot, pos: [0, 0], fixed: true}\n"
+    "  - {name: bob, pos: [1, 0]}\n"
+    "forces:\n"
+    "  - {type: gravity}\n"
+    "constraints:\n"
+    "  - {type: rod, a: pivot, b: bob}\n";
+
 // A scratch directory per test case, removed afterwards.
 struct Scratch {
   fs::path dir;

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "core/forces/gravity_force.hpp"
+#include "core/system.hpp"
 #include "render/image.hpp"
 #include "render/renderer.hpp"
-#include "core/system.hpp"
 
 namespace particles::test {
 
@@ -53,6 +53,16 @@ inline System fallingParticles() {
   }
   b.emplaceForce<GravityForce>(Vec2(0, -1.0));
   return b.build();
+}
+
+// A small frame with 6 px particles: shapes far enough apart to check one by one, quick to draw.
+inline render::RenderOptions smallRenderOptions(int width = 320, int height = 240, int msaa = 4) {
+  render::RenderOptions o;
+  o.width = width;
+  o.height = height;
+  o.msaa = msaa;
+  o.particleRadius = {6.0, render::Length::Unit::pixels};
+  return o;
 }
 
 // Where camera and image size put a world point, in pixels from the top-left (x right, y down).

@@ -14,17 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kSwing =
-    "name: swing\n"
-    "simulation: {integrator: rk4, dt: 0.01, duration: 1}\n"
-    "render: {size: [160, 120], fps: 10, view: {center: [0, -0.5], height: 3}}\n"
-    "particles:\n"
-    "  - {name: pivot, pos: [0, 0], fixed: true}\n"
-    "  - {name: bob, pos: [1, 0]}\n"
-    "forces:\n"
-    "  - {type: gravity}\n"
-    "constraints:\n"
-    "  - {type: rod, a: pivot, b: bob}\n";
+const std::string& kSwing = kSwingScenario;
 
 // The only files left in the scratch directory besides the scenario.
 std::vector<std::string> outputs(const Scratch& s) {
@@ -134,23 +124,14 @@ TEST_CASE("cli render: an explosion is exit 1, names the step, and leaves no fil
 TEST_CASE("cli render: SIGINT and SIGTERM stop the render and remove the partial output") {
   Scratch s;
   // Long enough (600 frames at 640×480) to still be running when the signal arrives.
-  s.write("s.yaml",
-          "name: long\n"
-          "simulation: {integrator: rk4, dt: 0.01, duration: 20}\n"
-          "render: {size: [640, 480], fps: 30}\n"
-          "particles:\n"
-          "  - {name: pivot, pos: [0, 0], fixed: true}\n"
-          "  - {name: bob, pos: [1, 0]}\n"
-          "forces:\n"
-          "  - {type: gravity}\n"
-          "constraints:\n"
-          "  - {type: rod, a: pivot, b: bob}\n");
+  s.write("s.yaml", kSwing);
   const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
   for (const auto& [signal, code] : {std::pair{"INT", 130}, std::pair{"TERM", 143}}) {
     CAPTURE(signal);
     // Wait until the temporary output exists (the render is under way), then signal it.
     const std::string command = "cd '" + s.dir.string() + "' && ('" + exe.string() +
-                                "' render s.yaml -o long.mp4 --quiet 2> err.txt & pid=$!; "
+                                "' render s.yaml -o long.mp4 --quiet --duration 20 --size 640x480 --fps 30 "
+                                "2> err.txt & pid=$!; "
                                 "for i in $(seq 100); do ls | grep -q partial && break; sleep 0.05; done; "
                                 "kill -" + signal + " $pid; wait $pid; echo $? > code.txt)";
     REQUIRE(std::system(command.c_str()) == 0);

@@ -20,6 +20,7 @@
 #include "core/forces/mouse_spring_force.hpp"
 #include "render/errors.hpp"
 #include "render/renderer.hpp"
+#include "render/shader_program.hpp"
 #include "core/drawing.hpp"
 #include "core/system.hpp"
 #include "render_support.hpp"
@@ -48,12 +49,7 @@ class NoDisplay {
 };
 
 RenderOptions smallOptions(int msaa = 4) {
-  RenderOptions o;
-  o.width = 320;
-  o.height = 240;
-  o.msaa = msaa;
-  o.particleRadius = {6.0, Length::Unit::pixels};
-  return o;
+  return particles::test::smallRenderOptions(320, 240, msaa);
 }
 
 std::string rgbText(const std::uint8_t* p) {
@@ -226,7 +222,7 @@ TEST_CASE("every kind of shape is drawn in its theme colour") {
   CHECK(theme(ThemeName::light).background.r > 192);
 }
 
-TEST_CASE("multisampling smooths edges; msaa 1 gives hard edges") {
+TEST_CASE("multisampling smooths edges, and msaa 1 gives hard edges") {
   const System system = particles::test::fallingParticles();
   const Camera camera{Vec2(0, 0), 2.4};
   auto distinctColours = [&](int msaa) {
@@ -388,7 +384,7 @@ TEST_CASE("a shape drawn in convex pieces shows no seams between them") {
   Renderer renderer(o);
   const Image& image = renderer.render(frame, kPixelCamera);
   const Theme colors = theme(o.themeName);
-  // The arrow's outline, relative to its tip (render/renderer.cpp), and distances to it.
+  // The arrow's outline, relative to its tip (render/frame_mesh.cpp), and distances to it.
   const std::vector<Vec2> arrow = {Vec2(0, 0),   Vec2(0, 17),   Vec2(4.5, 13), Vec2(7.5, 20),
                                    Vec2(10, 19), Vec2(7, 12.2), Vec2(12, 12.2)};
   auto distanceToOutline = [&](Vec2 p) {

@@ -27,11 +27,7 @@ using particles::test::ScratchDir;
 namespace {
 
 RenderOptions outputRenderOptions() {
-  RenderOptions o;
-  o.width = 320;
-  o.height = 180;
-  o.particleRadius = {6.0, Length::Unit::pixels};
-  return o;
+  return particles::test::smallRenderOptions(320, 180);
 }
 
 const Camera camera{Vec2(0.1, -0.2), 2.4};

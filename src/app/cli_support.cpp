@@ -18,14 +18,9 @@ std::vector<scenario::Override> overridesOf(const CommonOptions& o) {
   return out;
 }
 
-std::optional<scenario::Scenario> loadScenario(const CommonOptions& o) {
-  try {
-    const auto overrides = overridesOf(o);
-    return scenario::loadScenarioFile(o.scenario, overrides);
-  } catch (const scenario::ScenarioError& e) {
-    fmt::print(stderr, "{}\n", e.what());
-    return std::nullopt;
-  }
+scenario::Scenario loadScenario(const CommonOptions& o) {
+  const auto overrides = overridesOf(o);
+  return scenario::loadScenarioFile(o.scenario, overrides);
 }
 
 std::string plural(size_t n, const char* one, const char* many) {

@@ -3,7 +3,6 @@
 // progress line on stderr.
 
 #include <chrono>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,8 +15,8 @@ namespace particles::app {
 // The overrides of the command line: --set first, in order, then the shorthands, which win.
 std::vector<scenario::Override> overridesOf(const CommonOptions& o);
 
-// Loads the scenario; on bad input prints the loader's message and returns nothing (exit 2).
-std::optional<scenario::Scenario> loadScenario(const CommonOptions& o);
+// Loads the scenario with the overrides. Throws scenario::ScenarioError for bad input.
+scenario::Scenario loadScenario(const CommonOptions& o);
 
 std::string plural(size_t n, const char* one, const char* many);
 // "625 particles, 0 rigid bodies, 1200 springs, …" for messages.

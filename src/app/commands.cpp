@@ -2,78 +2,63 @@
 
 #include <fmt/format.h>
 
-#include <cstdio>
-
 #include "app/cli_support.hpp"
 #include "app/csv_recorder.hpp"
-#include "output/output_file.hpp"
 #include "scenario/runner.hpp"
 #include "scenario/scenario.hpp"
 
 namespace particles::app {
 
 int checkCommand(const CommonOptions& common) {
-  const auto s = loadScenario(common);
-  if (!s) return kBadInput;
+  const scenario::Scenario s = loadScenario(common);
   if (!common.quiet) {
-    const auto& sim = s->simulation;
-    fmt::print("{}: ok: '{}' with {}; {}, dt {} s, duration {} s ({})\n", common.scenario, s->name, contents(*s),
+    const auto& sim = s.simulation;
+    fmt::print("{}: ok: '{}' with {}; {}, dt {} s, duration {} s ({})\n", common.scenario, s.name, contents(s),
                integratorName(sim.integrator), sim.dt, sim.duration, plural(size_t(sim.steps()), "step", "steps"));
   }
   return kOk;
 }
 
 int runCommand(const CommonOptions& common, const RunOptions& options) {
-  auto s = loadScenario(common);
-  if (!s) return kBadInput;
-  try {
-    auto recorder = CsvRecorder::open(s->system, options.stats, options.trace, options.traceOnly);
-    if (!recorder) return kBadInput;
-    scenario::RunObserver observer;
-    observer.onTick = [&](const System& system) { recorder->record(system); };
-    Progress progress(!common.quiet, "steps");
-    const System& system = s->system;
-    observer.onStep = [&](long step, long steps) { progress.update(step, steps, fmt::format("t = {:.3f} s", system.time())); };
+  scenario::Scenario s = loadScenario(common);
+  // A SimulationError leaves the CSVs uncommitted: they are removed as they go out of scope.
+  auto recorder = CsvRecorder::open(s.system, options.stats, options.trace, options.traceOnly);
+  scenario::RunObserver observer;
+  observer.onTick = [&](const System& system) { recorder->record(system); };
+  Progress progress(!common.quiet, "steps");
+  const System& system = s.system;
+  observer.onStep = [&](long step, long steps) {
+    progress.update(step, steps, fmt::format("t = {:.3f} s", system.time()));
+  };
 
-    scenario::RunSummary summary;
-    try {
-      summary = scenario::runScenario(*s, observer);
-    } catch (const SimulationError& e) {
-      progress.finish();
-      fmt::print(stderr, "{}: error: {}\n", common.scenario, e.what());
-      return kSimulationFailed;  // the outputs are removed as they go out of scope uncommitted
-    }
-    progress.finish();
-    recorder->commit();
+  const scenario::RunSummary summary = scenario::runScenario(s, observer);
+  progress.finish();
+  recorder->commit();
 
-    if (!common.quiet) {
-      const auto& sim = s->simulation;
-      const EnergyReport& e = summary.finalEnergy;
-      const double ratio = summary.wallSeconds > 0.0 ? summary.simulatedTime / summary.wallSeconds : 0.0;
-      fmt::print("scenario          {} ({})\n", s->name, common.scenario);
-      fmt::print("particles         {}\n", system.layout().numParticles);
-      fmt::print("rigid bodies      {}\n", system.layout().numBodies);
-      fmt::print("springs           {}\n", scenario::springCount(system));
-      fmt::print("constraints       {}\n", system.constraints().size());
-      fmt::print("colliders         {}\n", system.colliders().size());
-      fmt::print("integrator        {}\n", integratorName(sim.integrator));
-      fmt::print("dt                {} s\n", sim.dt);
-      fmt::print("steps             {}\n", summary.steps);
-      fmt::print("simulated time    {:.6g} s\n", summary.simulatedTime);
-      fmt::print("wall time         {:.3f} s\n", summary.wallSeconds);
-      fmt::print("sim/wall ratio    {:.3g}\n", ratio);
-      fmt::print("final energy      {:.6g} J (kinetic {:.6g} J, potential {:.6g} J; initial total {:.6g} J)\n",
-                 e.total(), e.kinetic, e.potential, summary.initialEnergy.total());
-      fmt::print("constraint error  {:.3g} m (worst over the run)\n", summary.worstConstraintError);
-      fmt::print("penetration       {:.3g} m (worst over the run)\n", summary.worstPenetration);
-      if (recorder->writesStats()) fmt::print("stats             {}\n", options.stats);
-      if (recorder->writesTrace()) fmt::print("trace             {}\n", options.trace);
-    }
-    return kOk;
-  } catch (const output::OutputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kOutputFailed;
+  if (!common.quiet) {
+    const auto& sim = s.simulation;
+    const EnergyReport& e = summary.finalEnergy;
+    const double ratio = summary.wallSeconds > 0.0 ? summary.simulatedTime / summary.wallSeconds : 0.0;
+    fmt::print("scenario          {} ({})\n", s.name, common.scenario);
+    fmt::print("particles         {}\n", system.layout().numParticles);
+    fmt::print("rigid bodies      {}\n", system.layout().numBodies);
+    fmt::print("springs           {}\n", scenario::springCount(system));
+    fmt::print("constraints       {}\n", system.constraints().size());
+    fmt::print("colliders         {}\n", system.colliders().size());
+    fmt::print("integrator        {}\n", integratorName(sim.integrator));
+    fmt::print("dt                {} s\n", sim.dt);
+    fmt::print("steps             {}\n", summary.steps);
+    fmt::print("simulated time    {:.6g} s\n", summary.simulatedTime);
+    fmt::print("wall time         {:.3f} s\n", summary.wallSeconds);
+    fmt::print("sim/wall ratio    {:.3g}\n", ratio);
+    fmt::print("final energy      {:.6g} J (kinetic {:.6g} J, potential {:.6g} J; initial total {:.6g} J)\n", e.total(),
+               e.kinetic, e.potential, summary.initialEnergy.total());
+    fmt::print("constraint error  {:.3g} m (worst over the run)\n", summary.worstConstraintError);
+    fmt::print("penetration       {:.3g} m (worst over the run)\n", summary.worstPenetration);
+    if (recorder->writesStats()) fmt::print("stats             {}\n", options.stats);
+    if (recorder->writesTrace()) fmt::print("trace             {}\n", options.trace);
   }
+  return kOk;
 }
 
 }  // namespace particles::app

@@ -1,14 +1,15 @@
 #pragma once
-// The subcommands of the program (DESIGN §12). Each returns the process exit code:
-// 0 success, 1 simulation failure (explosion), 2 bad input or usage, 3 output failure.
+// The subcommands of the program (DESIGN §12). Each returns the process exit code of an outcome
+// that is not an error (0 on success) and throws for one; main() runs them through
+// runReportingErrors, which prints the error and maps it to its code (exit_codes.hpp).
 
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace particles::app {
+#include "app/exit_codes.hpp"
 
-enum ExitCode { kOk = 0, kSimulationFailed = 1, kBadInput = 2, kOutputFailed = 3 };
+namespace particles::app {
 
 // Options every scenario-reading subcommand takes.
 struct CommonOptions {

@@ -45,21 +45,16 @@ int compareCommand(const CompareOptions& o) {
   try {
     expected = render::readPng(o.expected);
     actual = render::readPng(o.actual);
-  } catch (const render::OutputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kBadInput;
+  } catch (const render::OutputError& e) {  // here an input that cannot be read: bad input
+    throw InputError(e.what());
   }
   const std::string mismatch = render::sizeMismatch(expected, actual);
-  if (!mismatch.empty()) {
-    fmt::print(stderr, "error: {} and {}: {}\n", o.expected, o.actual, mismatch);
-    return kBadInput;
-  }
+  if (!mismatch.empty()) throw InputError(fmt::format("{} and {}: {}", o.expected, o.actual, mismatch));
   render::ImageComparison c;
   try {
     c = render::compareImages(expected, actual, {o.threshold, o.maxShare});
   } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kBadInput;
+    throw InputError(e.what());
   }
 
   if (!o.quiet || !c.passed) {
@@ -78,8 +73,7 @@ int compareCommand(const CompareOptions& o) {
     try {
       render::writePng(o.diff, render::diffImage(expected, actual, o.threshold));  // temporary name + rename
     } catch (const render::OutputError& e) {
-      fmt::print(stderr, "error: --diff: {}\n", e.what());
-      return kOutputFailed;
+      throw render::OutputError(std::string("--diff: ") + e.what());
     }
     if (!o.quiet || !c.passed) fmt::print("  diff:    {}\n", o.diff);
   }

@@ -3,9 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <iterator>
 
+#include "app/exit_codes.hpp"
 #include "scenario/runner.hpp"
 #include "scenario/scenario.hpp"
 
@@ -14,8 +14,7 @@ namespace particles::app {
 std::unique_ptr<CsvRecorder> CsvRecorder::open(const System& system, const std::string& statsPath,
                                              const std::string& tracePath, const std::vector<std::string>& traceOnly) {
   if (!statsPath.empty() && statsPath == tracePath) {
-    fmt::print(stderr, "error: --stats and --trace name the same file '{}'\n", statsPath);
-    return nullptr;
+    throw InputError(fmt::format("--stats and --trace name the same file '{}'", statsPath));
   }
   std::unique_ptr<CsvRecorder> owner(new CsvRecorder());
   CsvRecorder& r = *owner;
@@ -28,11 +27,10 @@ std::unique_ptr<CsvRecorder> CsvRecorder::open(const System& system, const std::
   for (const std::string& name : traceOnly) {
     const auto it = std::find(all.begin(), all.end(), name);
     if (it == all.end()) {
-      fmt::print(stderr,
-                 "error: --trace-only: nothing in the scenario is named '{}' (names are spelled as in the "
-                 "trace: bob, cloth[3][4], link0, #7)\n",
-                 name);
-      return nullptr;
+      throw InputError(
+          fmt::format("--trace-only: nothing in the scenario is named '{}' (names are spelled as in the trace: bob, "
+                      "cloth[3][4], link0, #7)",
+                      name));
     }
     r.points_.push_back(int(it - all.begin()));
   }

@@ -15,9 +15,8 @@ namespace particles::app {
 
 class CsvRecorder {
  public:
-  // Returns nothing, after printing why, when the options are inconsistent (exit 2): the same
-  // file for both, or a --trace-only name nothing in the system has. Throws OutputError when a
-  // file cannot be created.
+  // Throws InputError when the options are inconsistent: the same file for both, or a
+  // --trace-only name nothing in the system has; OutputError when a file cannot be created.
   static std::unique_ptr<CsvRecorder> open(const System& system, const std::string& statsPath,
                                          const std::string& tracePath, const std::vector<std::string>& traceOnly);
 

@@ -1,10 +1,9 @@
 // The `particles` program (DESIGN §12): command-line parsing with CLI11; the work is in commands.cpp.
 #include <CLI/CLI.hpp>
-#include <cstdio>
-#include <exception>
 
 #include "app/commands.hpp"
 #include "app/compare_command.hpp"
+#include "app/exit_codes.hpp"
 #include "render/renderer.hpp"
 
 namespace {
@@ -165,7 +164,7 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);  // prints help, the version or the error
     return code == 0 ? particles::app::kOk : particles::app::kBadInput;
   }
-  try {
+  return particles::app::runReportingErrors({.scenario = common.scenario}, [&] {
     if (check->parsed()) return particles::app::checkCommand(common);
     if (schemaCmd->parsed()) return particles::app::schemaCommand(schema);
     if (stabilityCmd->parsed()) return particles::app::stabilityCommand(common, stability);
@@ -173,9 +172,5 @@ int main(int argc, char** argv) {
     if (compareCmd->parsed()) return particles::app::compareCommand(compare);
     if (renderCmd->parsed()) return particles::app::renderCommand(common, render);
     return particles::app::runCommand(common, run);
-  } catch (const std::exception& e) {
-    // Every expected failure is handled in the commands; this is a bug, reported rather than aborted.
-    std::fprintf(stderr, "particles: internal error: %s\n", e.what());
-    return particles::app::kSimulationFailed;
-  }
+  });
 }

@@ -2,28 +2,26 @@
 //   OUT.mp4   H.264 video, frames i = 0 … round(duration·fps) − 1 at t = i / fps
 //   OUT/      the same frames as frame_000000.png …
 //   OUT.png   one frame at --at T, for report figures
-// A frame shows the state after the last time step at or before its time (to rounding), so with
-// a dt that divides 1/fps every frame is exact. Encoding runs on the writer's own thread; outputs
-// appear only when complete, and SIGINT/SIGTERM or any failure removes them (exit 128 + signal,
-// or the codes of commands.hpp).
+// The work is render::renderSimulation (render/render_simulation.hpp); this file reads the options,
+// adds what only the program has (the --stats/--trace CSVs, the --hud text, progress, stopping on
+// SIGINT/SIGTERM) as its hooks and reports the outcome. Outputs appear only when complete, and a
+// signal or any failure removes them (exit 128 + signal, or the codes of exit_codes.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <optional>
 
 #include "app/cli_support.hpp"
+#include "app/csv_recorder.hpp"
+#include "core/solver.hpp"
+#include "core/system.hpp"
 #include "plot/errors.hpp"
 #include "plot/text_overlay.hpp"
-#include "app/csv_recorder.hpp"
-#include "render/errors.hpp"
 #include "render/frame_writer.hpp"
-#include "render/png_io.hpp"
-#include "render/renderer.hpp"
-#include "core/drawing.hpp"
-#include "core/system.hpp"
+#include "render/render_options.hpp"
+#include "render/render_simulation.hpp"
 #include "scenario/runner.hpp"
 
 namespace particles::app {
@@ -47,38 +45,21 @@ std::optional<render::Length> parseRadius(const std::string& text) {
   return std::nullopt;
 }
 
-// The frame for the current state, with the --hud text drawn over it when asked for.
-class FramePainter {
- public:
-  FramePainter(render::Renderer& renderer, const render::Camera& camera, const scenario::Scenario& s, bool hud,
-               bool darkTheme)
-      : renderer_(renderer), camera_(camera), scenario_(s), hud_(hud) {
-    style_.darkBackground = darkTheme;
-    style_.sizePx = std::clamp(renderer.options().height / 40.0, 10.0, 28.0);
-  }
-  const render::Image& paint(const System& system) {
-    const render::Image& image = renderer_.render(system.draw(), camera_);
-    if (!hud_) return image;
-    framed_ = image;
+// The --hud text: time, integrator, dt and energy, in the top-left corner of every frame.
+auto hudOverlay(const scenario::Scenario& s, const render::RenderOptions& look) {
+  plot::OverlayStyle style;
+  style.darkBackground = look.themeName == render::ThemeName::dark;
+  style.sizePx = std::clamp(look.height / 40.0, 10.0, 28.0);
+  return [&sim = s.simulation, style](render::Image& frame, const System& system) {
     const EnergyReport e = system.energy();
-    const auto& sim = scenario_.simulation;
-    plot::drawTextOverlay(framed_.rgba.data(), framed_.width, framed_.height,
-                          {fmt::format("t = {:.3f} s", system.time()),
-                           fmt::format("{}, dt = {} s", integratorName(sim.integrator), sim.dt),
-                           fmt::format("E = {:.4g} J (kinetic {:.3g}, potential {:.3g})", e.total(), e.kinetic,
-                                       e.potential)},
-                          style_);
-    return framed_;
-  }
-
- private:
-  render::Renderer& renderer_;
-  render::Camera camera_;
-  const scenario::Scenario& scenario_;
-  bool hud_;
-  plot::OverlayStyle style_;
-  render::Image framed_;
-};
+    plot::drawTextOverlay(
+        frame.rgba.data(), frame.width, frame.height,
+        {fmt::format("t = {:.3f} s", system.time()),
+         fmt::format("{}, dt = {} s", integratorName(sim.integrator), sim.dt),
+         fmt::format("E = {:.4g} J (kinetic {:.3g}, potential {:.3g})", e.total(), e.kinetic, e.potential)},
+        style);
+  };
+}
 
 struct SignalGuard {
   SignalGuard() {
@@ -94,23 +75,17 @@ struct SignalGuard {
   void (*previousTerm)(int);
 };
 
-}  // namespace
-
-int renderCommand(const CommonOptions& common, const RenderCommandOptions& options) {
-  auto s = loadScenario(common);
-  if (!s) return kBadInput;
-
-  // Settings: the scenario's render block, then the command line.
+// The look of the frames: the scenario's render block, then the command line. Throws InputError.
+render::RenderOptions lookOf(const scenario::Scenario& s, const RenderCommandOptions& options) {
   render::RenderOptions look;
-  look.width = s->render.width;
-  look.height = s->render.height;
+  look.width = s.render.width;
+  look.height = s.render.height;
   if (!options.size.empty()) {
     int w = 0, h = 0;
     char x = 0, extra = 0;
     if (std::sscanf(options.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
         h <= 0) {
-      fmt::print(stderr, "error: --size: expected WIDTHxHEIGHT in pixels, e.g. 1280x720, not '{}'\n", options.size);
-      return kBadInput;
+      throw InputError(fmt::format("--size: expected WIDTHxHEIGHT in pixels, e.g. 1280x720, not '{}'", options.size));
     }
     look.width = w;
     look.height = h;
@@ -121,141 +96,130 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   } else if (options.theme == "light") {
     look.themeName = render::ThemeName::light;
   } else {
-    fmt::print(stderr, "error: --theme: expected dark or light, not '{}'\n", options.theme);
-    return kBadInput;
+    throw InputError(fmt::format("--theme: expected dark or light, not '{}'", options.theme));
   }
   if (!options.particleRadius.empty()) {
     const auto radius = parseRadius(options.particleRadius);
     if (!radius) {
-      fmt::print(stderr, "error: --particle-radius: expected a positive length like 4px or 0.02m, not '{}'\n",
-                 options.particleRadius);
-      return kBadInput;
+      throw InputError(fmt::format("--particle-radius: expected a positive length like 4px or 0.02m, not '{}'",
+                                   options.particleRadius));
     }
     look.particleRadius = *radius;
   }
-  const double fpsValue = options.fps > 0 ? options.fps : s->render.fps;
+  return look;
+}
+
+// Options the renderer or the writer refuse (a size out of range, an odd size for MP4, an unknown
+// preset) are bad input.
+template <class F>
+auto refusedOptionsAreInputErrors(F&& f) {
+  try {
+    return f();
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+}
+
+}  // namespace
+
+int renderCommand(const CommonOptions& common, const RenderCommandOptions& options) {
+  scenario::Scenario s = loadScenario(common);
+  const render::RenderOptions look = lookOf(s, options);
+  const double fpsValue = options.fps > 0 ? options.fps : s.render.fps;
   const int fps = int(std::lround(fpsValue));
   if (std::abs(fpsValue - fps) > 1e-9 || fps <= 0) {
-    fmt::print(stderr, "error: render needs a whole, positive number of frames per second, not {}\n", fpsValue);
-    return kBadInput;
+    throw InputError(fmt::format("render needs a whole, positive number of frames per second, not {}", fpsValue));
   }
-  const render::Camera camera{s->render.viewCenter, s->render.viewHeight};
 
   render::OutputKind kind;
   try {
     kind = render::outputKind(options.output);
   } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "error: -o {}: {}\n", options.output, e.what());
-    return kBadInput;
+    throw InputError(fmt::format("-o {}: {}", options.output, e.what()));
   }
   if (kind == render::OutputKind::png && !options.at) {
-    fmt::print(stderr, "error: -o {}: a single PNG needs --at T, the simulated time to draw (or use -o DIR/ for "
-                       "every frame)\n", options.output);
-    return kBadInput;
+    throw InputError(
+        fmt::format("-o {}: a single PNG needs --at T, the simulated time to draw (or use -o DIR/ for every frame)",
+                    options.output));
   }
-  if (kind != render::OutputKind::png && options.at) {
-    fmt::print(stderr, "error: --at draws one frame: give -o FILE.png\n");
-    return kBadInput;
-  }
-  if (options.at && (*options.at < 0 || *options.at > s->simulation.duration + 1e-9)) {
-    fmt::print(stderr, "error: --at {}: outside the simulation, 0 … {} s\n", *options.at, s->simulation.duration);
-    return kBadInput;
+  if (kind != render::OutputKind::png && options.at) throw InputError("--at draws one frame: give -o FILE.png");
+  if (options.at && (*options.at < 0 || *options.at > s.simulation.duration + 1e-9)) {
+    throw InputError(fmt::format("--at {}: outside the simulation, 0 … {} s", *options.at, s.simulation.duration));
   }
   if (options.pngLevel < 0 || options.pngLevel > 9) {
-    fmt::print(stderr, "error: --png-level: 0 (fastest) to 9 (smallest), not {}\n", options.pngLevel);
-    return kBadInput;
+    throw InputError(fmt::format("--png-level: 0 (fastest) to 9 (smallest), not {}", options.pngLevel));
   }
   render::setLibavVerbose(options.verbose);
+  refusedOptionsAreInputErrors([&] { render::validate(look); });
+  const auto recorder = CsvRecorder::open(s.system, options.stats, options.trace, options.traceOnly);
 
-  try {
-    std::optional<render::Renderer> renderer;
-    try {
-      renderer.emplace(look);
-    } catch (const std::invalid_argument& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      return kBadInput;
-    }
-    auto recorder = CsvRecorder::open(s->system, options.stats, options.trace, options.traceOnly);
-    if (!recorder) return kBadInput;
-    Stepper stepper(s->system, s->simulation.integrator, s->simulation.dt);
-    FramePainter painter(*renderer, camera, *s, options.hud, look.themeName == render::ThemeName::dark);
-    const auto start = std::chrono::steady_clock::now();
-
-    if (kind == render::OutputKind::png) {
+  render::RenderJob job;
+  job.output = options.output;
+  job.at = options.at;
+  job.duration = s.simulation.duration;
+  job.fps = fps;
+  job.camera = {s.render.viewCenter, s.render.viewHeight};
+  job.look = look;
+  job.video.crf = options.crf;
+  job.video.preset = options.preset;
+  job.png.compressionLevel = options.pngLevel;
+  long framesReached = 0;  // frames whose time the simulation reached
+  render::RenderHooks hooks;
+  hooks.onFrame = [&](const System& system) {
+    recorder->record(system);
+    ++framesReached;
+  };
+  if (options.hud) {
+    hooks.decorate = [hud = hudOverlay(s, look)](render::Image& frame, const System& system) {
       try {
-        stepper.advanceTo(*options.at);
-      } catch (const SimulationError& e) {
-        fmt::print(stderr, "{}: error: {}\n", common.scenario, e.what());
-        return kSimulationFailed;
+        hud(frame, system);
+      } catch (const plot::FigureError& e) {
+        throw plot::FigureError(std::string("--hud: ") + e.what());
       }
-      recorder->record(s->system);
-      render::writePng(options.output, painter.paint(s->system), render::PngOptions{options.pngLevel});
-      recorder->commit();
-      if (!common.quiet) {
-        fmt::print("{}: frame at t = {:.6g} s ({}×{}) → {}\n", s->name, s->system.time(), look.width, look.height,
-                   options.output);
-      }
-      return kOk;
-    }
+    };
+  }
+  const auto run = [&] {
+    return render::renderSimulation(s.system, s.simulation.integrator, s.simulation.dt, job, hooks);
+  };
 
-    render::FrameWriterOptions out;
-    out.width = look.width;
-    out.height = look.height;
-    out.video.fps = fps;
-    out.video.crf = options.crf;
-    out.video.preset = options.preset;
-    out.png.compressionLevel = options.pngLevel;
-    std::unique_ptr<render::FrameWriter> writer;
-    try {
-      writer = render::openFrameWriter(options.output, out);
-    } catch (const std::invalid_argument& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      return kBadInput;
-    }
-
-    const long frames = render::frameCount(s->simulation.duration, fps);
-    Progress progress(!common.quiet, "frames");
-    SignalGuard signals;
-    for (long i = 0; i < frames; ++i) {
-      if (stopSignal != 0) {
-        progress.finish();
-        writer->abort();
-        fmt::print(stderr, "{}: interrupted at frame {} of {}; no output written\n", common.scenario, i, frames);
-        return 128 + int(stopSignal);
-      }
-      try {
-        stepper.advanceTo(double(i) / fps);
-      } catch (const SimulationError& e) {
-        progress.finish();
-        writer->abort();
-        fmt::print(stderr, "{}: error: {} (at frame {} of {}; no output written)\n", common.scenario, e.what(), i,
-                   frames);
-        return kSimulationFailed;
-      }
-      recorder->record(s->system);
-      writer->write(painter.paint(s->system));
-      progress.update(i + 1, frames, fmt::format("t = {:.2f} s", s->system.time()));
-    }
-    writer->finish();
+  if (kind == render::OutputKind::png) {
+    run();
     recorder->commit();
-    progress.finish();
     if (!common.quiet) {
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      fmt::print("{}: {} frames ({}×{}, {} fps, {:.6g} s) in {:.2f} s, {:.1f} frames/s, {} steps of {} s ({}) → {}\n",
-                 s->name, frames, look.width, look.height, fps, double(frames) / fps, wall, double(frames) / wall,
-                 stepper.steps(), s->simulation.dt, integratorName(s->simulation.integrator), options.output);
+      fmt::print("{}: frame at t = {:.6g} s ({}×{}) → {}\n", s.name, s.system.time(), look.width, look.height,
+                 options.output);
     }
     return kOk;
-  } catch (const render::RenderError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kOutputFailed;
-  } catch (const output::OutputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kOutputFailed;
-  } catch (const plot::FigureError& e) {
-    fmt::print(stderr, "error: --hud: {}\n", e.what());
-    return kOutputFailed;
   }
+
+  const long frames = render::frameCount(s.simulation.duration, fps);
+  Progress progress(!common.quiet, "frames");
+  hooks.progress = [&](long done, long total, const System& system) {
+    progress.update(done, total, fmt::format("t = {:.2f} s", system.time()));
+  };
+  SignalGuard signals;
+  hooks.shouldStop = [] { return stopSignal != 0; };
+  render::RenderSummary summary;
+  try {
+    summary = refusedOptionsAreInputErrors(run);
+  } catch (const SimulationError& e) {
+    throw SimulationFailure(fmt::format("{} (at frame {} of {}; no output written)", e.what(), framesReached, frames));
+  }
+  if (summary.stopped) {
+    progress.finish();
+    fmt::print(stderr, "{}: interrupted at frame {} of {}; no output written\n", common.scenario, summary.frames,
+               frames);
+    return 128 + int(stopSignal);
+  }
+  recorder->commit();
+  progress.finish();
+  if (!common.quiet) {
+    const double wall = summary.wallSeconds;
+    fmt::print("{}: {} frames ({}×{}, {} fps, {:.6g} s) in {:.2f} s, {:.1f} frames/s, {} steps of {} s ({}) → {}\n",
+               s.name, frames, look.width, look.height, fps, double(frames) / fps, wall, double(frames) / wall,
+               summary.steps, s.simulation.dt, integratorName(s.simulation.integrator), options.output);
+  }
+  return kOk;
 }
 
 }  // namespace particles::app

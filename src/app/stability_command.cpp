@@ -6,22 +6,20 @@
 #include <sstream>
 
 #include "app/cli_support.hpp"
-#include "output/output_file.hpp"
-#include "plot/errors.hpp"
-#include "plot/stability_figure.hpp"
 #include "core/stability.hpp"
+#include "output/output_file.hpp"
+#include "plot/stability_figure.hpp"
 
 namespace particles::app {
 
 namespace {
 
-std::optional<std::vector<Integrator>> parseIntegrators(const std::vector<std::string>& names) {
+std::vector<Integrator> parseIntegrators(const std::vector<std::string>& names) {
   std::vector<Integrator> out;
   for (const std::string& name : names) {
     const auto i = integratorFromName(name);
     if (!i) {
-      fmt::print(stderr, "error: --integrators: unknown integrator '{}' (expected euler, midpoint or rk4)\n", name);
-      return std::nullopt;
+      throw InputError(fmt::format("--integrators: unknown integrator '{}' (expected euler, midpoint or rk4)", name));
     }
     if (std::find(out.begin(), out.end(), *i) == out.end()) out.push_back(*i);
   }
@@ -44,17 +42,14 @@ std::string dtText(double dt) { return dt > 0.0 ? fmt::format("{:.2g} s", dt) : 
 }  // namespace
 
 int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& options) {
-  auto s = loadScenario(common);
-  if (!s) return kBadInput;
-  const auto integrators = parseIntegrators(options.integrators);
-  if (!integrators) return kBadInput;
-  const double minDt = options.minDt > 0 ? options.minDt : s->simulation.dt / 1000.0;
+  const scenario::Scenario s = loadScenario(common);
+  const std::vector<Integrator> integrators = parseIntegrators(options.integrators);
+  const double minDt = options.minDt > 0 ? options.minDt : s.simulation.dt / 1000.0;
   if (options.energyTolerance <= 0 || options.stretchFactor <= 1 || options.shakeThreshold <= 0 ||
       options.shakeThreshold > 1 || options.minDt < 0 || options.maxDt <= minDt) {
-    fmt::print(stderr,
-               "error: need --energy-tolerance > 0, --stretch-factor > 1, 0 < --shake-threshold ≤ 1 and "
-               "0 < --min-dt < --max-dt\n");
-    return kBadInput;
+    throw InputError(
+        "need --energy-tolerance > 0, --stretch-factor > 1, 0 < --shake-threshold ≤ 1 and 0 < --min-dt < "
+        "--max-dt");
   }
 
   // Each trial run builds a fresh system from the same text and overrides.
@@ -72,23 +67,22 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
   study.criteria.energyTolerance = options.energyTolerance;
   study.stretchFactor = options.stretchFactor;
   study.criteria.shakeThreshold = options.shakeThreshold;
-  study.startDt = s->simulation.dt;
-  study.referenceDt = s->simulation.dt / 4.0;
+  study.startDt = s.simulation.dt;
+  study.referenceDt = s.simulation.dt / 4.0;
   study.minDt = minDt;
   study.maxDt = options.maxDt;
   study.threads = options.threads;
 
   if (!common.quiet) {
-    fmt::print(stderr, "{}: searching the largest stable dt of {} over {} s with {} (this runs the scenario many times)\n",
-               common.scenario, plural(integrators->size(), "integrator", "integrators"), s->simulation.duration,
-               contents(*s));
+    fmt::print(
+        stderr, "{}: searching the largest stable dt of {} over {} s with {} (this runs the scenario many times)\n",
+        common.scenario, plural(integrators.size(), "integrator", "integrators"), s.simulation.duration, contents(s));
   }
   StabilityStudy found;
   try {
-    found = findStabilityLimits(make, s->simulation.duration, *integrators, study);
-  } catch (const std::runtime_error& e) {
-    fmt::print(stderr, "{}: error: {}\n", common.scenario, e.what());
-    return kSimulationFailed;
+    found = findStabilityLimits(make, s.simulation.duration, integrators, study);
+  } catch (const std::runtime_error& e) {  // an explosion, or a reference run that is itself unstable
+    throw SimulationFailure(e.what());
   }
   const std::vector<StabilityResult>& results = found.results;
 
@@ -115,27 +109,19 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
     }
   }
 
-  try {
-    if (!options.csv.empty()) {
-      output::OutputFile csv(options.csv);
-      csv.write("integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler\n");
-      for (const auto& r : rows) {
-        csv.write(fmt::format("{},{},{},{},{},{}\n", r.integrator, r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
-                              r.evalsPerSimSecond, r.speedVsEuler));
-      }
-      csv.commit();
+  if (!options.csv.empty()) {
+    output::OutputFile csv(options.csv);
+    csv.write("integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler\n");
+    for (const auto& r : rows) {
+      csv.write(fmt::format("{},{},{},{},{},{}\n", r.integrator, r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
+                            r.evalsPerSimSecond, r.speedVsEuler));
     }
-    if (!options.plot.empty()) {
-      plot::Figure figure = plot::stabilityFigure(rows);
-      figure.title = fmt::format("Largest time step per integrator: {}", s->name);
-      plot::writeFigure(figure, options.plot);
-    }
-  } catch (const output::OutputError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kOutputFailed;
-  } catch (const plot::FigureError& e) {
-    fmt::print(stderr, "error: {}\n", e.what());
-    return kOutputFailed;
+    csv.commit();
+  }
+  if (!options.plot.empty()) {
+    plot::Figure figure = plot::stabilityFigure(rows);
+    figure.title = fmt::format("Largest time step per integrator: {}", s.name);
+    plot::writeFigure(figure, options.plot);
   }
   return kOk;
 }

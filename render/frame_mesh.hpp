@@ -1,0 +1,25 @@
+#pragma once
+// Internal to render/: a Drawing as the renderer's triangles (render/shape_mesh.hpp), seen through
+// a Camera, in pixel coordinates (x right, y down from the top-left corner), with the widths of
+// RenderOptions and the colours of a Theme. No GL: the renderer hands the mesh to the shader
+// (render/renderer.cpp); tests check it by numbers.
+//
+// Shapes are added back to front, in the order of core/drawing.hpp: obstacles (half-planes, then
+// disks) → guides (circles, then lines) → springs → rods → bodies → particles → cursors.
+
+#include "core/drawing.hpp"
+#include "render/render_options.hpp"
+#include "render/shape_mesh.hpp"
+#include "render/theme.hpp"
+
+namespace particles::render {
+
+// How far (pixels) guide lines reach past every edge of the image, so that their ends never show.
+inline constexpr float kGuideOverhangPx = 8.0f;
+
+// Replaces what `mesh` holds with the frame's shapes (its storage is reused from frame to frame).
+// Throws std::invalid_argument when the camera's height is not positive.
+void buildFrameMesh(const Drawing& frame, const Camera& camera, const RenderOptions& options, const Theme& colors,
+                    ShapeMesh& mesh);
+
+}  // namespace particles::render

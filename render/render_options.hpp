@@ -1,0 +1,48 @@
+#pragma once
+// What a frame looks like: the camera (which part of the world) and the options (size,
+// anti-aliasing, theme, radii and line widths). Shared by the renderer (render/renderer.hpp) and
+// the frame's mesh (render/frame_mesh.hpp).
+
+#include <array>
+
+#include "core/state.hpp"
+#include "render/theme.hpp"
+
+namespace particles::render {
+
+// The world-to-pixel mapping: `center` appears at the centre of the image and `height` world
+// units span the image vertically; pixels are square, world y points up.
+struct Camera {
+  Vec2 center = Vec2::Zero();
+  double height = 3.0;  // world units shown vertically, > 0
+};
+
+struct Length {
+  enum class Unit { pixels, world };
+  double value;
+  Unit unit;
+};
+
+// The anti-aliasing sample counts there is a pattern for (RenderOptions::msaa, samplePattern in
+// render/shader_program.hpp).
+inline constexpr std::array<int, 5> kSampleCounts = {1, 2, 4, 8, 16};
+
+struct RenderOptions {
+  int width = 1280;  // pixels
+  int height = 720;
+  int msaa = 4;  // samples per pixel: one of kSampleCounts (1 is off)
+  ThemeName themeName = ThemeName::dark;
+  Length particleRadius{4.0, Length::Unit::pixels};
+  double springWidthPx = 1.5;
+  double rodWidthPx = 3.5;
+  double guideWidthPx = 1.5;    // wires and rails
+  double outlineWidthPx = 1.5;  // bodies, colliders, cursor
+  // |strain| at which a spring reaches the full compressed / stretched colour; in between the
+  // colour is interpolated from the at-rest colour.
+  double strainForFullColor = 0.2;
+};
+
+// Throws std::invalid_argument when a size, width or sample count is out of range.
+void validate(const RenderOptions& options);
+
+}  // namespace particles::render

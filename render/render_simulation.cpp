@@ -1,0 +1,99 @@
+#include "render/render_simulation.hpp"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "core/solver.hpp"
+#include "render/renderer.hpp"
+
+namespace particles::render {
+
+namespace {
+
+// The renderer's frame for the current state, drawn over by the decorate hook if there is one.
+class FramePainter {
+ public:
+  FramePainter(const RenderJob& job, const RenderHooks& hooks)
+      : renderer_(job.look), camera_(job.camera), decorate_(hooks.decorate) {}
+  const Image& paint(const System& system) {
+    const Image& image = renderer_.render(system.draw(), camera_);
+    if (!decorate_) return image;
+    decorated_ = image;  // the renderer's image is reused for the next frame
+    decorate_(decorated_, system);
+    return decorated_;
+  }
+
+ private:
+  Renderer renderer_;
+  Camera camera_;
+  const std::function<void(Image&, const System&)>& decorate_;
+  Image decorated_;
+};
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+RenderSummary renderSimulation(System& system, Integrator integrator, double dt, const RenderJob& job,
+                               const RenderHooks& hooks) {
+  if (!(dt > 0.0)) throw std::invalid_argument("time step must be positive");
+  const OutputKind kind = outputKind(job.output);
+  if (kind == OutputKind::png && !job.at) {
+    throw std::invalid_argument("'" + job.output.string() + "' is a single PNG: give the time to draw (at)");
+  }
+  if (kind != OutputKind::png && job.at) {
+    throw std::invalid_argument("a time to draw (at) is for one frame to a file.png, not '" + job.output.string() +
+                                "'");
+  }
+
+  FramePainter painter(job, hooks);
+  Stepper stepper(system, integrator, dt);
+  auto reached = [&](double t) {
+    // A time not after the system's own (or NaN) draws the state as it is, without stepping.
+    if (t > system.time()) stepper.advanceTo(t);
+    if (hooks.onFrame) hooks.onFrame(system);
+  };
+  const auto start = std::chrono::steady_clock::now();
+  RenderSummary summary;
+
+  if (kind == OutputKind::png) {
+    reached(*job.at);
+    writePng(job.output, painter.paint(system), job.png);
+    summary.frames = 1;
+    summary.steps = stepper.steps();
+    summary.wallSeconds = secondsSince(start);
+    return summary;
+  }
+
+  FrameWriterOptions out;
+  out.width = job.look.width;
+  out.height = job.look.height;
+  out.video = job.video;
+  out.video.fps = job.fps;
+  out.png = job.png;
+  const long frames = frameCount(job.duration, job.fps);
+  // Removes everything it wrote if an exception leaves this function before finish().
+  const std::unique_ptr<FrameWriter> writer = openFrameWriter(job.output, out);
+  for (long i = 0; i < frames; ++i) {
+    if (hooks.shouldStop && hooks.shouldStop()) {
+      writer->abort();
+      summary.frames = i;
+      summary.stopped = true;
+      break;
+    }
+    reached(double(i) / job.fps);
+    writer->write(painter.paint(system));
+    if (hooks.progress) hooks.progress(i + 1, frames, system);
+  }
+  if (!summary.stopped) {
+    writer->finish();
+    summary.frames = frames;
+  }
+  summary.steps = stepper.steps();
+  summary.wallSeconds = secondsSince(start);
+  return summary;
+}
+
+}  // namespace particles::render

@@ -1,0 +1,68 @@
+#pragma once
+// `particles render` as a library call: steps a simulation, draws it at each frame's time and
+// writes the frames (render/frame_writer.hpp, render/png_io.hpp):
+//   file.mp4   H.264 video, frames i = 0 … frameCount(duration, fps) − 1 at t = i / fps
+//   dir/       the same frames as frame_000000.png …
+//   file.png   one frame at `at` seconds
+// A frame shows the state after the last time step at or before its time (to rounding), so with
+// a dt that divides 1/fps every frame is exact.
+//
+// Nothing here prints, reads scenario files or knows the command line: the program passes hooks
+// for what it adds (CSV rows per frame, a text overlay, progress, stopping on a signal). Outputs
+// appear only when complete; a failure or a stop leaves nothing (an existing output is untouched).
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+
+#include "core/integrators.hpp"
+#include "core/system.hpp"
+#include "render/frame_writer.hpp"
+#include "render/image.hpp"
+#include "render/png_io.hpp"
+#include "render/render_options.hpp"
+
+namespace particles::render {
+
+struct RenderJob {
+  std::filesystem::path output;  // file.mp4, dir/ (or an existing directory) or file.png
+  std::optional<double> at;      // s: the time of the one frame of a file.png; only with one. A time
+                                 // not after the system's (or NaN) draws its current state
+  double duration = 0.0;         // s of simulated time a video or sequence covers, > 0
+  int fps = 60;                  // frames per simulated second, ≥ 1
+  Camera camera;
+  RenderOptions look;
+  VideoOptions video;  // the encoder's settings for file.mp4; its fps is set from `fps`
+  PngOptions png;      // for file.png and dir/
+};
+
+// Every hook may be left empty.
+struct RenderHooks {
+  // Once per frame, when the system has reached the frame's time and before it is drawn.
+  std::function<void(const System& system)> onFrame;
+  // Draws over each rendered frame before it is written.
+  std::function<void(Image& frame, const System& system)> decorate;
+  // After each frame of a video or sequence is handed to the writer: `done` of `total` frames.
+  std::function<void(long done, long total, const System& system)> progress;
+  // Asked before each frame of a video or sequence; true stops the render and removes what was
+  // written. Called on this thread: a signal handler sets a flag, this reads it.
+  std::function<bool()> shouldStop;
+};
+
+struct RenderSummary {
+  long frames = 0;           // frames written; for a stopped render, those drawn before the stop
+  long steps = 0;            // time steps taken
+  double wallSeconds = 0.0;  // from opening the output to its being in place (or removed)
+  bool stopped = false;      // shouldStop() asked for it: no output was written
+};
+
+// Renders `system`, stepped by `integrator` with time step `dt` from its current state, to
+// `job.output`. Throws SimulationError (core/solver.hpp) when the simulation blows up,
+// RenderError when the GL context cannot be made or draw, OutputError when the output cannot be
+// written, std::invalid_argument for options out of range (render/render_options.hpp, a video of
+// odd size, an unknown preset, a file.png without `at` or `at` for anything else), and whatever
+// a hook throws.
+RenderSummary renderSimulation(System& system, Integrator integrator, double dt, const RenderJob& job,
+                               const RenderHooks& hooks = {});
+
+}  // namespace particles::render

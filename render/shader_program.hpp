@@ -1,0 +1,41 @@
+#pragma once
+// Internal to render/: the coverage shader. Each primitive carries its true boundary
+// (render/shape_mesh.hpp), the fragment shader tests the pixel's samples, at the standard
+// positions (samplePattern), against it, and the share covered becomes the fragment's alpha,
+// blended over what is already drawn (render/gl_context.hpp). For one edge over a background this
+// is exactly what a multisampled framebuffer resolves to (render/renderer.hpp says why we do not
+// use one).
+
+#include <vector>
+
+#include "core/state.hpp"
+#include "render/shape_mesh.hpp"
+
+namespace particles::render {
+
+// The sample positions for each of kSampleCounts (render/render_options.hpp): offsets from the
+// pixel centre in pixels, x right, y down (Direct3D's and Vulkan's standard patterns; 1 is the
+// centre itself). Throws std::invalid_argument for another count.
+const std::vector<Vec2>& samplePattern(int samples);
+
+class ShaderProgram {
+ public:
+  // Compiles and links the shader for `samples` per pixel and images of width × height pixels in
+  // the current GL context, and makes it current there. Throws RenderError with the compiler's or
+  // the linker's log, std::invalid_argument for a sample count without a pattern.
+  ShaderProgram(int samples, int width, int height);
+  // No destructor: the program belongs to its context and is freed with it (deleting it here
+  // would need that context current, and another renderer's may be).
+  ShaderProgram(const ShaderProgram&) = delete;
+  ShaderProgram& operator=(const ShaderProgram&) = delete;
+
+  // Draws the mesh's triangles in order, in the current context (nothing for an empty mesh).
+  void draw(const ShapeMesh& mesh) const;
+
+ private:
+  unsigned program_ = 0;  // GLuint
+  // GLint locations; an attribute the compiler dropped has location −1 and is skipped.
+  int positionAttr_ = -1, colorAttr_ = -1, shapeAttr_ = -1, kindAttr_ = -1;
+};
+
+}  // namespace particles::render

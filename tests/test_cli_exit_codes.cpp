@@ -1,0 +1,90 @@
+// The program's one table from errors to exit codes and messages (src/app/exit_codes.hpp), seen
+// from outside: for each kind of error, one command that meets it, its exit code and the whole of
+// what it prints on stderr.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "cli_support.hpp"
+
+using namespace particles::test;
+
+namespace {
+
+// A stiff spring with explicit Euler at a huge step: blows up at step 5 (t = 0.5 s). Stiffer by
+// 1000, even the stability study's reference run (rk4 at a quarter of dt) blows up.
+std::string exploding(const std::string& ks) {
+  return "name: boom\n"
+         "simulation: {integrator: euler, dt: 0.1, duration: 10}\n"
+         "render: {size: [64, 48], fps: 10}\n"
+         "particles:\n"
+         "  - {name: a, pos: [0, 0], fixed: true}\n"
+         "  - {name: b, pos: [1.1, 0]}\n"
+         "forces:\n"
+         "  - {type: spring, a: a, b: b, rest: 1, ks: " +
+         ks + "}\n";
+}
+
+struct Case {
+  const char* args;
+  int code;
+  std::string err;  // all of stderr
+};
+
+}  // namespace
+
+TEST_CASE("cli exit codes: every kind of error has its code and its message format") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  s.write("boom.yaml", exploding("10000"));
+  s.write("boom2.yaml", exploding("10000000"));
+  s.write("bad.yaml", "name: x\nsimulation:\n  dt: -1\n");
+  s.write("bad.csv", "t,kinetic\n0,1\n");
+  s.write("blocker", "a file where a directory should be");
+  REQUIRE(s.run("run s.yaml --quiet --stats good.csv").code == 0);
+  REQUIRE(s.run("render s.yaml -o a.png --at 0.5 --quiet").code == 0);
+  // The core's words for the explosion, as `run` prints them after the scenario's name.
+  const Result boom = s.run("run boom.yaml");
+  const std::string head = "boom.yaml: error: ";
+  REQUIRE(boom.err.rfind(head + "simulation exploded at step 5 (t = 0.5 s)", 0) == 0);
+  REQUIRE(boom.err.back() == '\n');
+  const std::string explosion = boom.err.substr(head.size(), boom.err.size() - head.size() - 1);
+
+  const Case cases[] = {
+      // 1: the simulation failed, named by the scenario file.
+      {"run boom.yaml", 1, "boom.yaml: error: " + explosion + "\n"},
+      {"render boom.yaml -o boom.png --at 5", 1, "boom.yaml: error: " + explosion + "\n"},
+      {"render boom.yaml -o boom.mp4", 1,
+       "boom.yaml: error: " + explosion + " (at frame 5 of 100; no output written)\n"},
+      {"stability boom2.yaml --integrators rk4 --quiet", 1,
+       "boom2.yaml: error: the reference run (rk4, dt = 0.025 s) is itself unstable (exploded); give the scenario a "
+       "smaller dt\n"},
+      // 2: bad input or usage. The scenario loader's messages carry their own position.
+      {"check bad.yaml", 2, "bad.yaml:3:7: error: simulation.dt: expected a number > 0, got -1\n"},
+      {"render s.yaml -o out.mp4 --theme neon", 2, "error: --theme: expected dark or light, not 'neon'\n"},
+      {"render s.yaml -o out.mp4 --size 65x48", 2,
+       "error: MP4 (H.264, yuv420p) needs an even width and height; 65x48 is not (try 66x48, or write PNG frames)\n"},
+      {"run s.yaml --stats x.csv --trace x.csv", 2, "error: --stats and --trace name the same file 'x.csv'\n"},
+      {"stability s.yaml --integrators verlet", 2,
+       "error: --integrators: unknown integrator 'verlet' (expected euler, midpoint or rk4)\n"},
+      {"plot bad.csv -o out.svg", 2,
+       "error: bad.csv:1:10: the header must be exactly 't,kinetic,potential,total,constraint_error,penetration'\n"},
+      {"compare a.png missing.png", 2, "error: cannot open missing.png: No such file or directory\n"},
+      // 3: an output could not be made.
+      {"run s.yaml --stats blocker/x.csv", 3, "error: cannot write blocker/x.csv: Not a directory\n"},
+      {"render s.yaml -o blocker/frames/ --quiet", 3,
+       "error: cannot create directory blocker/frames/: Not a directory\n"},
+      {"plot good.csv -o out.txt", 3, "error: cannot write figure out.txt: unknown format '.txt' (use .svg or .png)\n"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.args);
+    const Result r = s.run(c.args);
+    CHECK(r.code == c.code);
+    CHECK(r.err == c.err);
+  }
+  // Names of temporary files differ from run to run: the start and the end of the message.
+  const Result r = s.run("compare a.png a.png --quiet --diff blocker/d.png");
+  CHECK(r.code == 3);
+  CHECK(r.err.rfind("error: --diff: cannot open blocker/d.png.partial-", 0) == 0);
+  CHECK(r.err.find("for writing: Not a directory\n") != std::string::npos);
+}
