@@ -1,7 +1,7 @@
 #pragma once
 // Errors at the rendering boundary. Both name the failing call and the library's own message
 // (OSMesa/OpenGL, libavcodec/libavformat, libpng, the file system). The command line maps both
-// to exit code 3 ("output failure", DESIGN §12).
+// to exit code 3 ("output failure", docs/physics.md §12).
 
 #include <stdexcept>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Where rendered frames go (`particles render SCENARIO -o OUT`, DESIGN §12):
+// Where rendered frames go (`particles render SCENARIO -o OUT`, docs/physics.md §12):
 //   OUT.mp4  H.264 video (Mp4Writer)            OUT/  numbered PNGs (PngSequenceWriter)
 //   OUT.png  one frame at --at T: not a stream; call writePng (png_io.hpp) directly.
 //

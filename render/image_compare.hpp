@@ -1,5 +1,5 @@
 #pragma once
-// Comparing a rendered frame with its golden frame (DESIGN §10), and the picture that shows where
+// Comparing a rendered frame with its golden frame (docs/physics.md §10), and the picture that shows where
 // they differ. Pure functions on Images: no files, no GL. `particles compare` and the golden-frame
 // tests (golden/README.md) are built on them.
 //

@@ -1,5 +1,5 @@
 #pragma once
-// H.264 MP4 output (DESIGN §9) through libavcodec (libx264), libswscale and libavformat, encoded
+// H.264 MP4 output (docs/physics.md §9) through libavcodec (libx264), libswscale and libavformat, encoded
 // in-process frame by frame: RGBA → yuv420p (BT.709, limited range, tagged as such), the
 // send-frame / receive-packet loop of FFmpeg's encode_video.c, muxed as in mux.c with
 // "+faststart" (the index moves to the front at the end so players can start before the whole

@@ -1,5 +1,5 @@
 #pragma once
-// Off-screen OpenGL rendering of a Drawing (DESIGN §9) through OSMesa, Mesa's software
+// Off-screen OpenGL rendering of a Drawing (docs/physics.md §9) through OSMesa, Mesa's software
 // rasteriser (llvmpipe): no display, no GPU. DISPLAY may be unset.
 //
 // Anti-aliasing is multisampling done in the fragment shader: every primitive carries its true

@@ -1,4 +1,4 @@
-// The `particles` program end to end (DESIGN §12): exit codes, summaries, the --stats and --trace
+// The `particles` program end to end (docs/physics.md §12): exit codes, summaries, the --stats and --trace
 // CSVs, and that a failed run leaves no output behind. Runs the binary built next to this test.
 #include <doctest/doctest.h>
 #include <sys/wait.h>

@@ -1,4 +1,4 @@
-// `particles compare` end to end (DESIGN §10, §12; src/app/compare_command.hpp): exit codes 0 / 1
+// `particles compare` end to end (docs/physics.md §10, §12; src/app/compare_command.hpp): exit codes 0 / 1
 // / 2 / 3, what it prints, its options, and the --diff picture written whole or not at all. Runs
 // the binary built next to this test on small PNGs written here.
 #include <doctest/doctest.h>

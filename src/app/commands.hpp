@@ -1,5 +1,5 @@
 #pragma once
-// The subcommands of the program (DESIGN §12). Each returns the process exit code of an outcome
+// The subcommands of the program (docs/physics.md §12). Each returns the process exit code of an outcome
 // that is not an error (0 on success) and throws for one; main() runs them through
 // runReportingErrors, which prints the error and maps it to its code (exit_codes.hpp).
 
@@ -8,8 +8,16 @@
 #include <vector>
 
 #include "app/exit_codes.hpp"
+#include "core/integrators.hpp"
 
 namespace particles::app {
+
+// The names of every integrator the core has, in its order ("euler", "midpoint", "rk4").
+inline std::vector<std::string> integratorNames() {
+  std::vector<std::string> names;
+  for (Integrator i : allIntegrators()) names.emplace_back(integratorName(i));
+  return names;
+}
 
 // Options every scenario-reading subcommand takes.
 struct CommonOptions {
@@ -25,9 +33,9 @@ struct RunOptions {
   std::vector<std::string> traceOnly;  // --trace-only names
 };
 
-// `stability`: defaults as in StabilityCriteria / StabilityOptions (src/stability.hpp).
+// `stability`: defaults as in StabilityCriteria / StabilityOptions (src/core/stability.hpp).
 struct StabilityOptionsCli {
-  std::vector<std::string> integrators{"euler", "midpoint", "rk4"};
+  std::vector<std::string> integrators = integratorNames();  // every integrator the core has
   std::string csv;   // --csv, empty: none
   std::string plot;  // --plot .svg | .png, empty: none
   double energyTolerance = 0.1;

@@ -17,7 +17,7 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
   o.threshold = render::kDefaultThreshold;
   o.maxShare = render::kDefaultMaxShare;
   CLI::App* cmd = app.add_subcommand(
-      "compare", "Compare a frame with its golden frame: exit 0 if they match, 1 if they differ (DESIGN §10)");
+      "compare", "Compare a frame with its golden frame: exit 0 if they match, 1 if they differ (docs/physics.md §10)");
   cmd->add_option("expected", o.expected, "The reference frame (PNG), e.g. golden/cloth_t2.5.png")->required();
   cmd->add_option("actual", o.actual, "The frame to check (PNG), of the same size")->required();
   cmd->add_option("--diff", o.diff,

@@ -1,5 +1,5 @@
 #pragma once
-// `particles compare EXPECTED.png ACTUAL.png [--diff D.png]` (DESIGN §10, §12): the golden-frame
+// `particles compare EXPECTED.png ACTUAL.png [--diff D.png]` (docs/physics.md §10, §12): the golden-frame
 // comparison as a tool of its own (render/image_compare.hpp).
 //
 // Exit codes: 0 the frames match; 1 they differ (more than --max-share of the pixels have a

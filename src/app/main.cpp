@@ -1,5 +1,8 @@
-// The `particles` program (DESIGN §12): command-line parsing with CLI11; the work is in commands.cpp.
+// The `particles` program (docs/physics.md §12): the command line, parsed with CLI11. Each command's
+// work is in its own file (commands.cpp: check and run; render_, stability_, plot_, compare_ and
+// schema_command.cpp); errors become exit codes and messages in exit_codes.cpp only.
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "app/commands.hpp"
 #include "app/compare_command.hpp"
@@ -9,10 +12,12 @@
 namespace {
 
 using particles::app::CommonOptions;
+using particles::app::integratorNames;
 
 void addCommonOptions(CLI::App& command, CommonOptions& o) {
   command.add_option("scenario", o.scenario, "Scenario file (YAML, see docs/scenarios.md)")->required();
-  command.add_option("--integrator", o.integrator, "Override simulation.integrator: euler | midpoint | rk4");
+  command.add_option("--integrator", o.integrator,
+                     fmt::format("Override simulation.integrator: {}", fmt::join(integratorNames(), " | ")));
   command.add_option("--dt", o.dt, "Override simulation.dt, the time step in seconds");
   command.add_option("--duration", o.duration, "Override simulation.duration, in simulated seconds");
   command.add_option("--set", o.sets, "Override any key before validation: --set path.to.key=value (repeatable)")

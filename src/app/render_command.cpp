@@ -1,4 +1,4 @@
-// `particles render SCENARIO -o OUT` (DESIGN §9, §12): simulate and draw frames off-screen.
+// `particles render SCENARIO -o OUT` (docs/physics.md §9, §12): simulate and draw frames off-screen.
 //   OUT.mp4   H.264 video, frames i = 0 … round(duration·fps) − 1 at t = i / fps
 //   OUT/      the same frames as frame_000000.png …
 //   OUT.png   one frame at --at T, for report figures

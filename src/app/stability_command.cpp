@@ -1,4 +1,4 @@
-// `particles stability`: the time-step study (src/stability.hpp, docs/stability.md) as a command,
+// `particles stability`: the time-step study (src/core/stability.hpp, docs/stability.md) as a command,
 // with the table on stdout, `--csv` and a `--plot` figure.
 #include <fmt/format.h>
 
@@ -19,7 +19,11 @@ std::vector<Integrator> parseIntegrators(const std::vector<std::string>& names) 
   for (const std::string& name : names) {
     const auto i = integratorFromName(name);
     if (!i) {
-      throw InputError(fmt::format("--integrators: unknown integrator '{}' (expected euler, midpoint or rk4)", name));
+      std::vector<std::string> known = integratorNames();
+      const std::string last = known.back();
+      known.pop_back();
+      throw InputError(fmt::format("--integrators: unknown integrator '{}' (expected {} or {})", name,
+                                   fmt::join(known, ", "), last));
     }
     if (std::find(out.begin(), out.end(), *i) == out.end()) out.push_back(*i);
   }
