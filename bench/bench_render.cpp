@@ -1,7 +1,7 @@
 // Render-only throughput (no encoding): frames per second drawing the three demos at 1280×720
 // through the OSMesa renderer, with 1 (off), 4 (the default) and 16 anti-aliasing samples per
 // pixel. Each iteration draws one frame of a state prepared beforehand (the scenario advanced to a
-// representative time), so simulation is outside the clock; the snapshot is taken inside it, as
+// representative time), so simulation is outside the clock; System::draw() is called inside it, as
 // `particles render` does per frame.
 #include <benchmark/benchmark.h>
 
@@ -19,8 +19,7 @@ using namespace particles;
 
 void BM_Render(benchmark::State& state, const std::string& file, double at) {
   scenario::Scenario s = scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/" + file);
-  Solver solver(s.simulation.integrator);
-  while (s.system.time() + 1e-9 < at) solver.doStep(s.system, s.simulation.dt);
+  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(at);
   render::RenderOptions options;
   options.width = 1280;
   options.height = 720;

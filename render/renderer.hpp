@@ -14,7 +14,7 @@
 //
 // Every shape is built on the CPU as triangles in pixel coordinates (lines as quads of a given
 // pixel width, discs as fans), pushed out by a 1 px fringe where they are smoothed, and drawn in a
-// fixed order: the same snapshot gives the same pixels every time (tests check byte equality).
+// fixed order: the same drawing gives the same pixels every time (tests check byte equality).
 // The parts: render/theme.hpp (colours), render/frame_mesh.hpp (the triangles, no GL),
 // render/shader_program.hpp (the coverage shader), render/gl_context.hpp (the OSMesa context).
 //
@@ -39,7 +39,7 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Draws the snapshot. The image is owned by the renderer and valid until the next call.
+  // Draws the frame. The image is owned by the renderer and valid until the next call.
   // Throws RenderError if GL reports an error.
   const Image& render(const Drawing& frame, const Camera& camera);
 

@@ -1,4 +1,4 @@
-// The renderer (render/renderer.hpp) and snapshots (render/snapshot.hpp): what lands where in a
+// The renderer (render/renderer.hpp) and System::draw (core/drawing.hpp): what lands where in a
 // frame, strain colours, anti-aliasing, determinism, and the errors it reports.
 
 #include <doctest/doctest.h>
@@ -238,7 +238,7 @@ TEST_CASE("multisampling smooths edges, and msaa 1 gives hard edges") {
   CHECK(distinctColours(4) > 2);   // partially covered pixels at the disc edges
 }
 
-TEST_CASE("the same snapshot renders to the same bytes") {
+TEST_CASE("the same drawing renders to the same bytes") {
   const System system = particles::test::fallingParticles();
   const Drawing frame = system.draw();
   const Camera camera{Vec2(0.1, 0), 2.4};
