@@ -219,6 +219,18 @@ TEST_CASE("scenario error: two documents in one file") {
   expectError("name: t\n---\nname: u\n", 3, "", "more than one YAML document");
 }
 
+// yaml-cpp 0.7's LoadAll loops forever, allocating, on these (yaml-cpp issue 1040): the loader
+// counts documents through the event parser instead. A regression hangs here until CTest's limit.
+TEST_CASE("scenario error: input on which yaml-cpp's LoadAll never returns") {
+  for (const char* text : {",", ",t4", "name: t\n,\n", "[a, b],"}) {
+    CAPTURE(text);
+    const Reported r = errorOf(text);
+    CHECK(r.line >= 1);
+    CHECK(r.what.rfind("test.yaml:", 0) == 0);
+  }
+  expectError(",", 1, "", "cannot read on from here");
+}
+
 TEST_CASE("scenario error: missing file") {
   try {
     loadScenarioFile("/nonexistent/dir/missing.yaml");
