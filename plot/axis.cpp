@@ -13,7 +13,7 @@ double YAxis::toPixel(double v, const Rect& plot) const {
   if (scale == AxisScale::Log) {
     f = (std::log10(v) - std::log10(ticks.lo)) / (std::log10(ticks.hi) - std::log10(ticks.lo));
   } else {
-    f = (v - ticks.lo) / (ticks.hi - ticks.lo);
+    f = axisFraction(v, ticks);
   }
   return plot.bottom() - f * plot.h;
 }

@@ -42,7 +42,7 @@ bool drawable(double x, double y, AxisScale scale) {
 
 struct XAxis {
   AxisTicks ticks;
-  double toPixel(double v, const Rect& plot) const { return plot.x + (v - ticks.lo) / (ticks.hi - ticks.lo) * plot.w; }
+  double toPixel(double v, const Rect& plot) const { return plot.x + axisFraction(v, ticks) * plot.w; }
 };
 
 // Runs of consecutive drawable points, in pixels. A point that cannot be drawn ends a run.

@@ -33,6 +33,7 @@ std::string trimTrailingZeros(std::string s) {
 // just below an exact power of ten.
 int decimalExponent(double v) {
   const double a = std::fabs(v);
+  if (!(a > 0.0) || !std::isfinite(a)) return 0;  // no leading digit; and casting ±inf to int is undefined
   int e = static_cast<int>(std::floor(std::log10(a)));
   if (std::pow(10.0, e + 1) <= a) ++e;
   if (std::pow(10.0, e) > a) --e;
@@ -69,6 +70,12 @@ std::vector<Tick> labelLinear(const std::vector<double>& values, double step, do
 
 }  // namespace
 
+double axisFraction(double v, const AxisTicks& axis) {
+  const double span = axis.hi - axis.lo;
+  if (std::isfinite(span)) return (v - axis.lo) / span;
+  return (0.5 * v - 0.5 * axis.lo) / (0.5 * axis.hi - 0.5 * axis.lo);  // halving is exact here
+}
+
 double niceStep(double rawStep) {
   const double magnitude = std::pow(10.0, decimalExponent(rawStep));
   const double f = rawStep / magnitude;
@@ -95,21 +102,30 @@ AxisTicks linearTicks(double dataLo, double dataHi, int targetCount, bool widenT
       hi = c + 0.1 * std::fabs(c);
     }
   }
-  const double step = niceStep((hi - lo) / std::max(1, targetCount - 1));
+  // Divided before subtracting: the span of data near ±1.8e308 overflows to infinity.
+  const double intervals = std::max(1, targetCount - 1);
+  double step = niceStep(hi / intervals - lo / intervals);
+  if (!std::isfinite(step)) step = niceStep(0.5 * (hi / intervals) - 0.5 * (lo / intervals));
   // Ticks are i × step for integer i, so zero is exactly 0 and labels don't show 1e-17.
   const double first = std::ceil(lo / step - 1e-9), last = std::floor(hi / step + 1e-9);
   AxisTicks axis;
-  if (widenToTicks) {
-    axis.lo = std::floor(lo / step + 1e-9) * step;
-    axis.hi = std::ceil(hi / step - 1e-9) * step;
-  } else {
-    axis.lo = lo;
-    axis.hi = hi;
+  double lowest = first, highest = last;
+  axis.lo = lo;
+  axis.hi = hi;
+  // Widened outward to whole steps, unless that passes the largest double.
+  if (widenToTicks && std::isfinite(std::floor(lo / step + 1e-9) * step)) {
+    lowest = std::floor(lo / step + 1e-9);
+    axis.lo = lowest * step;
   }
-  const double lowest = widenToTicks ? std::floor(lo / step + 1e-9) : first;
-  const double highest = widenToTicks ? std::ceil(hi / step - 1e-9) : last;
+  if (widenToTicks && std::isfinite(std::ceil(hi / step - 1e-9) * step)) {
+    highest = std::ceil(hi / step - 1e-9);
+    axis.hi = highest * step;
+  }
   std::vector<double> values;
-  for (double i = lowest; i <= highest; i += 1) values.push_back(i * step + 0.0);  // + 0.0: no "−0.0"
+  // About targetCount ticks by construction; the cap only keeps a bug from looping for ever.
+  for (double i = lowest; i <= highest && values.size() < 1000; i += 1) {
+    values.push_back(i * step + 0.0);  // + 0.0: no "−0.0"
+  }
   axis.major = labelLinear(values, step, std::max(std::fabs(axis.lo), std::fabs(axis.hi)));
   return axis;
 }
@@ -124,6 +140,10 @@ AxisTicks logTicks(double dataLo, double dataHi, int maxMajor) {
   int eHi = decimalExponent(hi);
   if (std::pow(10.0, eHi) < hi) ++eHi;  // round up unless hi is itself a power of ten
   if (eHi == eLo) ++eHi;
+  // Decades a double can hold: 10^308 is the last power of ten below the largest double, 10^-323
+  // the last above zero (a subnormal).
+  eHi = std::min(eHi, 308);
+  eLo = std::max(std::min(eLo, eHi - 1), -323);
   // Label every k-th decade, k chosen so at most maxMajor labels fit; align to multiples of k.
   const int k = std::max(1, (eHi - eLo + std::max(1, maxMajor - 1) - 1) / std::max(1, maxMajor - 1));
   const auto floorDiv = [](int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };

@@ -27,6 +27,10 @@ struct AxisTicks {
   std::vector<double> minor;  // unlabelled (log axes only)
 };
 
+// Where v lies on the axis: 0 at lo, 1 at hi (linear). Also for ranges wider than the largest
+// double, whose span hi − lo overflows.
+double axisFraction(double v, const AxisTicks& axis);
+
 // Smallest 1, 2 or 5 × 10^k that is ≥ rawStep (> 0).
 double niceStep(double rawStep);
 

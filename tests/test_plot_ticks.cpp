@@ -3,6 +3,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -79,6 +84,35 @@ TEST_CASE("plot ticks: constant, zero and non-finite ranges fall back to somethi
   const AxisTicks nan = linearTicks(NAN, 1, 5, true);
   CHECK(nan.lo == 0);
   CHECK(nan.hi == 1);
+}
+
+// Data near the ends of the double range once overflowed the span to infinity, cast it to int
+// (undefined) and looped for ever on a zero step; every finite range must give a few finite ticks.
+TEST_CASE("plot ticks: any finite range, down to subnormals and up to the largest double, gives a few finite ticks") {
+  const double big = std::numeric_limits<double>::max(), tiny = std::numeric_limits<double>::denorm_min();
+  const std::vector<std::pair<double, double>> ranges = {
+      {-1e308, 1e308}, {-big, big}, {0, big}, {1.7e308, big}, {-big, -1e307}, {tiny, 20 * tiny}, {-1e-300, 1e-300}};
+  for (const auto& [lo, hi] : ranges) {
+    for (const bool widen : {true, false}) {
+      CAPTURE(lo);
+      CAPTURE(hi);
+      CAPTURE(widen);
+      const AxisTicks axis = linearTicks(lo, hi, 6, widen);
+      CHECK(std::isfinite(axis.lo));
+      CHECK(std::isfinite(axis.hi));
+      CHECK(axis.lo <= lo);
+      CHECK(axis.hi >= hi);
+      CHECK(axis.major.size() >= 2);
+      CHECK(axis.major.size() <= 12);
+      for (const Tick& t : axis.major) CHECK(std::isfinite(t.value));
+    }
+    if (lo > 0) {
+      const AxisTicks axis = logTicks(lo, hi, 8);
+      CHECK(axis.lo > 0);
+      CHECK(std::isfinite(axis.hi));
+      CHECK(axis.major.size() >= 2);
+    }
+  }
 }
 
 TEST_CASE("plot ticks: a log axis spans whole decades with minor ticks at 2..9") {
