@@ -18,6 +18,16 @@ namespace {
 constexpr std::array<std::string_view, 6> kColumns = {"t",     "kinetic",          "potential",
                                                       "total", "constraint_error", "penetration"};
 
+// A field as messages quote it: whole up to 80 bytes, else its start and its length (a 10 MB field
+// is not echoed back), cut before a UTF-8 continuation byte.
+std::string quoted(std::string_view field) {
+  constexpr std::size_t kMax = 80;
+  if (field.size() <= kMax) return "'" + std::string(field) + "'";
+  std::size_t cut = kMax - 8;
+  while (cut > 0 && (static_cast<unsigned char>(field[cut]) & 0xC0) == 0x80) --cut;
+  return fmt::format("'{}…' ({} bytes)", field.substr(0, cut), field.size());
+}
+
 // One field as a finite double, all of it: "1e-3" yes; " 1", "1x", "", "nan", "inf" no.
 double parseNumber(std::string_view field, const std::filesystem::path& file, std::size_t line, std::size_t column,
                    std::string_view columnName) {
@@ -25,11 +35,11 @@ double parseNumber(std::string_view field, const std::filesystem::path& file, st
   const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), value);
   if (field.empty() || ec == std::errc::invalid_argument || end != field.data() + field.size()) {
     throw CsvError(file, line, column,
-                   "column '" + std::string(columnName) + "': expected a number, found '" + std::string(field) + "'");
+                   "column '" + std::string(columnName) + "': expected a number, found " + quoted(field));
   }
   if (ec == std::errc::result_out_of_range || !std::isfinite(value)) {
     throw CsvError(file, line, column,
-                   "column '" + std::string(columnName) + "': '" + std::string(field) + "' is not a finite number");
+                   "column '" + std::string(columnName) + "': " + quoted(field) + " is not a finite number");
   }
   return value;
 }

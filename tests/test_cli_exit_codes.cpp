@@ -3,6 +3,7 @@
 // what it prints on stderr.
 #include <doctest/doctest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "cli_support.hpp"
@@ -87,4 +88,34 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
   CHECK(r.code == 3);
   CHECK(r.err.rfind("error: --diff: cannot open blocker/d.png.partial-", 0) == 0);
   CHECK(r.err.find("for writing: Not a directory\n") != std::string::npos);
+}
+
+// Numbers on the command line that were accepted silently (a fallback to the scenario's value, or
+// t = 0 drawn for NaN) and a --set index that escaped as "internal error: stoull": all exit 2 now,
+// naming the option.
+TEST_CASE("cli exit codes: out-of-range, non-finite and empty option values are usage errors") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  const Case cases[] = {
+      {"render s.yaml -o a.mp4 --fps 0", 2, "error: --fps: expected a whole number of frames per second from 1 to 1000, not 0\n"},
+      {"render s.yaml -o a.mp4 --fps -5", 2, "error: --fps: expected a whole number of frames per second from 1 to 1000, not -5\n"},
+      {"render s.yaml -o a.mp4 --fps nan", 2, "error: --fps: expected a whole number of frames per second from 1 to 1000, not nan\n"},
+      {"render s.yaml -o a.png --at nan", 2, "error: --at: expected a simulated time in seconds, not nan\n"},
+      {"check s.yaml --integrator ''", 2, "error: --integrator: expected a value, got an empty one\n"},
+      {"check s.yaml --duration ''", 2, "error: --duration: expected a value, got an empty one\n"},
+      {"stability s.yaml --max-dt nan", 2,
+       "error: need --energy-tolerance > 0, --stretch-factor > 1, 0 < --shake-threshold ≤ 1 and 0 < --min-dt < "
+       "--max-dt\n"},
+      {"check s.yaml --set forces.99999999999999999999999.ks=1", 2,
+       "s.yaml: error: forces.99999999999999999999999.ks (from --set forces.99999999999999999999999.ks=1): "
+       "cannot use this key path: list index 99999999999999999999999 is too large\n"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.args);
+    const Result r = s.run(c.args);
+    CHECK(r.code == c.code);
+    CHECK(r.err == c.err);
+  }
+  CHECK_FALSE(std::filesystem::exists(s.dir / "a.mp4"));
+  CHECK_FALSE(std::filesystem::exists(s.dir / "a.png"));
 }

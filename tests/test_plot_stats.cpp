@@ -154,3 +154,18 @@ TEST_CASE("plot stats figure: values up to the largest double give a figure, not
     CHECK(std::filesystem::file_size(dir / name) > 1000);
   }
 }
+
+TEST_CASE("plot stats CSV: a huge bad field is quoted by its start and its size, not echoed whole") {
+  TempDir dir;
+  const std::string field(10'000'000, 'x');
+  try {
+    readStatsCsv(writeText(dir, kHeader + "\n0," + field + ",0,0,0,0\n"));
+    FAIL("expected a CsvError");
+  } catch (const CsvError& e) {
+    const std::string what = e.what();
+    CAPTURE(what.substr(0, 200));
+    CHECK(what.size() < 300);
+    CHECK(what.find("(10000000 bytes)") != std::string::npos);
+    CHECK(what.find(":2:3: column 'kinetic': expected a number, found 'xxxx") != std::string::npos);
+  }
+}

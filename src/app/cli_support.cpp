@@ -12,9 +12,13 @@ namespace particles::app {
 std::vector<scenario::Override> overridesOf(const CommonOptions& o) {
   std::vector<scenario::Override> out;
   for (const std::string& s : o.sets) out.push_back(scenario::parseOverride(s));
-  if (!o.integrator.empty()) out.push_back({"simulation.integrator", o.integrator, "--integrator " + o.integrator});
-  if (!o.dt.empty()) out.push_back({"simulation.dt", o.dt, "--dt " + o.dt});
-  if (!o.duration.empty()) out.push_back({"simulation.duration", o.duration, "--duration " + o.duration});
+  const std::pair<const std::optional<std::string>*, const char*> shorthands[] = {
+      {&o.integrator, "integrator"}, {&o.dt, "dt"}, {&o.duration, "duration"}};
+  for (const auto& [value, key] : shorthands) {
+    if (!*value) continue;
+    if ((*value)->empty()) throw InputError(fmt::format("--{}: expected a value, got an empty one", key));
+    out.push_back({fmt::format("simulation.{}", key), **value, fmt::format("--{} {}", key, **value)});
+  }
   return out;
 }
 

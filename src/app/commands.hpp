@@ -22,7 +22,7 @@ inline std::vector<std::string> integratorNames() {
 // Options every scenario-reading subcommand takes.
 struct CommonOptions {
   std::string scenario;
-  std::string integrator, dt, duration;  // shorthands for --set simulation.*=…; empty: not given
+  std::optional<std::string> integrator, dt, duration;  // shorthands for --set simulation.*=…
   std::vector<std::string> sets;         // --set path=value, in order
   bool quiet = false;
 };
@@ -50,7 +50,7 @@ struct RenderCommandOptions {
   std::string output;                  // -o: file.mp4, dir/ or file.png (with --at)
   std::optional<double> at;            // --at T, s
   std::string size;                    // --size WxH; empty: the scenario's render.size
-  double fps = 0;                      // --fps; 0: the scenario's render.fps
+  std::optional<double> fps;           // --fps; none: the scenario's render.fps
   int msaa = 4;                        // anti-aliasing samples per pixel: 1 (off), 2, 4, 8, 16
   std::string theme = "dark";          // dark | light
   std::string particleRadius;          // "4px" or "0.02m"; empty: the renderer's default

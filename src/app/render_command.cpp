@@ -125,7 +125,14 @@ auto refusedOptionsAreInputErrors(F&& f) {
 int renderCommand(const CommonOptions& common, const RenderCommandOptions& options) {
   scenario::Scenario s = loadScenario(common);
   const render::RenderOptions look = lookOf(s, options);
-  const double fpsValue = options.fps > 0 ? options.fps : s.render.fps;
+  if (options.fps && !(*options.fps >= 1 && *options.fps <= 1000)) {  // NaN fails both
+    throw InputError(fmt::format("--fps: expected a whole number of frames per second from 1 to 1000, not {}",
+                                 *options.fps));
+  }
+  if (options.at && !std::isfinite(*options.at)) {
+    throw InputError(fmt::format("--at: expected a simulated time in seconds, not {}", *options.at));
+  }
+  const double fpsValue = options.fps.value_or(s.render.fps);
   const int fps = int(std::lround(fpsValue));
   if (std::abs(fpsValue - fps) > 1e-9 || fps <= 0) {
     throw InputError(fmt::format("render needs a whole, positive number of frames per second, not {}", fpsValue));

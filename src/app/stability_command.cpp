@@ -49,8 +49,12 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
   const scenario::Scenario s = loadScenario(common);
   const std::vector<Integrator> integrators = parseIntegrators(options.integrators);
   const double minDt = options.minDt > 0 ? options.minDt : s.simulation.dt / 1000.0;
-  if (options.energyTolerance <= 0 || options.stretchFactor <= 1 || options.shakeThreshold <= 0 ||
-      options.shakeThreshold > 1 || options.minDt < 0 || options.maxDt <= minDt) {
+  // Written as "not inside" so that NaN, which fails every comparison, is refused too.
+  const bool inside = options.energyTolerance > 0 && std::isfinite(options.energyTolerance) &&
+                      options.stretchFactor > 1 && std::isfinite(options.stretchFactor) &&
+                      options.shakeThreshold > 0 && options.shakeThreshold <= 1 && options.minDt >= 0 &&
+                      std::isfinite(minDt) && options.maxDt > minDt && std::isfinite(options.maxDt);
+  if (!inside) {
     throw InputError(
         "need --energy-tolerance > 0, --stretch-factor > 1, 0 < --shake-threshold ≤ 1 and 0 < --min-dt < "
         "--max-dt");

@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -265,7 +266,12 @@ std::vector<PathSegment> splitPath(const Override& o, const std::string& file) {
     if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) {
       bad(fmt::format("'{}' is not a list index", digits));
     }
-    return PathSegment{digits, true, size_t(std::stoull(digits))};
+    size_t index = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    if (ec != std::errc() || end != digits.data() + digits.size()) {
+      bad(fmt::format("list index {} is too large", digits.size() > 40 ? digits.substr(0, 40) + "…" : digits));
+    }
+    return PathSegment{digits, true, index};
   };
   std::vector<PathSegment> out;
   std::string key;
