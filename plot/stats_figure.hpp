@@ -3,6 +3,7 @@
 // penetration over time below.
 
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <vector>
 
@@ -22,7 +23,8 @@ inline constexpr const char* kStatsCsvHeader = "t,kinetic,potential,total,constr
 // Reads a stats CSV strictly: the header exactly as kStatsCsvHeader, then rows of six finite
 // numbers (no spaces, no quotes; "\r\n" line ends accepted; one final newline optional; no blank
 // lines). Throws CsvError with the file, line and column of the first problem.
-StatsTable readStatsCsv(const std::filesystem::path& file);
+// Files past maxInputMiB are refused as they are read (an endless device such as /dev/zero too).
+StatsTable readStatsCsv(const std::filesystem::path& file, std::uintmax_t maxInputMiB = 64);
 
 // Top panel "energy [J]": kinetic, potential, total against t [s]. Bottom panel "error [m]":
 // constraint error and penetration, on a log axis when their positive values span at least two

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <filesystem>
+#include <span>
 #include <string>
 
 #include "cli_support.hpp"
@@ -31,6 +32,16 @@ struct Case {
   int code;
   std::string err;  // all of stderr
 };
+
+// Runs each case and compares its exit code and the whole of its stderr.
+void checkCases(Scratch& s, std::span<const Case> cases) {
+  for (const Case& c : cases) {
+    CAPTURE(c.args);
+    const Result r = s.run(c.args);
+    CHECK(r.code == c.code);
+    CHECK(r.err == c.err);
+  }
+}
 
 }  // namespace
 
@@ -77,12 +88,7 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
        "error: cannot create directory blocker/frames/: Not a directory\n"},
       {"plot good.csv -o out.txt", 3, "error: cannot write figure out.txt: unknown format '.txt' (use .svg or .png)\n"},
   };
-  for (const Case& c : cases) {
-    CAPTURE(c.args);
-    const Result r = s.run(c.args);
-    CHECK(r.code == c.code);
-    CHECK(r.err == c.err);
-  }
+  checkCases(s, cases);
   // Names of temporary files differ from run to run: the start and the end of the message.
   const Result r = s.run("compare a.png a.png --quiet --diff blocker/d.png");
   CHECK(r.code == 3);
@@ -110,12 +116,25 @@ TEST_CASE("cli exit codes: out-of-range, non-finite and empty option values are 
        "s.yaml: error: forces.99999999999999999999999.ks (from --set forces.99999999999999999999999.ks=1): "
        "cannot use this key path: list index 99999999999999999999999 is too large\n"},
   };
-  for (const Case& c : cases) {
-    CAPTURE(c.args);
-    const Result r = s.run(c.args);
-    CHECK(r.code == c.code);
-    CHECK(r.err == c.err);
-  }
+  checkCases(s, cases);
   CHECK_FALSE(std::filesystem::exists(s.dir / "a.mp4"));
   CHECK_FALSE(std::filesystem::exists(s.dir / "a.png"));
+}
+
+// An endless input (/dev/zero) once grew memory without end; a file past the input limit is now
+// refused as it is read, and --max-input raises the limit for scenes that are meant to be large.
+TEST_CASE("cli exit codes: inputs past the input limit, endless ones included, are refused") {
+  Scratch s;
+  s.write("big.yaml", "name: big\n# " + std::string(2 * 1024 * 1024, 'x') + "\n");
+  const Case cases[] = {
+      {"check /dev/zero", 2,
+       "/dev/zero: error: the file is larger than the input limit of 64 MiB; if it is meant to be, raise the limit "
+       "with --max-input MIB\n"},
+      {"plot /dev/zero -o z.svg", 2, "error: /dev/zero: larger than the input limit of 64 MiB (--max-input MIB)\n"},
+      {"check big.yaml --max-input 1", 2,
+       "big.yaml: error: the file is larger than the input limit of 1 MiB; if it is meant to be, raise the limit "
+       "with --max-input MIB\n"},
+      {"check big.yaml --max-input 3 --quiet", 0, ""},
+  };
+  checkCases(s, cases);
 }

@@ -24,7 +24,7 @@ std::vector<scenario::Override> overridesOf(const CommonOptions& o) {
 
 scenario::Scenario loadScenario(const CommonOptions& o) {
   const auto overrides = overridesOf(o);
-  return scenario::loadScenarioFile(o.scenario, overrides);
+  return scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB);
 }
 
 std::string plural(size_t n, const char* one, const char* many) {

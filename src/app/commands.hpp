@@ -9,6 +9,7 @@
 
 #include "app/exit_codes.hpp"
 #include "core/integrators.hpp"
+#include "scenario/scenario.hpp"
 
 namespace particles::app {
 
@@ -24,6 +25,7 @@ struct CommonOptions {
   std::string scenario;
   std::optional<std::string> integrator, dt, duration;  // shorthands for --set simulation.*=…
   std::vector<std::string> sets;         // --set path=value, in order
+  std::uintmax_t maxInputMiB = scenario::kDefaultMaxInputMiB;  // --max-input
   bool quiet = false;
 };
 
@@ -68,6 +70,7 @@ struct PlotOptions {
   std::string output;  // .svg | .png
   std::string title;
   int width = 0, height = 0;  // px; 0: the figure's default
+  std::uintmax_t maxInputMiB = 64;  // --max-input
   bool quiet = false;
 };
 

@@ -24,6 +24,9 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   command.add_flag("-q,--quiet", o.quiet, "No progress and no summary; errors are still printed");
+  command.add_option("--max-input", o.maxInputMiB, "Refuse a scenario file larger than this, MiB")
+      ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))
+      ->capture_default_str();
 }
 
 }  // namespace
@@ -148,6 +151,9 @@ int main(int argc, char** argv) {
   plotCmd->add_option("--width", plotOptions.width, "Width in px (default 1200)")->check(CLI::Range(200, 10000));
   plotCmd->add_option("--height", plotOptions.height, "Height in px (default 800)")->check(CLI::Range(150, 10000));
   plotCmd->add_flag("-q,--quiet", plotOptions.quiet, "Print nothing on success");
+  plotCmd->add_option("--max-input", plotOptions.maxInputMiB, "Refuse a CSV file larger than this, MiB")
+      ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))
+      ->capture_default_str();
   plotCmd->footer(
       "Examples:\n"
       "  particles run scenarios/cloth.yaml --stats cloth.csv && particles plot cloth.csv -o energy.svg\n"

@@ -7,7 +7,7 @@
 namespace particles::app {
 
 int plotCommand(const PlotOptions& options) {
-  const plot::StatsTable table = plot::readStatsCsv(options.input);  // throws CsvError (exit 2)
+  const plot::StatsTable table = plot::readStatsCsv(options.input, options.maxInputMiB);  // throws CsvError (exit 2)
   plot::Figure figure = plot::statsFigure(table);
   if (!options.title.empty()) figure.title = options.title;
   if (options.width > 0) figure.widthPx = options.width;

@@ -61,13 +61,7 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
   }
 
   // Each trial run builds a fresh system from the same text and overrides.
-  std::string text;
-  {
-    std::ifstream in(common.scenario, std::ios::binary);
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    text = buffer.str();
-  }
+  const std::string text = scenario::readScenarioText(common.scenario, common.maxInputMiB);
   const auto overrides = overridesOf(common);
   const SystemFactory make = [&] { return scenario::loadScenarioText(text, common.scenario, overrides).system; };
 

@@ -9,6 +9,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cerrno>
 #include <cmath>
@@ -470,16 +471,32 @@ Scenario loadScenarioText(std::string_view text, const std::string& file, std::s
   return loadDocument(std::string(text), file, overrides);
 }
 
-Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides) {
+std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t maxInputMiB) {
   const std::string name = file.string();
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec)) throw ScenarioError(name, 0, 0, "", "cannot read: it is a directory");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw ScenarioError(name, 0, 0, "", fmt::format("cannot open: {}", std::strerror(errno)));
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Read in chunks up to the limit, not to the end: a device such as /dev/zero has none.
+  const std::uintmax_t limit = maxInputMiB * 1024 * 1024;
+  std::string text;
+  std::array<char, 1 << 16> chunk;
+  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {
+    text.append(chunk.data(), size_t(in.gcount()));
+    if (text.size() > limit) {
+      throw ScenarioError(name, 0, 0, "",
+                          fmt::format("the file is larger than the input limit of {} MiB; if it is meant to be, "
+                                      "raise the limit with --max-input MIB",
+                                      maxInputMiB));
+    }
+  }
   if (in.bad()) throw ScenarioError(name, 0, 0, "", fmt::format("cannot read: {}", std::strerror(errno)));
-  return loadDocument(text.str(), name, overrides);
+  return text;
+}
+
+Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides,
+                          std::uintmax_t maxInputMiB) {
+  return loadDocument(readScenarioText(file, maxInputMiB), file.string(), overrides);
 }
 
 std::string pointName(const Model& model, int point) {

@@ -5,6 +5,7 @@
 // Bad input never crashes and never half-builds: the loader throws ScenarioError naming the file,
 // the line and column (1-based) and the key path (`forces[2].ks`), and saying what was expected.
 
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <stdexcept>
@@ -23,6 +24,9 @@ inline constexpr long long kMaxGridSide = 10'000;
 inline constexpr long long kMaxGridParticles = 1'000'000;
 inline constexpr long long kMaxImageSide = 16'384;  // px, the renderer's largest frame side
 inline constexpr double kMinFps = 1e-3, kMaxFps = 1000.0;
+// Input files larger than this are refused before they are parsed (`--max-input MIB` raises it):
+// the demos are a few kB, and an endless input (/dev/zero) must end in an error, not in memory.
+inline constexpr std::uintmax_t kDefaultMaxInputMiB = 64;
 
 struct SimulationSettings {
   Integrator integrator = Integrator::Rk4;
@@ -80,7 +84,10 @@ struct Scenario {
 };
 
 // Reads and validates a scenario file; overrides are applied first, in order.
-Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides = {});
+Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides = {},
+                          std::uintmax_t maxInputMiB = kDefaultMaxInputMiB);
+// The text of a scenario file, at most maxInputMiB; throws ScenarioError naming the file.
+std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t maxInputMiB = kDefaultMaxInputMiB);
 // The same from text in memory; `file` only labels messages.
 Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides = {});
 
