@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/errors.hpp"
+#include "render/render_options.hpp"
 #include "output/pending_output.hpp"
 
 namespace particles::render {
@@ -158,6 +159,13 @@ Image readPng(const std::filesystem::path& path) {
   }
   if (header.rowBytes != size_t(header.width) * 4) {
     throw OutputError(path.string() + ": unexpected PNG layout after conversion to RGBA8");
+  }
+  // Checked on the header, before any pixel is allocated: a 68-byte file claiming 20000 × 20000
+  // pixels would otherwise cost 1.6 GB first.
+  if (header.width > png_uint_32(kMaxImageSide) || header.height > png_uint_32(kMaxImageSide)) {
+    throw OutputError(path.string() + ": its header claims " + std::to_string(header.width) + "x" +
+                      std::to_string(header.height) + " pixels; images are at most " + std::to_string(kMaxImageSide) +
+                      " pixels a side");
   }
   Image image(int(header.width), int(header.height));
   std::vector<png_bytep> rows = rowPointers(image);

@@ -7,8 +7,7 @@
 namespace particles::render {
 
 void validate(const RenderOptions& o) {
-  // 16384: OSMesa's largest buffer (OSMESA_MAX_WIDTH/HEIGHT) in Mesa 22.
-  if (o.width < 1 || o.height < 1 || o.width > 16384 || o.height > 16384) {
+  if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide) {
     throw std::invalid_argument("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                                 " is out of range (1 to 16384 pixels per side)");
   }

@@ -23,6 +23,10 @@ struct Length {
   Unit unit;
 };
 
+// The largest frame side in pixels: OSMesa's largest buffer (OSMESA_MAX_WIDTH/HEIGHT) in Mesa 22.
+// Images read back (golden frames) are held to the same bound.
+inline constexpr int kMaxImageSide = 16384;
+
 // The anti-aliasing sample counts there is a pattern for (RenderOptions::msaa, samplePattern in
 // render/shader_program.hpp).
 inline constexpr std::array<int, 5> kSampleCounts = {1, 2, 4, 8, 16};

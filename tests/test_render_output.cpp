@@ -236,3 +236,16 @@ TEST_CASE("a PNG sequence holds exactly this run's frames") {
   aborted->abort();
   CHECK(dir.entries() == std::set<std::string>{"frames"});
 }
+
+// A 65-byte PNG whose header claims 100000 × 100000 pixels once ended in std::bad_alloc ("internal
+// error"), and one claiming 20000 × 20000 allocated 1.6 GB before failing: the header is checked
+// against the largest frame before any pixel is allocated.
+TEST_CASE("reading a PNG whose header claims more pixels than a frame can have fails before allocating") {
+  for (const char* name : {"png_header_100000x100000.png", "png_header_20000x20000.png"}) {
+    CAPTURE(name);
+    const std::string path = std::string(PARTICLES_SOURCE_DIR) + "/tests/fixtures/" + name;
+    REQUIRE(std::ifstream(path).good());
+    CHECK_THROWS_WITH_AS(readPng(path), doctest::Contains("pixels; images are at most 16384 pixels a side"),
+                         OutputError);
+  }
+}
