@@ -1,6 +1,6 @@
 #pragma once
 // Errors at the rendering boundary. Both name the failing call and the library's own message
-// (OSMesa/OpenGL, libavcodec/libavformat, libpng, the file system). The command line maps both
+// (EGL, OSMesa, OpenGL, libavcodec/libavformat, libpng, the file system). The command line maps both
 // to exit code 3 ("output failure", docs/physics.md §12).
 
 #include <stdexcept>
@@ -10,7 +10,8 @@
 
 namespace particles::render {
 
-// The off-screen GL context or its framebuffers could not be made, or GL reported an error.
+// The off-screen GL context or its buffer could not be made (no EGL display, config or device,
+// no OSMesa context), or GL reported an error.
 class RenderError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

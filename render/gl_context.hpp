@@ -1,24 +1,37 @@
 #pragma once
-// Internal to render/: an off-screen OpenGL context (OSMesa, Mesa's software rasteriser) drawing
-// into an Image it owns. No depth, stencil or accumulation buffers: shapes are drawn in painter's
-// order. Image row 0 is the top of the picture.
+// Internal to render/: an off-screen OpenGL context drawing into an Image it owns, made by one of
+// the backends of render/gl_backend.hpp (render/egl_context.hpp, render/osmesa_context.hpp). The
+// frame's buffer is RGBA8 without depth, stencil or multisampling: shapes are drawn in painter's
+// order and anti-aliased in the shader (render/renderer.hpp). Image row 0 is the top of the
+// picture. Every context uses the same state, the same llvmpipe by default and the same storage
+// order of rows (flipsY), so both backends give the same bytes.
 
 #include <memory>
+#include <string>
 
+#include "render/gl_backend.hpp"
+#include "render/gl_functions.hpp"
 #include "render/image.hpp"
 #include "render/theme.hpp"
-
-struct osmesa_context;  // OSMesaContext points to one (GL/osmesa.h)
 
 namespace particles::render {
 
 class GlContext {
  public:
-  // Makes the context with a width × height colour buffer and makes it current. Throws RenderError
-  // naming the failing call (OSMesaCreateContextAttribs, OSMesaMakeCurrent).
-  GlContext(int width, int height);
+  virtual ~GlContext() = default;
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;
+
+  // The GL functions of this context; call them only while it is current (after beginFrame, or
+  // right after it is made, which leaves it current).
+  const GlFunctions& gl() const { return gl_; }
+  const GlInfo& info() const { return info_; }
+  // Whether the shader must put image row y at GL window row height − y rather than y: the row
+  // order in which llvmpipe then stores and rasterises the picture is the one it uses for OSMesa's
+  // buffer (render/egl_context.cpp says why that matters).
+  bool flipsY() const { return flipsY_; }
+  // Records why auto did not use EGL (GlInfo::fallback).
+  void noteFallback(std::string reason) { info_.fallback = std::move(reason); }
 
   // Makes this context current (another renderer may have been drawing in between), sets the
   // state every frame is drawn with (coverage blended as alpha, nothing else) and clears the image
@@ -28,17 +41,30 @@ class GlContext {
   // error since beginFrame.
   const Image& finishFrame();
 
- private:
-  struct ContextDeleter {
-    void operator()(osmesa_context* context) const;
-  };
-  Image image_;  // OSMesa's colour buffer: GL window row y is image row y
-  std::unique_ptr<osmesa_context, ContextDeleter> context_;
+ protected:
+  // The backend makes its context current, then calls loadFunctions.
+  GlContext(int width, int height, bool flipsY) : image_(width, height), flipsY_(flipsY) {}
+  // Looks the GL functions up in the now current context and records what it runs on.
+  void loadFunctions(GlProcLookup lookup, const char* lookupName, GlBackend backend, std::string device);
 
-  void makeCurrent();
+  Image image_;  // the frame, top row first
+
+ private:
+  // Binds the context to this thread, really: a context the library believes current may not be,
+  // when another backend has switched Mesa's dispatch in between. Throws RenderError.
+  virtual void makeCurrent() = 0;
+  // After everything is drawn: the backend's pixels into image_ (an OSMesa context draws there
+  // already). Throws RenderError.
+  virtual void readFrame() = 0;
+
+  const bool flipsY_;
+  GlFunctions gl_;
+  GlInfo info_;
 };
 
-// Throws RenderError("WHAT: OpenGL error NAME") if GL has recorded an error.
-void checkGl(const char* what);
+// The backend of `request` for a width × height frame, current on return; auto tries EGL, then
+// OSMesa. Throws RenderError naming the failing call of every backend tried, and
+// std::invalid_argument for a request this build cannot serve (validate).
+std::unique_ptr<GlContext> makeGlContext(const GlRequest& request, int width, int height);
 
 }  // namespace particles::render

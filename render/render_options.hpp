@@ -23,7 +23,8 @@ struct Length {
   Unit unit;
 };
 
-// The largest frame side in pixels: OSMesa's largest buffer (OSMESA_MAX_WIDTH/HEIGHT) in Mesa 22.
+// The largest frame side in pixels: OSMesa's largest buffer (OSMESA_MAX_WIDTH/HEIGHT) in Mesa 22,
+// which EGL's framebuffer there takes too (16384 × 16 and 16 × 16384 drawn).
 // Images read back (golden frames) are held to the same bound.
 inline constexpr int kMaxImageSide = 16384;
 

@@ -14,7 +14,9 @@ namespace {
 class FramePainter {
  public:
   FramePainter(const RenderJob& job, const RenderHooks& hooks)
-      : renderer_(job.look), camera_(job.camera), decorate_(hooks.decorate) {}
+      : renderer_(job.look, job.gl), camera_(job.camera), decorate_(hooks.decorate) {
+    if (hooks.glReady) hooks.glReady(renderer_.gl());
+  }
   const Image& paint(const System& system) {
     const Image& image = renderer_.render(system.draw(), camera_);
     if (!decorate_) return image;

@@ -18,6 +18,7 @@
 #include "core/integrators.hpp"
 #include "core/system.hpp"
 #include "render/frame_writer.hpp"
+#include "render/gl_backend.hpp"
 #include "render/image.hpp"
 #include "render/png_io.hpp"
 #include "render/render_options.hpp"
@@ -32,12 +33,15 @@ struct RenderJob {
   int fps = 60;                  // frames per simulated second, ≥ 1
   Camera camera;
   RenderOptions look;
+  GlRequest gl;        // which GL backend draws (render/gl_backend.hpp)
   VideoOptions video;  // the encoder's settings for file.mp4; its fps is set from `fps`
   PngOptions png;      // for file.png and dir/
 };
 
 // Every hook may be left empty.
 struct RenderHooks {
+  // Once, when the GL context is made, before the output is opened: what draws the frames.
+  std::function<void(const GlInfo& gl)> glReady;
   // Once per frame, when the system has reached the frame's time and before it is drawn.
   std::function<void(const System& system)> onFrame;
   // Draws over each rendered frame before it is written.
@@ -58,10 +62,10 @@ struct RenderSummary {
 
 // Renders `system`, stepped by `integrator` with time step `dt` from its current state, to
 // `job.output`. Throws SimulationError (core/solver.hpp) when the simulation blows up,
-// RenderError when the GL context cannot be made or draw, OutputError when the output cannot be
-// written, std::invalid_argument for options out of range (render/render_options.hpp, a video of
-// odd size, an unknown preset, a file.png without `at` or `at` for anything else), and whatever
-// a hook throws.
+// RenderError when the GL context cannot be made (before any output is opened) or draw,
+// OutputError when the output cannot be written, std::invalid_argument for options out of range
+// (render/render_options.hpp, render/gl_backend.hpp's validate, a video of odd size, an unknown
+// preset, a file.png without `at` or `at` for anything else), and whatever a hook throws.
 RenderSummary renderSimulation(System& system, Integrator integrator, double dt, const RenderJob& job,
                                const RenderHooks& hooks = {});
 

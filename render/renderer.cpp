@@ -11,17 +11,20 @@ struct Renderer::Impl {
   // Members in the order they are made: the program is compiled in the context, current once made.
   RenderOptions options;
   Theme colors;
-  GlContext context;
+  std::unique_ptr<GlContext> context;
   ShaderProgram program;
   ShapeMesh mesh;  // the frame's triangles, storage reused from frame to frame
 
-  explicit Impl(const RenderOptions& o)
-      : options(o), colors(theme(o.themeName)), context(o.width, o.height), program(o.msaa, o.width, o.height) {}
+  Impl(const RenderOptions& o, const GlRequest& gl)
+      : options(o),
+        colors(theme(o.themeName)),
+        context(makeGlContext(gl, o.width, o.height)),
+        program(context->gl(), o.msaa, o.width, o.height, context->flipsY()) {}
 };
 
-Renderer::Renderer(const RenderOptions& options) {
+Renderer::Renderer(const RenderOptions& options, const GlRequest& gl) {
   validate(options);
-  impl_ = std::make_unique<Impl>(options);
+  impl_ = std::make_unique<Impl>(options, gl);
 }
 
 Renderer::~Renderer() = default;  // the context owns the program; destroying it frees both
@@ -32,13 +35,16 @@ const RenderOptions& Renderer::options() const {
 int Renderer::samples() const {
   return impl_->options.msaa;
 }
+const GlInfo& Renderer::gl() const {
+  return impl_->context->info();
+}
 
 const Image& Renderer::render(const Drawing& frame, const Camera& camera) {
   Impl& m = *impl_;
   buildFrameMesh(frame, camera, m.options, m.colors, m.mesh);
-  m.context.beginFrame(m.colors.background);
+  m.context->beginFrame(m.colors.background);
   m.program.draw(m.mesh);
-  return m.context.finishFrame();
+  return m.context->finishFrame();
 }
 
 }  // namespace particles::render

@@ -1,6 +1,7 @@
 #pragma once
-// Off-screen OpenGL rendering of a Drawing (docs/physics.md §9) through OSMesa, Mesa's software
-// rasteriser (llvmpipe): no display, no GPU. DISPLAY may be unset.
+// Off-screen OpenGL rendering of a Drawing (docs/physics.md §9) through EGL or OSMesa
+// (render/gl_backend.hpp) on Mesa's software rasteriser, llvmpipe: no display, no GPU (unless
+// asked for). DISPLAY may be unset.
 //
 // Anti-aliasing is multisampling done in the fragment shader: every primitive carries its true
 // boundary (edge distances, or a circle's centre and radii), each pixel is tested at `msaa` sample
@@ -16,13 +17,15 @@
 // pixel width, discs as fans), pushed out by a 1 px fringe where they are smoothed, and drawn in a
 // fixed order: the same drawing gives the same pixels every time (tests check byte equality).
 // The parts: render/theme.hpp (colours), render/frame_mesh.hpp (the triangles, no GL),
-// render/shader_program.hpp (the coverage shader), render/gl_context.hpp (the OSMesa context).
+// render/shader_program.hpp (the coverage shader), render/gl_context.hpp (the GL context, one file
+// pair per backend: render/egl_context.hpp, render/osmesa_context.hpp).
 //
 // Speed: bench/README.md (render-only frames per second for the three demos).
 
 #include <memory>
 
 #include "core/drawing.hpp"
+#include "render/gl_backend.hpp"
 #include "render/image.hpp"
 #include "render/render_options.hpp"
 #include "render/theme.hpp"
@@ -31,10 +34,11 @@ namespace particles::render {
 
 class Renderer {
  public:
-  // Makes the OSMesa context and framebuffers. Throws RenderError naming the failing call (for
-  // instance OSMesaCreateContextAttribs, or an incomplete framebuffer) and std::invalid_argument
-  // for bad options.
-  explicit Renderer(const RenderOptions& options);
+  // Makes the GL context of `gl` (auto: EGL, else OSMesa) and its framebuffer. Throws RenderError
+  // naming the failing call (for instance eglInitialize, OSMesaCreateContextAttribs, or an
+  // incomplete framebuffer) and std::invalid_argument for bad options or a backend this build
+  // lacks.
+  explicit Renderer(const RenderOptions& options, const GlRequest& gl = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
@@ -44,7 +48,8 @@ class Renderer {
   const Image& render(const Drawing& frame, const Camera& camera);
 
   const RenderOptions& options() const;
-  int samples() const;  // samples per pixel (options().msaa)
+  int samples() const;       // samples per pixel (options().msaa)
+  const GlInfo& gl() const;  // the backend, device and GL renderer drawing the frames
 
  private:
   struct Impl;

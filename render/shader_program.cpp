@@ -1,10 +1,5 @@
 #include "render/shader_program.hpp"
 
-#define GL_GLEXT_PROTOTYPES 1
-#include <GL/gl.h>
-// libOSMesa exports the GL 2/3 entry points (shaders) too.
-#include <GL/glext.h>
-
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
@@ -12,7 +7,7 @@
 #include <type_traits>
 
 #include "render/errors.hpp"
-#include "render/gl_context.hpp"
+#include "render/gl_functions.hpp"
 
 namespace particles::render {
 
@@ -20,9 +15,11 @@ static_assert(std::is_same_v<GLuint, unsigned> && std::is_same_v<GLint, int>, "S
 
 namespace {
 
-constexpr const char* kVertexShader = R"(#version 130
+// Compiled with Y_SIGN defined before this text: 1.0 puts image row y at GL window row y, −1.0 at
+// window row height − y (ShaderProgram's flipY, render/gl_context.hpp).
+constexpr const char* kVertexShader = R"(
 uniform vec2 imageSize;
-in vec2 position;   // pixels, x right, y = image row (GL window row, see OSMESA_Y_UP)
+in vec2 position;   // pixels, x right, y = image row
 in vec4 color;
 in vec4 shape;
 in float kind;
@@ -30,23 +27,24 @@ out vec4 vColor;
 out vec4 vShape;
 flat out float vKind;
 void main() {
-  gl_Position = vec4(2.0 * position / imageSize - 1.0, 0.0, 1.0);
+  vec2 ndc = 2.0 * position / imageSize - 1.0;
+  gl_Position = vec4(ndc.x, Y_SIGN * ndc.y, 0.0, 1.0);
   vColor = color;
   vShape = shape;
   vKind = kind;
 }
 )";
 
-// Compiled once per sample count (SAMPLE_COUNT and SAMPLES are defined before this text) so the
-// loop unrolls and llvmpipe's vectorised code has no branches: both shape kinds are evaluated and
-// one is selected.
+// Compiled once per sample count (SAMPLE_COUNT, SAMPLES and Y_SIGN are defined before this text) so
+// the loop unrolls and llvmpipe's vectorised code has no branches: both shape kinds are evaluated
+// and one is selected. dFdy is along GL's window y; times Y_SIGN, along image rows (y down).
 constexpr const char* kFragmentShader = R"(
 in vec4 vColor;
 in vec4 vShape;
 flat in float vKind;
 void main() {
   const vec2 samples[SAMPLE_COUNT] = vec2[SAMPLE_COUNT](SAMPLES);
-  vec4 ddx = dFdx(vShape), ddy = dFdy(vShape);  // exact: edge distances are affine in position
+  vec4 ddx = dFdx(vShape), ddy = Y_SIGN * dFdy(vShape);  // exact: edge distances are affine in position
   float rOut2 = vShape.z * vShape.z, rIn2 = vShape.w * vShape.w;
   float covered = 0.0;
   for (int i = 0; i < SAMPLE_COUNT; ++i) {
@@ -75,12 +73,12 @@ std::optional<std::string> failureLog(GLuint object, GLenum status, void (*getSt
   return log;
 }
 
-GLuint compileShader(GLenum type, const char* source, const char* name) {
-  const GLuint shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  if (const auto log = failureLog(shader, GL_COMPILE_STATUS, glGetShaderiv, glGetShaderInfoLog)) {
-    glDeleteShader(shader);
+GLuint compileShader(const GlFunctions& gl, GLenum type, const char* source, const char* name) {
+  const GLuint shader = gl.glCreateShader(type);
+  gl.glShaderSource(shader, 1, &source, nullptr);
+  gl.glCompileShader(shader);
+  if (const auto log = failureLog(shader, GL_COMPILE_STATUS, gl.glGetShaderiv, gl.glGetShaderInfoLog)) {
+    gl.glDeleteShader(shader);
     throw RenderError(std::string("compiling the ") + name + " shader failed: " + *log);
   }
   return shader;
@@ -112,51 +110,53 @@ const std::vector<Vec2>& samplePattern(int samples) {
   }
 }
 
-ShaderProgram::ShaderProgram(int samples, int width, int height) {
-  const GLuint vs = compileShader(GL_VERTEX_SHADER, kVertexShader, "vertex");
+ShaderProgram::ShaderProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY) : gl_(gl) {
+  const std::string ySign = std::string("#version 130\n#define Y_SIGN ") + (flipY ? "-1.0" : "1.0") + "\n";
+  const std::string vertexSource = ySign + kVertexShader;
+  const GLuint vs = compileShader(gl, GL_VERTEX_SHADER, vertexSource.c_str(), "vertex");
   const std::vector<Vec2>& pattern = samplePattern(samples);
-  std::string header = "#version 130\n#define SAMPLE_COUNT " + std::to_string(pattern.size()) + "\n#define SAMPLES ";
+  std::string header = ySign + "#define SAMPLE_COUNT " + std::to_string(pattern.size()) + "\n#define SAMPLES ";
   for (size_t i = 0; i < pattern.size(); ++i) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%svec2(%.6f, %.6f)", i ? ", " : "", pattern[i].x(), pattern[i].y());
     header += buf;
   }
   const std::string fragmentSource = header + "\n" + kFragmentShader;
-  const GLuint fs = compileShader(GL_FRAGMENT_SHADER, fragmentSource.c_str(), "fragment");
-  program_ = glCreateProgram();
-  glAttachShader(program_, vs);
-  glAttachShader(program_, fs);
-  glLinkProgram(program_);
-  glDeleteShader(vs);  // freed with the program
-  glDeleteShader(fs);
-  if (const auto log = failureLog(program_, GL_LINK_STATUS, glGetProgramiv, glGetProgramInfoLog)) {
+  const GLuint fs = compileShader(gl, GL_FRAGMENT_SHADER, fragmentSource.c_str(), "fragment");
+  program_ = gl.glCreateProgram();
+  gl.glAttachShader(program_, vs);
+  gl.glAttachShader(program_, fs);
+  gl.glLinkProgram(program_);
+  gl.glDeleteShader(vs);  // freed with the program
+  gl.glDeleteShader(fs);
+  if (const auto log = failureLog(program_, GL_LINK_STATUS, gl.glGetProgramiv, gl.glGetProgramInfoLog)) {
     throw RenderError(std::string("linking the shader program failed: ") + *log);
   }
-  positionAttr_ = glGetAttribLocation(program_, "position");
-  colorAttr_ = glGetAttribLocation(program_, "color");
-  shapeAttr_ = glGetAttribLocation(program_, "shape");
-  kindAttr_ = glGetAttribLocation(program_, "kind");
-  glUseProgram(program_);
-  glUniform2f(glGetUniformLocation(program_, "imageSize"), float(width), float(height));
-  checkGl("shader program setup");
+  positionAttr_ = gl.glGetAttribLocation(program_, "position");
+  colorAttr_ = gl.glGetAttribLocation(program_, "color");
+  shapeAttr_ = gl.glGetAttribLocation(program_, "shape");
+  kindAttr_ = gl.glGetAttribLocation(program_, "kind");
+  gl.glUseProgram(program_);
+  gl.glUniform2f(gl.glGetUniformLocation(program_, "imageSize"), float(width), float(height));
+  checkGl(gl, "shader program setup");
 }
 
 void ShaderProgram::draw(const ShapeMesh& mesh) const {
   if (mesh.vertices().empty()) return;
   const ShapeVertex* v = mesh.vertices().data();
   const GLsizei stride = sizeof(ShapeVertex);
-  glUseProgram(program_);
+  gl_.glUseProgram(program_);
   const GLint attrs[] = {positionAttr_, colorAttr_, shapeAttr_, kindAttr_};
   for (GLint a : attrs) {
-    if (a >= 0) glEnableVertexAttribArray(GLuint(a));
+    if (a >= 0) gl_.glEnableVertexAttribArray(GLuint(a));
   }
-  if (positionAttr_ >= 0) glVertexAttribPointer(GLuint(positionAttr_), 2, GL_FLOAT, GL_FALSE, stride, &v->x);
-  if (colorAttr_ >= 0) glVertexAttribPointer(GLuint(colorAttr_), 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, v->rgba);
-  if (shapeAttr_ >= 0) glVertexAttribPointer(GLuint(shapeAttr_), 4, GL_FLOAT, GL_FALSE, stride, v->shape);
-  if (kindAttr_ >= 0) glVertexAttribPointer(GLuint(kindAttr_), 1, GL_FLOAT, GL_FALSE, stride, &v->kind);
-  glDrawArrays(GL_TRIANGLES, 0, GLsizei(mesh.vertices().size()));
+  if (positionAttr_ >= 0) gl_.glVertexAttribPointer(GLuint(positionAttr_), 2, GL_FLOAT, GL_FALSE, stride, &v->x);
+  if (colorAttr_ >= 0) gl_.glVertexAttribPointer(GLuint(colorAttr_), 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, v->rgba);
+  if (shapeAttr_ >= 0) gl_.glVertexAttribPointer(GLuint(shapeAttr_), 4, GL_FLOAT, GL_FALSE, stride, v->shape);
+  if (kindAttr_ >= 0) gl_.glVertexAttribPointer(GLuint(kindAttr_), 1, GL_FLOAT, GL_FALSE, stride, &v->kind);
+  gl_.glDrawArrays(GL_TRIANGLES, 0, GLsizei(mesh.vertices().size()));
   for (GLint a : attrs) {
-    if (a >= 0) glDisableVertexAttribArray(GLuint(a));
+    if (a >= 0) gl_.glDisableVertexAttribArray(GLuint(a));
   }
 }
 

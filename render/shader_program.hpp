@@ -13,6 +13,8 @@
 
 namespace particles::render {
 
+struct GlFunctions;  // render/gl_functions.hpp
+
 // The sample positions for each of kSampleCounts (render/render_options.hpp): offsets from the
 // pixel centre in pixels, x right, y down (Direct3D's and Vulkan's standard patterns; 1 is the
 // centre itself). Throws std::invalid_argument for another count.
@@ -21,9 +23,11 @@ const std::vector<Vec2>& samplePattern(int samples);
 class ShaderProgram {
  public:
   // Compiles and links the shader for `samples` per pixel and images of width × height pixels in
-  // the current GL context, and makes it current there. Throws RenderError with the compiler's or
-  // the linker's log, std::invalid_argument for a sample count without a pattern.
-  ShaderProgram(int samples, int width, int height);
+  // the current GL context, whose functions `gl` are (they outlive the program), and makes it
+  // current there. Image row y is GL window row y, or height − y with `flipY` (the context's
+  // GlContext::flipsY). Throws RenderError with the compiler's or the linker's log,
+  // std::invalid_argument for a sample count without a pattern.
+  ShaderProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY);
   // No destructor: the program belongs to its context and is freed with it (deleting it here
   // would need that context current, and another renderer's may be).
   ShaderProgram(const ShaderProgram&) = delete;
@@ -33,6 +37,7 @@ class ShaderProgram {
   void draw(const ShapeMesh& mesh) const;
 
  private:
+  const GlFunctions& gl_;
   unsigned program_ = 0;  // GLuint
   // GLint locations; an attribute the compiler dropped has location −1 and is skipped.
   int positionAttr_ = -1, colorAttr_ = -1, shapeAttr_ = -1, kindAttr_ = -1;

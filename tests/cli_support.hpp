@@ -89,12 +89,13 @@ struct Scratch {
     return out;
   }
 
-  // Runs `particles ARGS` in this directory.
-  Result run(const std::string& args) const {
+  // Runs `particles ARGS` in this directory, with the environment changed by `environment`: the
+  // arguments of env(1), e.g. "-u PARTICLES_GL" or "PARTICLES_GL=osmesa".
+  Result run(const std::string& args, const std::string& environment = "") const {
     const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
     REQUIRE_MESSAGE(fs::exists(exe), "the particles program is not built next to the tests: " << exe);
-    const std::string command =
-        "cd '" + dir.string() + "' && '" + exe.string() + "' " + args + " > stdout.txt 2> stderr.txt";
+    const std::string command = "cd '" + dir.string() + "' && env " + environment + " '" + exe.string() + "' " + args +
+                                " > stdout.txt 2> stderr.txt";
     return collect(std::system(command.c_str()));
   }
 

@@ -60,7 +60,9 @@ struct RenderCommandOptions {
   int crf = 18;                        // x264 quality (see render/frame_writer.hpp)
   std::string preset = "medium";       // x264 preset
   int pngLevel = 6;                    // zlib level for PNG output
-  bool verbose = false;                // libav/x264 log
+  bool verbose = false;                // the GL backend on stderr, and libav/x264's log
+  std::string gl;                      // --gl auto | egl | osmesa; empty: $PARTICLES_GL, else auto
+  bool gpu = false;                    // --gpu: a hardware EGL device
   bool hud = false;                    // time, integrator, dt and energy drawn on each frame
   std::string stats, trace;            // CSVs, one row per frame
   std::vector<std::string> traceOnly;

@@ -7,6 +7,8 @@
 #include "app/commands.hpp"
 #include "app/compare_command.hpp"
 #include "app/exit_codes.hpp"
+#include "app/gl_options.hpp"
+#include "render/gl_backend.hpp"
 #include "render/renderer.hpp"
 
 namespace {
@@ -38,7 +40,9 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
 
 int main(int argc, char** argv) {
   CLI::App app{"particles: 2D particle systems and rigid bodies after Witkin & Baraff", "particles"};
-  app.set_version_flag("--version", "particles " PARTICLES_VERSION);
+  // The version, and on a second line the GL backend and renderer `render` would use.
+  app.set_version_flag("--version",
+                       [] { return "particles " PARTICLES_VERSION "\n" + particles::app::glVersionLine(); });
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 1 simulation failure (explosion; for compare: the frames differ),\n"
@@ -90,7 +94,14 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--crf", render.crf, "x264 constant rate factor, 0 (lossless) … 51")->capture_default_str();
   renderCmd->add_option("--preset", render.preset, "x264 preset: ultrafast … veryslow")->capture_default_str();
   renderCmd->add_option("--png-level", render.pngLevel, "PNG compression level 0 … 9")->capture_default_str();
-  renderCmd->add_flag("--verbose", render.verbose, "Show libav/x264's own log");
+  renderCmd->add_flag("--verbose", render.verbose, "Name the GL backend and renderer; show libav/x264's own log");
+  renderCmd
+      ->add_option("--gl", render.gl,
+                   fmt::format("GL backend: auto (EGL, else OSMesa), egl or osmesa (default: ${}, else auto)",
+                               particles::app::kGlEnvironmentVariable))
+      ->check(CLI::IsMember(particles::render::glBackendNames()));
+  renderCmd->add_flag("--gpu", render.gpu,
+                      "Draw on a GPU through EGL instead of llvmpipe on the CPU (frames may differ from the goldens)");
   renderCmd->add_flag("--hud", render.hud,
                       "Draw time, integrator, dt and energy in the top-left corner of every frame");
   renderCmd->add_option("--stats", render.stats,
@@ -102,12 +113,15 @@ int main(int argc, char** argv) {
   renderCmd->footer(
       "Frame i shows t = i / fps; an MP4 has round(duration · fps) frames. Odd sizes are refused for MP4\n"
       "(H.264 yuv420p needs even sizes); PNG takes any size. Outputs appear only when complete.\n"
+      "Frames are drawn by Mesa's llvmpipe on the CPU, the same bytes through EGL or OSMesa;\n"
+      "'particles --version' names the backend and renderer.\n"
       "Examples:\n"
       "  particles render scenarios/cloth.yaml -o cloth.mp4\n"
       "  particles render scenarios/soft_body.yaml -o frames/ --size 640x360 --fps 30\n"
       "  particles render scenarios/cloth.yaml -o fig.png --at 2.5 --theme light --size 1600x1200\n"
       "  particles render scenarios/soft_body.yaml -o man.mp4 --hud   # time, integrator, dt, energy on every frame\n"
-      "  particles render scenarios/rigid_chain.yaml -o chain.mp4 --crf 23 --preset veryfast --quiet\n");
+      "  particles render scenarios/rigid_chain.yaml -o chain.mp4 --crf 23 --preset veryfast --quiet\n"
+      "  PARTICLES_GL=osmesa particles render scenarios/cloth.yaml -o cloth.mp4   # where EGL will not start\n");
 
   particles::app::StabilityOptionsCli stability;
   CLI::App* stabilityCmd = app.add_subcommand(

@@ -15,6 +15,7 @@
 
 #include "app/cli_support.hpp"
 #include "app/csv_recorder.hpp"
+#include "app/gl_options.hpp"
 #include "core/solver.hpp"
 #include "core/system.hpp"
 #include "plot/errors.hpp"
@@ -158,6 +159,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   }
   render::setLibavVerbose(options.verbose);
   refusedOptionsAreInputErrors([&] { render::validate(look); });
+  const render::GlRequest gl = glRequestOf(options.gl, options.gpu);
   const auto recorder = CsvRecorder::open(s.system, options.stats, options.trace, options.traceOnly);
 
   render::RenderJob job;
@@ -167,11 +169,15 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   job.fps = fps;
   job.camera = {s.render.viewCenter, s.render.viewHeight};
   job.look = look;
+  job.gl = gl;
   job.video.crf = options.crf;
   job.video.preset = options.preset;
   job.png.compressionLevel = options.pngLevel;
   long framesReached = 0;  // frames whose time the simulation reached
   render::RenderHooks hooks;
+  if (options.verbose) {
+    hooks.glReady = [](const render::GlInfo& info) { fmt::print(stderr, "GL: {}\n", render::describe(info)); };
+  }
   hooks.onFrame = [&](const System& system) {
     recorder->record(system);
     ++framesReached;

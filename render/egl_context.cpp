@@ -1,0 +1,315 @@
+#include "render/egl_context.hpp"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <mutex>
+#include <string_view>
+#include <vector>
+
+#include "render/errors.hpp"
+
+namespace particles::render {
+
+namespace {
+
+std::string eglErrorName(EGLint e) {
+  switch (e) {
+    case EGL_SUCCESS: return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
+    case EGL_BAD_CURRENT_SURFACE: return "EGL_BAD_CURRENT_SURFACE";
+    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
+    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
+    case EGL_CONTEXT_LOST: return "EGL_CONTEXT_LOST";
+    case EGL_BAD_DEVICE_EXT: return "EGL_BAD_DEVICE_EXT";
+    default: return fmt::format("0x{:04x}", e);
+  }
+}
+
+// Throws RenderError("CALL failed: EGL_ERROR" and what it usually means).
+[[noreturn]] void failEgl(std::string_view call, std::string_view advice = {}) {
+  const std::string error = eglErrorName(eglGetError());
+  throw RenderError(advice.empty() ? fmt::format("{} failed: {}", call, error)
+                                   : fmt::format("{} failed: {} ({})", call, error, advice));
+}
+
+// Whether the space-separated `list` (may be null) names `extension`.
+bool hasExtension(const char* list, std::string_view extension) {
+  for (std::string_view rest = list ? list : ""; !rest.empty();) {
+    const size_t end = rest.find(' ');
+    if (rest.substr(0, end) == extension) return true;
+    if (end == std::string_view::npos) break;
+    rest.remove_prefix(end + 1);
+  }
+  return false;
+}
+
+// llvmpipe and softpipe by their GL_RENDERER ("llvmpipe (LLVM 15.0.6, 256 bits)"), Mesa's classic
+// software rasteriser by its own.
+bool isSoftwareRenderer(std::string_view renderer) {
+  return renderer.starts_with("llvmpipe") || renderer.starts_with("softpipe") ||
+         renderer.find("Software Rasterizer") != std::string_view::npos;
+}
+
+// The client extensions that find a display without a window system, looked up in EGL.
+struct EglPlatforms {
+  PFNEGLGETPLATFORMDISPLAYEXTPROC getPlatformDisplay = nullptr;
+  PFNEGLQUERYDEVICESEXTPROC queryDevices = nullptr;
+  PFNEGLQUERYDEVICESTRINGEXTPROC queryDeviceString = nullptr;
+  bool deviceList = false;   // EGL_EXT_platform_device, EGL_EXT_device_enumeration, EGL_EXT_device_query
+  bool surfaceless = false;  // EGL_MESA_platform_surfaceless
+  std::string extensions;    // for messages
+};
+
+EglPlatforms eglPlatforms() {
+  EglPlatforms p;
+  const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);  // null: no client extensions
+  p.extensions = client && *client ? client : "none";
+  p.getPlatformDisplay =
+      reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  p.queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+  p.queryDeviceString = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+  const bool platforms = hasExtension(client, "EGL_EXT_platform_base") && p.getPlatformDisplay;
+  p.deviceList = platforms && hasExtension(client, "EGL_EXT_platform_device") &&
+                 (hasExtension(client, "EGL_EXT_device_enumeration") || hasExtension(client, "EGL_EXT_device_base")) &&
+                 p.queryDevices && p.queryDeviceString;
+  p.surfaceless = platforms && hasExtension(client, "EGL_MESA_platform_surfaceless");
+  return p;
+}
+
+// An initialised display, shared by every context on it. EGL has one display per device in the
+// process (eglGetPlatformDisplay returns the same handle each time) and eglTerminate ends every
+// context on it, so the contexts share one initialisation and the last one terminates it. This is
+// the one piece of process-wide state here: the display it mirrors is process-wide too.
+class InitializedDisplay {
+ public:
+  explicit InitializedDisplay(EGLDisplay display) : display_(display) {
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(display_, &major, &minor)) {
+      failEgl("eglInitialize", "no driver for the device? Mesa's llvmpipe is Debian's libgl1-mesa-dri");
+    }
+  }
+  ~InitializedDisplay() { eglTerminate(display_); }
+  InitializedDisplay(const InitializedDisplay&) = delete;
+  InitializedDisplay& operator=(const InitializedDisplay&) = delete;
+  EGLDisplay get() const { return display_; }
+
+  static std::shared_ptr<InitializedDisplay> share(EGLDisplay display) {
+    static std::mutex mutex;
+    static std::map<EGLDisplay, std::weak_ptr<InitializedDisplay>> initialized;
+    const std::lock_guard<std::mutex> lock(mutex);
+    std::shared_ptr<InitializedDisplay> shared = initialized[display].lock();
+    if (!shared) {
+      shared = std::make_shared<InitializedDisplay>(display);
+      initialized[display] = shared;
+    }
+    return shared;
+  }
+
+ private:
+  EGLDisplay display_;
+};
+
+// The display to draw on, and what to call it.
+struct DisplayChoice {
+  EGLDisplay display = EGL_NO_DISPLAY;
+  std::string device;
+  bool mesaChose = false;  // the surfaceless platform: Mesa picked the device, check its renderer
+};
+
+std::string deviceFile(const EglPlatforms& egl, EGLDeviceEXT device, const char* extensions) {
+  const char* file = nullptr;
+  if (hasExtension(extensions, "EGL_EXT_device_drm_render_node")) {
+    file = egl.queryDeviceString(device, EGL_DRM_RENDER_NODE_FILE_EXT);
+  }
+  if (!file && hasExtension(extensions, "EGL_EXT_device_drm"))
+    file = egl.queryDeviceString(device, EGL_DRM_DEVICE_FILE_EXT);
+  return file ? file : "(no device file)";
+}
+
+// The devices EGL lists; none where it has no device list.
+std::vector<EGLDeviceEXT> listDevices(const EglPlatforms& egl) {
+  if (!egl.deviceList) return {};
+  EGLint count = 0;
+  if (!egl.queryDevices(0, nullptr, &count)) failEgl("eglQueryDevicesEXT");
+  std::vector<EGLDeviceEXT> devices(size_t(std::max(count, 0)));
+  if (count > 0 && !egl.queryDevices(count, devices.data(), &count)) failEgl("eglQueryDevicesEXT");
+  devices.resize(size_t(std::max(count, 0)));
+  return devices;
+}
+
+DisplayChoice chooseDisplay(bool gpu) {
+  const EglPlatforms egl = eglPlatforms();
+  const std::vector<EGLDeviceEXT> devices = listDevices(egl);
+  for (EGLDeviceEXT device : devices) {
+    const char* extensions = egl.queryDeviceString(device, EGL_EXTENSIONS);
+    const bool software = hasExtension(extensions, "EGL_MESA_device_software");
+    if (software == gpu) continue;
+    const EGLDisplay display = egl.getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
+    if (display == EGL_NO_DISPLAY) failEgl("eglGetPlatformDisplayEXT(EGL_PLATFORM_DEVICE_EXT)");
+    return {display, software ? "software device" : "hardware device " + deviceFile(egl, device, extensions)};
+  }
+  if (gpu && egl.deviceList) {
+    // The surfaceless platform would look at the same DRM devices: nothing more to try.
+    throw RenderError(fmt::format(
+        "a GPU was asked for, but EGL lists no hardware device ({} device{}, all software rasterisers). A GPU "
+        "needs its driver's EGL (Mesa's for AMD and Intel, NVIDIA's own) and access to /dev/dri/renderD*; "
+        "without --gpu, frames are drawn on the CPU",
+        devices.size(), devices.size() == 1 ? "" : "s"));
+  }
+  if (egl.surfaceless) {
+    const EGLDisplay display = egl.getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (display == EGL_NO_DISPLAY) failEgl("eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA)");
+    return {display, "surfaceless platform", true};
+  }
+  const std::string listed =
+      egl.deviceList
+          ? fmt::format("EGL lists {} device{}, none of them {}", devices.size(), devices.size() == 1 ? "" : "s",
+                        gpu ? "hardware" : "Mesa's software rasteriser (EGL_MESA_device_software)")
+          : std::string("EGL lists no devices (no EGL_EXT_platform_device with EGL_EXT_device_enumeration)");
+  throw RenderError(
+      fmt::format("{}, and has no EGL_MESA_platform_surfaceless (its client extensions: {}). Mesa's EGL has both "
+                  "(Debian: libegl-mesa0, with llvmpipe in libgl1-mesa-dri)",
+                  listed, egl.extensions));
+}
+
+// A context, released and destroyed with this object (with the framebuffer and shader program made
+// in it).
+class OwnedContext {
+ public:
+  explicit OwnedContext(std::shared_ptr<InitializedDisplay> display) : display_(std::move(display)) {
+    if (!eglBindAPI(EGL_OPENGL_API)) failEgl("eglBindAPI(EGL_OPENGL_API)", "this EGL has no desktop OpenGL");
+    // Any config that renders OpenGL: the context draws into a framebuffer object, not a surface.
+    const EGLint wanted[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0, EGL_NONE};
+    EGLConfig config = nullptr;
+    EGLint configs = 0;
+    if (!eglChooseConfig(display_->get(), wanted, &config, 1, &configs)) failEgl("eglChooseConfig(OpenGL)");
+    if (configs == 0) throw RenderError("eglChooseConfig(OpenGL) found no config: this EGL device cannot draw OpenGL");
+    // GLSL 1.30 and framebuffer objects need OpenGL 3.0; client-side vertex arrays and gl_FragColor
+    // (render/shader_program.cpp) the compatibility profile, as OSMesa's context has.
+    const EGLint attribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                              3,
+                              EGL_CONTEXT_MINOR_VERSION,
+                              0,
+                              EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                              EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT,
+                              EGL_NONE};
+    context_ = eglCreateContext(display_->get(), config, EGL_NO_CONTEXT, attribs);
+    if (context_ == EGL_NO_CONTEXT) failEgl("eglCreateContext(OpenGL 3.0, compatibility profile)");
+  }
+  ~OwnedContext() {
+    release();
+    eglDestroyContext(display_->get(), context_);
+  }
+  OwnedContext(const OwnedContext&) = delete;
+  OwnedContext& operator=(const OwnedContext&) = delete;
+
+  // Binds the context, without a surface, to this thread. OSMesa switches Mesa's GL dispatch to
+  // its own context without EGL knowing, and EGL does not bind again a context it believes
+  // current (seen with GLVND and Mesa 22.3: the frame was drawn in the OSMesa context): release
+  // it first. A release and a bind cost about 17 µs.
+  void makeCurrent() {
+    release();
+    if (!eglMakeCurrent(display_->get(), EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
+      failEgl("eglMakeCurrent(no surface)", "a context without a surface needs EGL_KHR_surfaceless_context");
+    }
+  }
+
+ private:
+  std::shared_ptr<InitializedDisplay> display_;
+  EGLContext context_ = EGL_NO_CONTEXT;
+
+  void release() {
+    if (eglGetCurrentContext() == context_) {
+      eglMakeCurrent(display_->get(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    }
+  }
+};
+
+// The frame is drawn upside down into a framebuffer object (flipsY), the row order in which Mesa
+// stores OSMesa's window-system buffer; llvmpipe rasterises in storage order, and where an edge
+// passes exactly through a pixel centre or a sample position the order decides whether the sample
+// is in. Drawn upright, 2 pixels of golden/cloth_t2.5.png (the cursor's tip) differed from
+// OSMesa's by 59 at 4 samples, and at 1 and 16 samples a whole row of the cloth's rail, whose edge
+// lies on pixel centres; an EGL pbuffer (a window-system buffer too) still differed on the rail.
+// Upside down, every frame tried is the same bytes as OSMesa's (tests/test_render_backends.cpp).
+class EglContext final : public GlContext {
+ public:
+  EglContext(bool gpu, int width, int height);
+
+ private:
+  std::unique_ptr<OwnedContext> context_;
+  bool packInvert_ = false;  // GL_MESA_pack_invert: glReadPixels hands rows back from the top
+
+  void makeCurrent() override { context_->makeCurrent(); }
+  void readFrame() override;
+  void makeFramebuffer();
+};
+
+EglContext::EglContext(bool gpu, int width, int height) : GlContext(width, height, true) {
+  const DisplayChoice choice = chooseDisplay(gpu);
+  context_ = std::make_unique<OwnedContext>(InitializedDisplay::share(choice.display));
+  context_->makeCurrent();
+  loadFunctions(eglGetProcAddress, "eglGetProcAddress", GlBackend::egl, choice.device);
+  if (choice.mesaChose && isSoftwareRenderer(info().renderer) == gpu) {
+    throw RenderError(
+        gpu ? fmt::format("a GPU was asked for, but EGL's surfaceless platform chose the software rasteriser {}",
+                          info().renderer)
+            : fmt::format("EGL's surfaceless platform chose the GPU '{}', and EGL lists no software device; frames "
+                          "are drawn on the CPU unless a GPU is asked for (LIBGL_ALWAYS_SOFTWARE=1 makes Mesa "
+                          "choose llvmpipe)",
+                          info().renderer));
+  }
+  makeFramebuffer();
+  packInvert_ = hasExtension(glString(gl(), GL_EXTENSIONS).c_str(), "GL_MESA_pack_invert");
+  if (packInvert_) gl().glPixelStorei(GL_PACK_INVERT_MESA, GL_TRUE);
+  checkGl(gl(), "glPixelStorei(GL_PACK_INVERT_MESA)");
+}
+
+// The frame's colour buffer: an RGBA8 renderbuffer of the frame's size, as OSMesa's buffer (no
+// depth, stencil or multisampling: render/renderer.hpp), bound for the context's life.
+void EglContext::makeFramebuffer() {
+  const GlFunctions& g = gl();
+  GLuint colour = 0, framebuffer = 0;  // freed with the context
+  g.glGenRenderbuffers(1, &colour);
+  g.glBindRenderbuffer(GL_RENDERBUFFER, colour);
+  g.glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, image_.width, image_.height);
+  g.glGenFramebuffers(1, &framebuffer);
+  g.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  g.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
+  const std::string what = fmt::format("a {}x{} RGBA8 framebuffer", image_.width, image_.height);
+  checkGl(g, what.c_str());
+  const GLenum status = g.glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) throw RenderError(fmt::format("{} is incomplete: 0x{:04x}", what, status));
+}
+
+void EglContext::readFrame() {
+  // The picture's top row is GL window row height − 1 (flipsY); image rows go from the top. Rows
+  // of 4-byte pixels need no packing beyond GL's default alignment of 4. glReadPixels waits for
+  // the drawing to finish.
+  gl().glReadPixels(0, 0, image_.width, image_.height, GL_RGBA, GL_UNSIGNED_BYTE, image_.rgba.data());
+  checkGl(gl(), "glReadPixels");
+  if (packInvert_) return;
+  // A driver without GL_MESA_pack_invert (a GPU's): swap the rows here.
+  for (int top = 0, bottom = image_.height - 1; top < bottom; ++top, --bottom) {
+    std::swap_ranges(image_.pixel(0, top), image_.pixel(0, top) + image_.stride(), image_.pixel(0, bottom));
+  }
+}
+
+}  // namespace
+
+std::unique_ptr<GlContext> makeEglContext(bool gpu, int width, int height) {
+  return std::make_unique<EglContext>(gpu, width, height);
+}
+
+}  // namespace particles::render

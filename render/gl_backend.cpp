@@ -1,0 +1,73 @@
+#include "render/gl_backend.hpp"
+
+#include <fmt/format.h>
+
+#include <stdexcept>
+
+namespace particles::render {
+
+namespace {
+
+constexpr std::pair<GlBackend, std::string_view> kNames[] = {
+    {GlBackend::automatic, "auto"}, {GlBackend::egl, "egl"}, {GlBackend::osmesa, "osmesa"}};
+
+}  // namespace
+
+std::string_view glBackendName(GlBackend backend) {
+  for (const auto& [b, name] : kNames) {
+    if (b == backend) return name;
+  }
+  return "?";
+}
+
+std::optional<GlBackend> glBackendFromName(std::string_view name) {
+  for (const auto& [b, n] : kNames) {
+    if (n == name) return b;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> glBackendNames() {
+  std::vector<std::string> names;
+  for (const auto& [b, name] : kNames) names.emplace_back(name);
+  return names;
+}
+
+bool glBackendBuilt(GlBackend backend) {
+  switch (backend) {
+    case GlBackend::egl: return PARTICLES_WITH_EGL;
+    case GlBackend::osmesa: return PARTICLES_WITH_OSMESA;
+    case GlBackend::automatic: return true;
+  }
+  return false;
+}
+
+std::string glBuildDescription() {
+  if (PARTICLES_WITH_EGL && PARTICLES_WITH_OSMESA) return "EGL and OSMesa";
+  if (PARTICLES_WITH_EGL) return "EGL only (built with -DPARTICLES_WITH_OSMESA=OFF)";
+  return "OSMesa only (built with -DPARTICLES_WITH_EGL=OFF)";
+}
+
+void validate(const GlRequest& request) {
+  if (!glBackendBuilt(request.backend)) {
+    throw std::invalid_argument(fmt::format("this particles has no {} backend: its GL is {}",
+                                            request.backend == GlBackend::egl ? "EGL" : "OSMesa",
+                                            glBuildDescription()));
+  }
+  if (request.gpu && request.backend == GlBackend::osmesa) {
+    throw std::invalid_argument("a GPU needs EGL: OSMesa draws on the CPU only");
+  }
+  if (request.gpu && !glBackendBuilt(GlBackend::egl)) {
+    throw std::invalid_argument(
+        fmt::format("a GPU needs EGL, and this particles has none: its GL is {}", glBuildDescription()));
+  }
+}
+
+std::string describe(const GlInfo& info) {
+  std::string text =
+      fmt::format("{}, {}: {}, OpenGL {}", glBackendName(info.backend), info.device, info.renderer, info.version);
+  if (!info.fallback.empty()) text += fmt::format(" (EGL: {})", info.fallback);
+  return text;
+}
+
+}  // namespace particles::render

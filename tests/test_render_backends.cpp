@@ -1,0 +1,314 @@
+// The GL backends (render/gl_backend.hpp): every backend this build has draws the same bytes,
+// renderers of both take turns in one thread, what auto picks, the requests a build refuses; and on
+// the command line --gl, PARTICLES_GL, --gpu and --version.
+#include <doctest/doctest.h>
+
+#include <optional>
+#include <regex>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli_support.hpp"
+#include "core/solver.hpp"
+#include "render/errors.hpp"
+#include "render/gl_backend.hpp"
+#include "render/renderer.hpp"
+#include "render_support.hpp"
+#include "scenario/scenario.hpp"
+
+using namespace particles;
+using namespace particles::render;
+
+namespace {
+
+std::vector<GlBackend> builtBackends() {
+  std::vector<GlBackend> built;
+  for (GlBackend b : {GlBackend::egl, GlBackend::osmesa}) {
+    if (glBackendBuilt(b)) built.push_back(b);
+  }
+  return built;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// The message of what `f` throws as E, "" when it throws nothing.
+template <class E, class F>
+std::string thrownMessage(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// A demo scenario advanced to `at` seconds: its drawing and camera.
+struct DemoFrame {
+  Drawing drawing;
+  Camera camera;
+};
+
+DemoFrame demoFrame(const std::string& name, double at) {
+  scenario::Scenario s = scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
+  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(at);
+  return {s.system.draw(), {s.render.viewCenter, s.render.viewHeight}};
+}
+
+}  // namespace
+
+TEST_CASE("GL backends: every backend built draws the demos' frames to the same bytes") {
+  const std::vector<GlBackend> backends = builtBackends();
+  REQUIRE(!backends.empty());
+  if (backends.size() == 1) MESSAGE("only " << glBuildDescription() << ": nothing to compare it with");
+  // cloth_t2.5 has the cursor's tip and the rail on pixel centres whose pixels differed when EGL
+  // drew upright (render/egl_context.cpp); the other two, contacts with colliders.
+  const std::pair<const char*, double> demos[] = {{"cloth", 2.5}, {"soft_body", 31.5}, {"rigid_chain", 0.65}};
+  for (const auto& [name, at] : demos) {
+    const DemoFrame frame = demoFrame(name, at);
+    for (const auto& [width, height] : {std::pair{320, 240}, std::pair{333, 217}}) {  // odd sizes too
+      for (int msaa : kSampleCounts) {
+        CAPTURE(std::string(name));
+        CAPTURE(width);
+        CAPTURE(height);
+        CAPTURE(msaa);
+        RenderOptions options;
+        options.width = width;
+        options.height = height;
+        options.msaa = msaa;
+        std::optional<Image> first;
+        for (GlBackend backend : backends) {
+          CAPTURE(glBackendName(backend));
+          Renderer renderer(options, {backend});
+          CHECK(renderer.gl().backend == backend);
+          const Image& image = renderer.render(frame.drawing, frame.camera);
+          if (!first) {
+            first = image;
+          } else {
+            CHECK(image == *first);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("GL backends: renderers of both take turns in one thread, each drawing in its own buffer") {
+  if (builtBackends().size() < 2) {
+    MESSAGE("skipped: " << glBuildDescription());
+    return;
+  }
+  const System system = particles::test::fallingParticles();
+  const Drawing a = system.draw();
+  Drawing b = a;
+  b.particles[0] += Vec2(0.3, 0);
+  const Camera camera{Vec2(0.1, 0), 2.4};
+  const RenderOptions options = particles::test::smallRenderOptions();
+  const Image expectedA = Renderer(options, {GlBackend::osmesa}).render(a, camera);
+  const Image expectedB = Renderer(options, {GlBackend::osmesa}).render(b, camera);
+  REQUIRE(expectedA != expectedB);
+
+  Renderer egl(options, {GlBackend::egl});
+  Renderer osmesa(options, {GlBackend::osmesa});
+  // OSMesa's context is current now, and EGL still believes its own is: each must bind its own.
+  CHECK(egl.render(a, camera) == expectedA);
+  CHECK(osmesa.render(b, camera) == expectedB);
+  CHECK(egl.render(b, camera) == expectedB);
+  CHECK(osmesa.render(a, camera) == expectedA);
+  {
+    Renderer secondEgl(options, {GlBackend::egl});  // the same EGL display, destroyed first
+    CHECK(secondEgl.render(b, camera) == expectedB);
+  }
+  CHECK(egl.render(a, camera) == expectedA);  // the display outlives the context that went
+}
+
+TEST_CASE("GL backends: auto draws with EGL's software device, llvmpipe, and says so") {
+  Renderer renderer(particles::test::smallRenderOptions());
+  const GlInfo& info = renderer.gl();
+  CAPTURE(describe(info));
+  CHECK(info.renderer.starts_with("llvmpipe"));
+  CHECK(!info.version.empty());
+  if (glBackendBuilt(GlBackend::egl)) {
+    CHECK(info.backend == GlBackend::egl);
+    CHECK(info.device == "software device");
+    CHECK(info.fallback.empty());
+    CHECK(describe(info).starts_with("egl, software device: llvmpipe"));
+  } else {
+    CHECK(info.backend == GlBackend::osmesa);
+  }
+  const GlInfo probed = probeGl({});
+  CHECK(probed.backend == info.backend);
+  CHECK(probed.renderer == info.renderer);
+}
+
+TEST_CASE("GL backends: names, the backends of this build and the requests it refuses") {
+  for (GlBackend b : {GlBackend::automatic, GlBackend::egl, GlBackend::osmesa}) {
+    CHECK(glBackendFromName(glBackendName(b)) == b);
+  }
+  CHECK(glBackendNames() == std::vector<std::string>{"auto", "egl", "osmesa"});
+  CHECK_FALSE(glBackendFromName("EGL"));
+  CHECK_FALSE(glBackendFromName(""));
+  CHECK(glBackendBuilt(GlBackend::automatic));
+  CHECK((glBackendBuilt(GlBackend::egl) || glBackendBuilt(GlBackend::osmesa)));
+  CHECK(contains(thrownMessage<std::invalid_argument>([] {
+                   validate({GlBackend::osmesa, true});
+                 }),
+                 "a GPU needs EGL: OSMesa draws on the CPU only"));
+  for (GlBackend b : {GlBackend::egl, GlBackend::osmesa}) {
+    if (glBackendBuilt(b)) continue;
+    const std::string message =
+        thrownMessage<std::invalid_argument>([&] { Renderer renderer(particles::test::smallRenderOptions(), {b}); });
+    CHECK_MESSAGE(contains(message, "-DPARTICLES_WITH_"), message);
+  }
+}
+
+TEST_CASE("GL backends: a GPU request draws on hardware, or fails saying there is none") {
+  if (!glBackendBuilt(GlBackend::egl)) return;
+  for (GlBackend backend : {GlBackend::egl, GlBackend::automatic}) {
+    try {
+      Renderer renderer(particles::test::smallRenderOptions(), {backend, true});
+      MESSAGE("a GPU is here: " << describe(renderer.gl()));
+      CHECK(renderer.gl().device.starts_with("hardware device"));
+    } catch (const RenderError& e) {
+      CHECK_MESSAGE(contains(e.what(), "a GPU was asked for, but EGL lists no hardware device"), e.what());
+    }
+  }
+}
+
+// --- the command line ---------------------------------------------------------------------------
+
+using particles::test::lines;
+using particles::test::Result;
+using particles::test::Scratch;
+using particles::test::slurp;
+
+TEST_CASE("cli render --gl: each backend draws the same PNG, and the option wins over PARTICLES_GL") {
+  Scratch s;
+  s.write("s.yaml", particles::test::kSwingScenario);
+  std::optional<std::string> first;
+  for (GlBackend backend : builtBackends()) {
+    const std::string name(glBackendName(backend));
+    // PARTICLES_GL names the other backend, or nonsense: --gl decides.
+    const Result r =
+        s.run("render s.yaml -o " + name + ".png --at 0.5 --verbose --gl " + name, "PARTICLES_GL=nonsense");
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK_MESSAGE(contains(r.err, "GL: " + name + ", "), r.err);
+    const std::string png = slurp(s.dir / (name + ".png"));
+    if (!first) {
+      first = png;
+    } else {
+      CHECK(png == *first);
+    }
+  }
+  // Without --gl, PARTICLES_GL decides; empty is unset, and unset is auto.
+  for (GlBackend backend : builtBackends()) {
+    const std::string name(glBackendName(backend));
+    const Result r = s.run("render s.yaml -o env.png --at 0.5 --verbose", "PARTICLES_GL=" + name);
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK_MESSAGE(contains(r.err, "GL: " + name + ", "), r.err);
+  }
+  const std::string autoName = glBackendBuilt(GlBackend::egl) ? "egl" : "osmesa";
+  for (const char* environment : {"-u PARTICLES_GL", "PARTICLES_GL=", "PARTICLES_GL=auto"}) {
+    CAPTURE(environment);
+    const Result r = s.run("render s.yaml -o auto.png --at 0.5 --verbose", environment);
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK_MESSAGE(contains(r.err, "GL: " + autoName + ", "), r.err);
+  }
+}
+
+TEST_CASE("cli render --gl, PARTICLES_GL: unknown names and missing backends are usage errors, exit 2") {
+  Scratch s;
+  s.write("s.yaml", particles::test::kSwingScenario);
+  Result r = s.run("render s.yaml -o a.png --at 0.5", "PARTICLES_GL=vulkan");
+  CHECK(r.code == 2);
+  CHECK_MESSAGE(contains(r.err, "error: PARTICLES_GL=vulkan: expected auto, egl, osmesa"), r.err);
+  r = s.run("render s.yaml -o a.png --at 0.5 --gl vulkan");
+  CHECK(r.code == 2);
+  CHECK_MESSAGE(contains(r.err, "--gl"), r.err);
+  r = s.run("render s.yaml -o a.png --at 0.5 --gl osmesa --gpu");
+  CHECK(r.code == 2);
+  CHECK_MESSAGE(contains(r.err, "error: --gl osmesa with --gpu: a GPU needs EGL"), r.err);
+  for (GlBackend backend : {GlBackend::egl, GlBackend::osmesa}) {
+    if (glBackendBuilt(backend)) continue;
+    const std::string name(glBackendName(backend));
+    r = s.run("render s.yaml -o a.png --at 0.5 --gl " + name);
+    CHECK(r.code == 2);
+    CHECK_MESSAGE(contains(r.err, "error: --gl " + name + ": this particles has no"), r.err);
+    CHECK_MESSAGE(contains(r.err, "-DPARTICLES_WITH_"), r.err);
+    r = s.run("render s.yaml -o a.png --at 0.5", "PARTICLES_GL=" + name);
+    CHECK(r.code == 2);
+    CHECK_MESSAGE(contains(r.err, "error: PARTICLES_GL=" + name + ": this particles has no"), r.err);
+  }
+  CHECK(s.files() == std::vector<std::string>{"s.yaml"});
+}
+
+TEST_CASE("cli render --gpu: without a GPU, a clear error, exit 3 and no output") {
+  if (!glBackendBuilt(GlBackend::egl)) return;
+  Scratch s;
+  s.write("s.yaml", particles::test::kSwingScenario);
+  for (const char* output : {"g.png --at 0.5", "g.mp4", "frames/"}) {
+    CAPTURE(output);
+    const Result r = s.run(std::string("render s.yaml --quiet --verbose --gpu -o ") + output, "-u PARTICLES_GL");
+    if (r.code == 0) {
+      MESSAGE("a GPU is here: " << r.err);
+      CHECK(contains(r.err, "GL: egl, hardware device"));
+      continue;
+    }
+    CHECK(r.code == 3);
+    CHECK_MESSAGE(r.err.starts_with("error: a GPU was asked for, but EGL lists no hardware device"), r.err);
+    CHECK(s.files() == std::vector<std::string>{"s.yaml"});
+  }
+}
+
+TEST_CASE("cli render: EGL that cannot start fails --gl egl with exit 3, and auto falls back to OSMesa") {
+  if (!glBackendBuilt(GlBackend::egl)) return;
+  Scratch s;
+  s.write("s.yaml", particles::test::kSwingScenario);
+  // GLVND's libEGL finds no vendor library (Mesa's) to load: EGL offers no platform at all.
+  const std::string noEgl = "-u PARTICLES_GL __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl_vendor.json";
+  Result r = s.run("render s.yaml -o egl.png --at 0.5 --gl egl", noEgl);
+  CHECK(r.code == 3);
+  CHECK_MESSAGE(r.err.starts_with("error: EGL lists no devices"), r.err);
+  CHECK(s.files() == std::vector<std::string>{"s.yaml"});
+  r = s.run("render s.yaml -o auto.png --at 0.5 --verbose", noEgl);
+  if (glBackendBuilt(GlBackend::osmesa)) {
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK_MESSAGE(contains(r.err, "GL: osmesa, off-screen buffer: llvmpipe"), r.err);
+    CHECK_MESSAGE(contains(r.err, "(EGL: EGL lists no devices"), r.err);
+  } else {
+    CHECK(r.code == 3);
+  }
+}
+
+TEST_CASE("cli --version: the program's version, then the GL backend and renderer render would use") {
+  Scratch s;
+  Result r = s.run("--version", "-u PARTICLES_GL");
+  REQUIRE(r.code == 0);
+  std::vector<std::string> out = lines(r.out);
+  REQUIRE_MESSAGE(out.size() == 2, r.out);
+  CHECK_MESSAGE(std::regex_match(out[0], std::regex(R"(particles \d+\.\d+\.\d+)")), out[0]);
+  const std::string autoName = glBackendBuilt(GlBackend::egl) ? "egl" : "osmesa";
+  CHECK_MESSAGE(out[1].starts_with("GL: " + autoName + ", "), out[1]);
+  CHECK_MESSAGE(std::regex_search(out[1], std::regex(R"(: llvmpipe \(LLVM .*\), OpenGL \d+\.\d+)")), out[1]);
+
+  for (GlBackend backend : builtBackends()) {
+    const std::string name(glBackendName(backend));
+    r = s.run("--version", "PARTICLES_GL=" + name);
+    REQUIRE(r.code == 0);
+    out = lines(r.out);
+    REQUIRE(out.size() == 2);
+    CHECK_MESSAGE(out[1].starts_with("GL (PARTICLES_GL=" + name + "): " + name + ", "), out[1]);
+  }
+  // No GL to be had is said, not failed.
+  r = s.run("--version", "PARTICLES_GL=nonsense");
+  CHECK(r.code == 0);
+  CHECK_MESSAGE(contains(r.out, "\nGL (PARTICLES_GL=nonsense): none available: PARTICLES_GL=nonsense: expected auto"),
+                r.out);
+  if (glBackendBuilt(GlBackend::egl)) {
+    r = s.run("--version", "PARTICLES_GL=egl __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl_vendor.json");
+    CHECK(r.code == 0);
+    CHECK_MESSAGE(contains(r.out, "\nGL (PARTICLES_GL=egl): none available: EGL lists no devices"), r.out);
+  }
+}
