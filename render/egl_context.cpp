@@ -5,8 +5,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <map>
-#include <mutex>
 #include <string_view>
 #include <vector>
 
@@ -87,38 +85,18 @@ EglPlatforms eglPlatforms() {
   return p;
 }
 
-// An initialised display, shared by every context on it. EGL has one display per device in the
-// process (eglGetPlatformDisplay returns the same handle each time) and eglTerminate ends every
-// context on it, so the contexts share one initialisation and the last one terminates it. This is
-// the one piece of process-wide state here: the display it mirrors is process-wide too.
-class InitializedDisplay {
- public:
-  explicit InitializedDisplay(EGLDisplay display) : display_(display) {
-    EGLint major = 0, minor = 0;
-    if (!eglInitialize(display_, &major, &minor)) {
-      failEgl("eglInitialize", "no driver for the device? Mesa's llvmpipe is Debian's libgl1-mesa-dri");
-    }
+// Initialises `display` (again: then nothing happens, EGL 1.5 §3.2) and returns it. Displays are
+// never terminated: EGL has one display per device in the process, and eglTerminate would end
+// every other renderer's context on it; it also unloads Mesa's DRI driver, whose llvmpipe keeps
+// state it never frees (as OSMesa's does, tests/lsan.supp), after which LeakSanitizer cannot say
+// whose it was. Mesa releases displays at exit.
+EGLDisplay initialize(EGLDisplay display) {
+  EGLint major = 0, minor = 0;
+  if (!eglInitialize(display, &major, &minor)) {
+    failEgl("eglInitialize", "no driver for the device? Mesa's llvmpipe is Debian's libgl1-mesa-dri");
   }
-  ~InitializedDisplay() { eglTerminate(display_); }
-  InitializedDisplay(const InitializedDisplay&) = delete;
-  InitializedDisplay& operator=(const InitializedDisplay&) = delete;
-  EGLDisplay get() const { return display_; }
-
-  static std::shared_ptr<InitializedDisplay> share(EGLDisplay display) {
-    static std::mutex mutex;
-    static std::map<EGLDisplay, std::weak_ptr<InitializedDisplay>> initialized;
-    const std::lock_guard<std::mutex> lock(mutex);
-    std::shared_ptr<InitializedDisplay> shared = initialized[display].lock();
-    if (!shared) {
-      shared = std::make_shared<InitializedDisplay>(display);
-      initialized[display] = shared;
-    }
-    return shared;
-  }
-
- private:
-  EGLDisplay display_;
-};
+  return display;
+}
 
 // The display to draw on, and what to call it.
 struct DisplayChoice {
@@ -187,13 +165,13 @@ DisplayChoice chooseDisplay(bool gpu) {
 // in it).
 class OwnedContext {
  public:
-  explicit OwnedContext(std::shared_ptr<InitializedDisplay> display) : display_(std::move(display)) {
+  explicit OwnedContext(EGLDisplay display) : display_(display) {
     if (!eglBindAPI(EGL_OPENGL_API)) failEgl("eglBindAPI(EGL_OPENGL_API)", "this EGL has no desktop OpenGL");
     // Any config that renders OpenGL: the context draws into a framebuffer object, not a surface.
     const EGLint wanted[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE, 0, EGL_NONE};
     EGLConfig config = nullptr;
     EGLint configs = 0;
-    if (!eglChooseConfig(display_->get(), wanted, &config, 1, &configs)) failEgl("eglChooseConfig(OpenGL)");
+    if (!eglChooseConfig(display_, wanted, &config, 1, &configs)) failEgl("eglChooseConfig(OpenGL)");
     if (configs == 0) throw RenderError("eglChooseConfig(OpenGL) found no config: this EGL device cannot draw OpenGL");
     // GLSL 1.30 and framebuffer objects need OpenGL 3.0; client-side vertex arrays and gl_FragColor
     // (render/shader_program.cpp) the compatibility profile, as OSMesa's context has.
@@ -204,12 +182,12 @@ class OwnedContext {
                               EGL_CONTEXT_OPENGL_PROFILE_MASK,
                               EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT,
                               EGL_NONE};
-    context_ = eglCreateContext(display_->get(), config, EGL_NO_CONTEXT, attribs);
+    context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, attribs);
     if (context_ == EGL_NO_CONTEXT) failEgl("eglCreateContext(OpenGL 3.0, compatibility profile)");
   }
   ~OwnedContext() {
     release();
-    eglDestroyContext(display_->get(), context_);
+    eglDestroyContext(display_, context_);
   }
   OwnedContext(const OwnedContext&) = delete;
   OwnedContext& operator=(const OwnedContext&) = delete;
@@ -220,18 +198,18 @@ class OwnedContext {
   // it first. A release and a bind cost about 17 µs.
   void makeCurrent() {
     release();
-    if (!eglMakeCurrent(display_->get(), EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
+    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {
       failEgl("eglMakeCurrent(no surface)", "a context without a surface needs EGL_KHR_surfaceless_context");
     }
   }
 
  private:
-  std::shared_ptr<InitializedDisplay> display_;
+  EGLDisplay display_;
   EGLContext context_ = EGL_NO_CONTEXT;
 
   void release() {
     if (eglGetCurrentContext() == context_) {
-      eglMakeCurrent(display_->get(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     }
   }
 };
@@ -258,7 +236,7 @@ class EglContext final : public GlContext {
 
 EglContext::EglContext(bool gpu, int width, int height) : GlContext(width, height, true) {
   const DisplayChoice choice = chooseDisplay(gpu);
-  context_ = std::make_unique<OwnedContext>(InitializedDisplay::share(choice.display));
+  context_ = std::make_unique<OwnedContext>(initialize(choice.display));
   context_->makeCurrent();
   loadFunctions(eglGetProcAddress, "eglGetProcAddress", GlBackend::egl, choice.device);
   if (choice.mesaChose && isSoftwareRenderer(info().renderer) == gpu) {

@@ -12,8 +12,7 @@
 //                           softpipe: it prefers a GPU unless LIBGL_ALWAYS_SOFTWARE=1.
 //   gpu                     the first listed device that is not software (a DRM render node, or
 //                           NVIDIA's), or the surfaceless platform if it chose a GPU.
-// A display is shared by every context on it and terminated with the last (eglTerminate would
-// end the others).
+// Displays are initialised once and never terminated (egl_context.cpp says why).
 
 #include <memory>
 
