@@ -6,7 +6,9 @@
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -69,9 +71,8 @@ struct PngHeader {
   size_t rowBytes = 0;
 };
 
-bool readHeader(png_structp png, png_infop info, std::FILE* file, PngHeader* header) {
+bool readHeader(png_structp png, png_infop info, PngHeader* header) {
   if (setjmp(png_jmpbuf(png))) return false;
-  png_init_io(png, file);
   png_read_info(png, info);
   const int colorType = png_get_color_type(png, info);
   png_set_expand(png);  // palette → RGB, grey < 8 bits → 8 bits, tRNS → alpha
@@ -95,10 +96,59 @@ bool readRows(png_structp png, png_bytepp rows) {
   return true;
 }
 
+// The bytes readPngBytes decodes, handed to libpng as it asks for them.
+struct MemoryReader {
+  std::span<const std::uint8_t> bytes;
+  std::size_t offset = 0;
+};
+
+void readFromMemory(png_structp png, png_bytep out, png_size_t length) {
+  auto* reader = static_cast<MemoryReader*>(png_get_io_ptr(png));
+  if (length > reader->bytes.size() - reader->offset) png_error(png, "unexpected end of data");
+  std::memcpy(out, reader->bytes.data() + reader->offset, length);
+  reader->offset += length;
+}
+
 std::vector<png_bytep> rowPointers(Image& image) {
   std::vector<png_bytep> rows(size_t(image.height));
   for (int y = 0; y < image.height; ++y) rows[size_t(y)] = image.pixel(0, y);
   return rows;
+}
+
+// Decodes a PNG whose signature the caller has checked, from the source `setSource` gives libpng
+// (a FILE* or bytes in memory); `name` labels messages.
+Image decodePng(const std::string& name, const std::function<void(png_structp)>& setSource) {
+  PngErrorSink sink;
+  PngReadPtr png(png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
+  if (!png) throw OutputError("png_create_read_struct failed for " + name);
+  PngInfoPtr info(png_create_info_struct(png.get()), PngInfoDeleter{png.get()});
+  if (!info) throw OutputError("png_create_info_struct failed for " + name);
+  setSource(png.get());
+
+  PngHeader header;
+  if (!readHeader(png.get(), info.get(), &header)) {
+    throw OutputError("libpng could not read " + name + ": " + sink.message);
+  }
+  if (header.rowBytes != size_t(header.width) * 4) {
+    throw OutputError(name + ": unexpected PNG layout after conversion to RGBA8");
+  }
+  // Checked on the header, before any pixel is allocated: a 68-byte file claiming 20000 × 20000
+  // pixels would otherwise cost 1.6 GB first.
+  if (header.width > png_uint_32(kMaxImageSide) || header.height > png_uint_32(kMaxImageSide)) {
+    throw OutputError(name + ": its header claims " + std::to_string(header.width) + "x" +
+                      std::to_string(header.height) + " pixels; images are at most " + std::to_string(kMaxImageSide) +
+                      " pixels a side");
+  }
+  Image image(int(header.width), int(header.height));
+  std::vector<png_bytep> rows = rowPointers(image);
+  if (!readRows(png.get(), rows.data())) {
+    throw OutputError("libpng could not read " + name + ": " + sink.message);
+  }
+  return image;
+}
+
+bool hasPngSignature(std::span<const std::uint8_t> bytes) {
+  return bytes.size() >= 8 && png_sig_cmp(bytes.data(), 0, 8) == 0;
 }
 
 }  // namespace
@@ -141,38 +191,17 @@ void writePng(const std::filesystem::path& path, const Image& image, const PngOp
 Image readPng(const std::filesystem::path& path) {
   FilePtr file(std::fopen(path.c_str(), "rb"));
   if (!file) throw OutputError("cannot open " + path.string() + ": " + std::strerror(errno));
-  png_byte signature[8];
-  if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
-    throw OutputError(path.string() + " is not a PNG file");
-  }
+  std::uint8_t signature[8];
+  const std::size_t got = std::fread(signature, 1, 8, file.get());
+  if (!hasPngSignature({signature, got})) throw OutputError(path.string() + " is not a PNG file");
   std::rewind(file.get());
+  return decodePng(path.string(), [&](png_structp png) { png_init_io(png, file.get()); });
+}
 
-  PngErrorSink sink;
-  PngReadPtr png(png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
-  if (!png) throw OutputError("png_create_read_struct failed for " + path.string());
-  PngInfoPtr info(png_create_info_struct(png.get()), PngInfoDeleter{png.get()});
-  if (!info) throw OutputError("png_create_info_struct failed for " + path.string());
-
-  PngHeader header;
-  if (!readHeader(png.get(), info.get(), file.get(), &header)) {
-    throw OutputError("libpng could not read " + path.string() + ": " + sink.message);
-  }
-  if (header.rowBytes != size_t(header.width) * 4) {
-    throw OutputError(path.string() + ": unexpected PNG layout after conversion to RGBA8");
-  }
-  // Checked on the header, before any pixel is allocated: a 68-byte file claiming 20000 × 20000
-  // pixels would otherwise cost 1.6 GB first.
-  if (header.width > png_uint_32(kMaxImageSide) || header.height > png_uint_32(kMaxImageSide)) {
-    throw OutputError(path.string() + ": its header claims " + std::to_string(header.width) + "x" +
-                      std::to_string(header.height) + " pixels; images are at most " + std::to_string(kMaxImageSide) +
-                      " pixels a side");
-  }
-  Image image(int(header.width), int(header.height));
-  std::vector<png_bytep> rows = rowPointers(image);
-  if (!readRows(png.get(), rows.data())) {
-    throw OutputError("libpng could not read " + path.string() + ": " + sink.message);
-  }
-  return image;
+Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name) {
+  if (!hasPngSignature(bytes)) throw OutputError(name + " is not a PNG file");
+  MemoryReader reader{bytes};
+  return decodePng(name, [&](png_structp png) { png_set_read_fn(png, &reader, readFromMemory); });
 }
 
 }  // namespace particles::render

@@ -61,6 +61,11 @@ std::string contents(const std::filesystem::path& p) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// readPngBytes over the bytes of a file held in a string.
+Image readPngText(const std::string& bytes, const std::string& name = "test.png") {
+  return readPngBytes({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, name);
+}
+
 double meanAbsoluteDifference(const Image& a, const Image& b) {
   REQUIRE(a.rgba.size() == b.rgba.size());
   double sum = 0;
@@ -101,6 +106,7 @@ TEST_CASE("a rendered frame survives a PNG round trip through libpng") {
   CHECK(dir.entries() == std::set<std::string>{"frame.png", "stored.png"});  // no temporaries left
   CHECK(readPng(dir / "frame.png") == frame);
   CHECK(readPng(dir / "stored.png") == frame);
+  CHECK(readPngText(contents(dir / "frame.png")) == frame);  // the same from memory
   CHECK(std::filesystem::file_size(dir / "stored.png") > 2 * std::filesystem::file_size(dir / "frame.png"));
   CHECK_THROWS_AS(writePng(dir / "x.png", frame, {.compressionLevel = 10}), std::invalid_argument);
   CHECK_THROWS_AS(readPng(dir / "missing.png"), OutputError);
@@ -248,4 +254,15 @@ TEST_CASE("reading a PNG whose header claims more pixels than a frame can have f
     CHECK_THROWS_WITH_AS(readPng(path), doctest::Contains("pixels; images are at most 16384 pixels a side"),
                          OutputError);
   }
+}
+
+TEST_CASE("PNG bytes in memory that are not a whole PNG fail with libpng's message") {
+  ScratchDir dir;
+  const Image frame = Renderer(outputRenderOptions()).render(particles::test::fallingParticles().draw(), camera);
+  writePng(dir / "frame.png", frame);
+  const std::string bytes = contents(dir / "frame.png");
+  CHECK_THROWS_WITH_AS(readPngText("GIF89a", "a.gif"), "a.gif is not a PNG file", OutputError);
+  CHECK_THROWS_WITH_AS(readPngText(bytes.substr(0, 7)), "test.png is not a PNG file", OutputError);
+  CHECK_THROWS_WITH_AS(readPngText(bytes.substr(0, bytes.size() / 2)),
+                       doctest::Contains("libpng could not read test.png: unexpected end of data"), OutputError);
 }
