@@ -2,11 +2,13 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -68,12 +70,14 @@ bool writeRows(png_structp png, png_infop info, std::FILE* file, const Image& im
 
 struct PngHeader {
   png_uint_32 width = 0, height = 0;
-  size_t rowBytes = 0;
+  size_t rowBytes = 0;      // after conversion to RGBA8
+  size_t fileRowBytes = 0;  // as stored: colour type and bit depth of the file, before conversion
 };
 
 bool readHeader(png_structp png, png_infop info, PngHeader* header) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_read_info(png, info);
+  header->fileRowBytes = png_get_rowbytes(png, info);
   const int colorType = png_get_color_type(png, info);
   png_set_expand(png);  // palette → RGB, grey < 8 bits → 8 bits, tRNS → alpha
   png_set_strip_16(png);
@@ -115,9 +119,14 @@ std::vector<png_bytep> rowPointers(Image& image) {
   return rows;
 }
 
+// zlib's largest compression ratio ("Maximum Compression Factor", zlib.net/zlib_tech.html): deflate
+// codes at most 258 bytes in about 2 bits, so n bytes of IDAT decompress to at most 1032·n.
+constexpr std::uintmax_t kMaxDeflateRatio = 1032;
+
 // Decodes a PNG whose signature the caller has checked, from the source `setSource` gives libpng
-// (a FILE* or bytes in memory); `name` labels messages.
-Image decodePng(const std::string& name, const std::function<void(png_structp)>& setSource) {
+// (a FILE* or bytes in memory) of `inputBytes` bytes (UINTMAX_MAX when unknown); `name` labels
+// messages.
+Image decodePng(const std::string& name, std::uintmax_t inputBytes, const std::function<void(png_structp)>& setSource) {
   PngErrorSink sink;
   PngReadPtr png(png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
   if (!png) throw OutputError("png_create_read_struct failed for " + name);
@@ -138,6 +147,17 @@ Image decodePng(const std::string& name, const std::function<void(png_structp)>&
     throw OutputError(name + ": its header claims " + std::to_string(header.width) + "x" +
                       std::to_string(header.height) + " pixels; images are at most " + std::to_string(kMaxImageSide) +
                       " pixels a side");
+  }
+  // A header that claims more pixels than the file could decompress to is refused before the image
+  // is allocated too: a 69-byte file claiming 16384 × 16384 would otherwise cost 1 GiB first (found
+  // by tests/fuzz/fuzz_png). Every stored row holds at least fileRowBytes − 1 bytes of pixels,
+  // interlaced or not.
+  const std::uintmax_t pixelBytes = std::uintmax_t(header.height) * (std::max<size_t>(header.fileRowBytes, 1) - 1);
+  if (inputBytes < std::numeric_limits<std::uintmax_t>::max() / kMaxDeflateRatio &&
+      pixelBytes > inputBytes * kMaxDeflateRatio) {
+    throw OutputError(name + ": its header claims " + std::to_string(header.width) + "x" +
+                      std::to_string(header.height) + " pixels, more than its " + std::to_string(inputBytes) +
+                      " bytes can hold");
   }
   Image image(int(header.width), int(header.height));
   std::vector<png_bytep> rows = rowPointers(image);
@@ -195,13 +215,16 @@ Image readPng(const std::filesystem::path& path) {
   const std::size_t got = std::fread(signature, 1, 8, file.get());
   if (!hasPngSignature({signature, got})) throw OutputError(path.string() + " is not a PNG file");
   std::rewind(file.get());
-  return decodePng(path.string(), [&](png_structp png) { png_init_io(png, file.get()); });
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);  // unknown for a pipe: no check
+  return decodePng(path.string(), ec ? std::numeric_limits<std::uintmax_t>::max() : size,
+                   [&](png_structp png) { png_init_io(png, file.get()); });
 }
 
 Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name) {
   if (!hasPngSignature(bytes)) throw OutputError(name + " is not a PNG file");
   MemoryReader reader{bytes};
-  return decodePng(name, [&](png_structp png) { png_set_read_fn(png, &reader, readFromMemory); });
+  return decodePng(name, bytes.size(), [&](png_structp png) { png_set_read_fn(png, &reader, readFromMemory); });
 }
 
 }  // namespace particles::render

@@ -256,6 +256,19 @@ TEST_CASE("reading a PNG whose header claims more pixels than a frame can have f
   }
 }
 
+// Found by tests/fuzz/fuzz_png: a 69-byte PNG whose header claims 16384 × 16384 RGBA pixels, the
+// largest side allowed, over an IDAT of a few bytes, allocated 1 GiB before libpng found the data
+// missing. zlib expands n bytes to at most 1032·n, so such a header is refused before allocating.
+TEST_CASE("reading a PNG whose header claims more pixels than its bytes can hold fails before allocating") {
+  const std::string path = std::string(PARTICLES_SOURCE_DIR) + "/tests/fuzz/corpus/png/side16384_truncated.png";
+  REQUIRE(std::ifstream(path).good());
+  CHECK_THROWS_WITH_AS(readPng(path), doctest::Contains("16384x16384 pixels, more than its 69 bytes can hold"),
+                       OutputError);
+  CHECK_THROWS_WITH_AS(readPngText(contents(path), "side.png"),
+                       doctest::Contains("side.png: its header claims 16384x16384 pixels, more than its 69 bytes"),
+                       OutputError);
+}
+
 TEST_CASE("PNG bytes in memory that are not a whole PNG fail with libpng's message") {
   ScratchDir dir;
   const Image frame = Renderer(outputRenderOptions()).render(particles::test::fallingParticles().draw(), camera);
