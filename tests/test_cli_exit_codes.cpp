@@ -138,3 +138,23 @@ TEST_CASE("cli exit codes: inputs past the input limit, endless ones included, a
   };
   checkCases(s, cases);
 }
+
+// Scene limits are counted before anything is built; --limit raises (or lowers) one for a run.
+TEST_CASE("cli exit codes: scene limits and --limit") {
+  Scratch s;
+  s.write("grid.yaml", "name: g\ngrids:\n  - {name: g, size: [30, 20]}\n");
+  const Case cases[] = {
+      {"check grid.yaml --quiet", 0, ""},
+      {"check grid.yaml --limit particles=599", 2,
+       "grid.yaml:3:21: error: grids[0].size: this makes 600 particles, more than the limit of 599 (counted before "
+       "anything is built); if the scene is meant to be this large, raise the limit with --limit particles=N\n"},
+      {"check grid.yaml --limit particles=599 --limit particles=600 --quiet", 0, ""},
+      {"run grid.yaml --limit particle=5", 2,
+       "command line: error: (--limit particle=5): unknown limit 'particle'; expected one of particles, springs, "
+       "constraints, endpoints, entries\n"},
+      {"stability grid.yaml --limit springs=-1", 2,
+       "command line: error: (--limit springs=-1): expected a whole number from 1 to 1000000000 after '=', got "
+       "'-1'\n"},
+  };
+  checkCases(s, cases);
+}

@@ -22,9 +22,15 @@ std::vector<scenario::Override> overridesOf(const CommonOptions& o) {
   return out;
 }
 
+scenario::SceneLimits sceneLimitsOf(const CommonOptions& o) {
+  scenario::SceneLimits limits;
+  for (const std::string& l : o.limits) scenario::applyLimitOption(limits, l);
+  return limits;
+}
+
 scenario::Scenario loadScenario(const CommonOptions& o) {
   const auto overrides = overridesOf(o);
-  return scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB);
+  return scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB, sceneLimitsOf(o));
 }
 
 std::string plural(size_t n, const char* one, const char* many) {

@@ -14,6 +14,8 @@ namespace particles::app {
 
 // The overrides of the command line: --set first, in order, then the shorthands, which win.
 std::vector<scenario::Override> overridesOf(const CommonOptions& o);
+// The scene limits: the defaults with each --limit NAME=N applied, in order.
+scenario::SceneLimits sceneLimitsOf(const CommonOptions& o);
 
 // Loads the scenario with the overrides. Throws scenario::ScenarioError for bad input.
 scenario::Scenario loadScenario(const CommonOptions& o);

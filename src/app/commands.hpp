@@ -26,6 +26,7 @@ struct CommonOptions {
   std::optional<std::string> integrator, dt, duration;  // shorthands for --set simulation.*=…
   std::vector<std::string> sets;         // --set path=value, in order
   std::uintmax_t maxInputMiB = scenario::kDefaultMaxInputMiB;  // --max-input
+  std::vector<std::string> limits;       // --limit NAME=N, in order
   bool quiet = false;
 };
 

@@ -27,6 +27,11 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
   command.add_option("--max-input", o.maxInputMiB, "Refuse a scenario file larger than this, MiB")
       ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))
       ->capture_default_str();
+  command.add_option("--limit", o.limits,
+                     "Raise (or lower) a scene limit, counted before anything is built: particles, springs, "
+                     "constraints, endpoints or entries (repeatable; defaults in docs/scenarios.md, Limits)")
+      ->type_name("NAME=N")
+      ->allow_extra_args(false);
 }
 
 }  // namespace

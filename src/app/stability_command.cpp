@@ -63,7 +63,10 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
   // Each trial run builds a fresh system from the same text and overrides.
   const std::string text = scenario::readScenarioText(common.scenario, common.maxInputMiB);
   const auto overrides = overridesOf(common);
-  const SystemFactory make = [&] { return scenario::loadScenarioText(text, common.scenario, overrides).system; };
+  const scenario::SceneLimits limits = sceneLimitsOf(common);
+  const SystemFactory make = [&] {
+    return scenario::loadScenarioText(text, common.scenario, overrides, limits).system;
+  };
 
   StabilityOptions study;
   study.criteria.energyTolerance = options.energyTolerance;

@@ -46,4 +46,16 @@ GridIndices addGrid(SystemBuilder& builder, DampedSpringForce& springs, const Gr
   return g;
 }
 
+long long gridSpringCount(const GridSpec& spec) {
+  const long long r = spec.rows, c = spec.cols;
+  auto atLeastZero = [](long long n) { return n > 0 ? n : 0; };
+  long long n = 0;
+  // The loops of addGrid, counted: neighbours across and down, both diagonals of each cell, and
+  // neighbours two apart across and down.
+  if (spec.structural) n += r * atLeastZero(c - 1) + atLeastZero(r - 1) * c;
+  if (spec.shear) n += 2 * atLeastZero(r - 1) * atLeastZero(c - 1);
+  if (spec.flexion) n += r * atLeastZero(c - 2) + atLeastZero(r - 2) * c;
+  return n;
+}
+
 }  // namespace particles

@@ -41,5 +41,7 @@ struct GridIndices {
 
 // Adds the particles (named "name[row][col]") to the builder and the springs to `springs`.
 GridIndices addGrid(SystemBuilder& builder, DampedSpringForce& springs, const GridSpec& spec);
+// How many springs addGrid adds for `spec`, without adding them (for the loader's budgets).
+long long gridSpringCount(const GridSpec& spec);
 
 }  // namespace particles

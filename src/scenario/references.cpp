@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -46,6 +47,29 @@ std::optional<long> parseIndex(std::string_view text) {
   return n;
 }
 
+// `cloth[3][4]` → {"cloth", "[3][4]"}: the leading name and the trimmed rest.
+std::pair<std::string, std::string> splitName(const std::string& text) {
+  size_t end = 0;
+  while (end < text.size() && isNameChar(text[end])) ++end;
+  return {text.substr(0, end), trim(std::string_view(text).substr(end))};
+}
+
+// `[3][*]` → {"3", "*"}; nothing unless the text is exactly two bracketed selectors.
+std::optional<std::array<std::string, 2>> cellSelectors(const std::string& rest) {
+  std::vector<std::string> parts;
+  size_t i = 0;
+  while (i < rest.size()) {
+    if (rest[i] != '[') break;
+    const size_t close = rest.find(']', i);
+    if (close == std::string::npos) break;
+    parts.push_back(trim(std::string_view(rest).substr(i + 1, close - i - 1)));
+    i = close + 1;
+    while (i < rest.size() && std::isspace(static_cast<unsigned char>(rest[i]))) ++i;
+  }
+  if (i != rest.size() || parts.size() != 2) return std::nullopt;
+  return std::array<std::string, 2>{parts[0], parts[1]};
+}
+
 const char* kindName(NameTable::Kind kind) {
   switch (kind) {
     case NameTable::Kind::Particle: return "a particle";
@@ -71,11 +95,8 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
     return {Endpoint::ofParticle(int(*n))};
   }
 
-  size_t end = 0;
   if (text.empty() || !isNameStart(text[0])) bad(fmt::format("expected {}", kForms));
-  while (end < text.size() && isNameChar(text[end])) ++end;
-  const std::string name = text.substr(0, end);
-  const std::string rest = trim(std::string_view(text).substr(end));
+  const auto [name, rest] = splitName(text);
   const NameTable::Entry* entry = names.find(name);
   if (!entry) {
     const std::string suggestion = closestName(name, names.names());
@@ -122,18 +143,8 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
       bad(fmt::format("'{}' is {}, not a grid; only grid particles are addressed as grid[row][col]", name,
                       kindName(entry->kind)));
     }
-    // [row][col]
-    std::vector<std::string> parts;
-    size_t i = 0;
-    while (i < rest.size()) {
-      if (rest[i] != '[') break;
-      const size_t close = rest.find(']', i);
-      if (close == std::string::npos) break;
-      parts.push_back(trim(std::string_view(rest).substr(i + 1, close - i - 1)));
-      i = close + 1;
-      while (i < rest.size() && std::isspace(static_cast<unsigned char>(rest[i]))) ++i;
-    }
-    if (i != rest.size() || parts.size() != 2) bad(fmt::format("expected {}[row][col]", name));
+    const auto parts = cellSelectors(rest);
+    if (!parts) bad(fmt::format("expected {}[row][col]", name));
     const GridIndices& g = entry->grid;
     auto range = [&](const std::string& part, int count, const char* what) -> std::pair<int, int> {
       if (part == "*") {
@@ -149,8 +160,8 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
       }
       return {int(k), int(k) + 1};
     };
-    const auto [r0, r1] = range(parts[0], g.rows, "row");
-    const auto [c0, c1] = range(parts[1], g.cols, "column");
+    const auto [r0, r1] = range((*parts)[0], g.rows, "row");
+    const auto [c0, c1] = range((*parts)[1], g.cols, "column");
     std::vector<Endpoint> out;
     for (int r = r0; r < r1; ++r)
       for (int c = c0; c < c1; ++c) out.push_back(Endpoint::ofParticle(g.at(r, c)));
@@ -203,6 +214,26 @@ std::vector<Endpoint> resolvePoints(const Value& value, const NameTable& names, 
         fmt::format("expected a reference ({}{}), {}", kForms, allowList ? ", or a list of them" : "", value.found()));
   }
   return resolveOne(value, value.node().Scalar(), names, kind, allowList);
+}
+
+long long countPoints(const YAML::Node& value, const std::map<std::string, GridIndices, std::less<>>& grids) {
+  auto countOne = [&](const YAML::Node& item) -> long long {
+    if (!item.IsDefined() || !item.IsScalar()) return 0;
+    const std::string text = trim(item.Scalar());
+    if (text.empty() || text[0] == '#' || !isNameStart(text[0])) return 1;
+    const auto [name, rest] = splitName(text);
+    const auto grid = grids.find(name);
+    if (grid == grids.end()) return 1;
+    const long long rows = grid->second.rows, cols = grid->second.cols;
+    if (rest.empty()) return rows * cols;
+    const auto parts = cellSelectors(rest);
+    if (!parts) return 1;
+    return ((*parts)[0] == "*" ? rows : 1) * ((*parts)[1] == "*" ? cols : 1);
+  };
+  if (!value.IsDefined() || !value.IsSequence()) return countOne(value);
+  long long total = 0;
+  for (const YAML::Node& item : value) total += countOne(item);
+  return total;
 }
 
 }  // namespace particles::scenario::detail

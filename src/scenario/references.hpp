@@ -48,4 +48,9 @@ enum class PointKind {
 // A single reference (allowList false) must name exactly one point.
 std::vector<Endpoint> resolvePoints(const Value& value, const NameTable& names, PointKind kind, bool allowList);
 
+// How many points `value` (a reference or a list of them) names once expanded, without checking or
+// building anything: whole grids and `*` rows or columns count by the sizes in `grids`; anything
+// else, malformed references included, counts one (resolvePoints reports those).
+long long countPoints(const YAML::Node& value, const std::map<std::string, GridIndices, std::less<>>& grids);
+
 }  // namespace particles::scenario::detail

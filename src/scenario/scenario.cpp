@@ -20,6 +20,7 @@
 #include "core/grid.hpp"
 #include "core/forces/damped_spring_force.hpp"
 #include "core/kind.hpp"
+#include "scenario/budget.hpp"
 #include "scenario/entry_args.hpp"
 #include "scenario/references.hpp"
 #include "scenario/yaml_reader.hpp"
@@ -59,10 +60,11 @@ int lineOf(const Value& v) {
 
 class Loader {
  public:
-  explicit Loader(detail::Source source) : source_(std::move(source)) {}
+  Loader(detail::Source source, const SceneLimits& limits) : source_(std::move(source)), limits_(limits) {}
 
   Scenario load(const YAML::Node& document) {
     const Value root(source_, document, "", document.Mark());
+    detail::checkSceneBudget(root, limits_);
     std::vector<std::string_view> keys = {"name", "description", "simulation", "render", "particles", "grids",
                                           "rigid_bodies"};
     for (const KindSection& section : kindSections()) keys.push_back(section.key);
@@ -167,9 +169,6 @@ class Loader {
       }
       g.cols = int(size.item(0).integer(1, kMaxGridSide));
       g.rows = int(size.item(1).integer(1, kMaxGridSide));
-      if (static_cast<long long>(g.cols) * g.rows > kMaxGridParticles) {
-        size.fail(fmt::format("{}×{} is more than {} particles", g.cols, g.rows, kMaxGridParticles));
-      }
       if (auto v = m.optional("spacing")) g.spacing = v->positiveVec2();
       if (auto v = m.optional("mass")) g.mass = v->positive();
       if (auto springs = m.optional("springs")) {
@@ -247,6 +246,7 @@ class Loader {
   }
 
   detail::Source source_;
+  const SceneLimits& limits_;
   NameTable names_;
   SystemBuilder builder_;
   detail::PointBook book_;
@@ -414,7 +414,8 @@ YAML::Node loadOneDocument(const std::string& text, const std::string& file) {
   }
 }
 
-Scenario loadDocument(const std::string& text, const std::string& file, std::span<const Override> overrides) {
+Scenario loadDocument(const std::string& text, const std::string& file, std::span<const Override> overrides,
+                      const SceneLimits& limits) {
   YAML::Node root = loadOneDocument(text, file);
   if (!root.IsMap()) {
     const YAML::Mark m = root.Mark();
@@ -423,7 +424,7 @@ Scenario loadDocument(const std::string& text, const std::string& file, std::spa
   detail::Source source{file, {}};
   for (const Override& o : overrides) source.overridden.emplace_back(applyOverride(root, o, file), o.origin);
   try {
-    return Loader(std::move(source)).load(root);
+    return Loader(std::move(source), limits).load(root);
   } catch (const YAML::Exception& e) {
     // The loader only uses non-throwing conversions; anything yaml-cpp still throws is reported
     // at its mark rather than escaping as an unexplained exception.
@@ -450,6 +451,30 @@ Override parseOverride(std::string_view text) {
   return Override{std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), origin};
 }
 
+void applyLimitOption(SceneLimits& limits, std::string_view text) {
+  const std::string origin = fmt::format("--limit {}", text);
+  std::vector<std::string_view> names;
+  for (const SceneLimitName& l : kSceneLimitNames) names.push_back(l.name);
+  auto bad = [&](const std::string& why) { throw ScenarioError("command line", 0, 0, "", why, origin); };
+  const size_t eq = text.find('=');
+  if (eq == std::string_view::npos) bad(fmt::format("expected NAME=N with NAME one of {}", fmt::join(names, ", ")));
+  const std::string_view name = text.substr(0, eq), number = text.substr(eq + 1);
+  long long n = 0;
+  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), n);
+  if (ec != std::errc() || end != number.data() + number.size() || n < 1 || n > kMaxSceneLimit) {
+    bad(fmt::format("expected a whole number from 1 to {} after '=', got '{}'", kMaxSceneLimit,
+                    number.size() > 40 ? std::string(number.substr(0, 40)) + "…" : std::string(number)));
+  }
+  for (const SceneLimitName& l : kSceneLimitNames) {
+    if (l.name == name) {
+      limits.*l.member = n;
+      return;
+    }
+  }
+  bad(fmt::format("unknown limit '{}'; expected one of {}",
+                  name.size() > 40 ? std::string(name.substr(0, 40)) + "…" : std::string(name), fmt::join(names, ", ")));
+}
+
 ScenarioError::ScenarioError(std::string file, int line, int column, std::string keyPath, std::string message,
                              std::string origin)
     : std::runtime_error([&] {
@@ -467,8 +492,9 @@ ScenarioError::ScenarioError(std::string file, int line, int column, std::string
       message_(std::move(message)),
       origin_(std::move(origin)) {}
 
-Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides) {
-  return loadDocument(std::string(text), file, overrides);
+Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides,
+                          const SceneLimits& limits) {
+  return loadDocument(std::string(text), file, overrides, limits);
 }
 
 std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t maxInputMiB) {
@@ -495,8 +521,8 @@ std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t m
 }
 
 Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides,
-                          std::uintmax_t maxInputMiB) {
-  return loadDocument(readScenarioText(file, maxInputMiB), file.string(), overrides);
+                          std::uintmax_t maxInputMiB, const SceneLimits& limits) {
+  return loadDocument(readScenarioText(file, maxInputMiB), file.string(), overrides, limits);
 }
 
 std::string pointName(const Model& model, int point) {

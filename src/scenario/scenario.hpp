@@ -21,12 +21,38 @@ namespace particles::scenario {
 // Limits the loader enforces beyond each key's own range (docs/scenarios.md, `particles schema`).
 inline constexpr long kMaxSteps = 1'000'000'000;  // a run longer than this is a typo, not a plan
 inline constexpr long long kMaxGridSide = 10'000;
-inline constexpr long long kMaxGridParticles = 1'000'000;
 inline constexpr long long kMaxImageSide = 16'384;  // px, the renderer's largest frame side
 inline constexpr double kMinFps = 1e-3, kMaxFps = 1000.0;
 // Input files larger than this are refused before they are parsed (`--max-input MIB` raises it):
 // the demos are a few kB, and an endless input (/dev/zero) must end in an error, not in memory.
 inline constexpr std::uintmax_t kDefaultMaxInputMiB = 64;
+
+// How large a scene may be, counted from the file before anything is built (so a few hundred bytes
+// that name a grid two hundred times, or repeat an entry through YAML aliases, cost nothing before
+// they are refused). The defaults leave room for a 1000 × 1000 cloth with every spring family;
+// `--limit NAME=N` raises one for scenes that are meant to be larger (docs/scenarios.md, "Limits").
+struct SceneLimits {
+  long long particles = 1'000'000;     // particles, grid particles and rigid bodies
+  long long springs = 8'000'000;       // grid springs and the forces section's springs and forces
+  long long constraints = 1'000'000;   // the constraints section's constraints
+  long long endpoints = 16'000'000;    // points the references name, whole grids and lists expanded
+  long long entries = 1'000'000;       // entries of the kind sections, YAML aliases expanded
+};
+// The largest value `--limit` accepts: particle indices are ints.
+inline constexpr long long kMaxSceneLimit = 1'000'000'000;
+// The names `--limit` knows, each with the member it sets.
+struct SceneLimitName {
+  std::string_view name;
+  long long SceneLimits::*member;
+};
+inline constexpr SceneLimitName kSceneLimitNames[] = {{"particles", &SceneLimits::particles},
+                                                      {"springs", &SceneLimits::springs},
+                                                      {"constraints", &SceneLimits::constraints},
+                                                      {"endpoints", &SceneLimits::endpoints},
+                                                      {"entries", &SceneLimits::entries}};
+// Sets one limit from `NAME=N` as given to --limit; throws ScenarioError naming the option when
+// the name is unknown or N is not a whole number from 1 to kMaxSceneLimit.
+void applyLimitOption(SceneLimits& limits, std::string_view text);
 
 struct SimulationSettings {
   Integrator integrator = Integrator::Rk4;
@@ -85,11 +111,12 @@ struct Scenario {
 
 // Reads and validates a scenario file; overrides are applied first, in order.
 Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides = {},
-                          std::uintmax_t maxInputMiB = kDefaultMaxInputMiB);
+                          std::uintmax_t maxInputMiB = kDefaultMaxInputMiB, const SceneLimits& limits = {});
 // The text of a scenario file, at most maxInputMiB; throws ScenarioError naming the file.
 std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t maxInputMiB = kDefaultMaxInputMiB);
 // The same from text in memory; `file` only labels messages.
-Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides = {});
+Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides = {},
+                          const SceneLimits& limits = {});
 
 // How a reference spells point `point` of the system (docs/physics.md §12 --trace): the particle's or
 // body's name, `cloth[3][4]` for a grid particle, `#index` for an unnamed particle and `body#j`

@@ -206,7 +206,7 @@ Json gridSchema() {
   return object({{"name", name()},
                  {"origin", withDefault(withDescription(vec2(), "position of row 0, column 0, m"), vec2Value(d.origin))},
                  {"size", withDescription(pairOf(wholeNumber(1, kMaxGridSide)),
-                                          fmt::format("[columns, rows], at most {} particles", kMaxGridParticles))},
+                                          "[columns, rows]; the scene's particles count toward --limit particles")},
                  {"spacing", withDefault(withDescription(pairOf(number(Bound{0, false})), "m"), vec2Value(d.spacing))},
                  {"mass", withDefault(withDescription(number(Bound{0, false}), "kg per particle"), d.mass)},
                  {"springs", object({{"structural", family}, {"shear", family}, {"flexion", family}}, {})}},
