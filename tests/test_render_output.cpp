@@ -2,6 +2,7 @@
 // through libavformat, PNG sequences, and what is left on disk when things go wrong.
 
 #include <doctest/doctest.h>
+#include <sys/resource.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -267,6 +268,23 @@ TEST_CASE("reading a PNG whose header claims more pixels than its bytes can hold
   CHECK_THROWS_WITH_AS(readPngText(contents(path), "side.png"),
                        doctest::Contains("side.png: its header claims 16384x16384 pixels, more than its 69 bytes"),
                        OutputError);
+}
+
+// Found by tests/fuzz/fuzz_png: libpng allocates an ancillary chunk's declared length before reading
+// it, so a 52-byte file whose zTXt chunk claims 1.5 GB cost 1.5 GB of memory before the read failed.
+// The reader skips every chunk but those that make the pixels.
+TEST_CASE("reading a PNG whose text chunk claims 1.5 GB fails without allocating it") {
+  const std::string path = std::string(PARTICLES_SOURCE_DIR) + "/tests/fuzz/corpus/png/ztxt_claiming_1500MB.png";
+  REQUIRE(std::ifstream(path).good());
+  auto peakKiB = [] {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return usage.ru_maxrss;  // the process's peak resident set, KiB
+  };
+  const long before = peakKiB();
+  CHECK_THROWS_WITH_AS(readPng(path), doctest::Contains("libpng could not read"), OutputError);
+  CHECK_THROWS_WITH_AS(readPngText(contents(path)), doctest::Contains("unexpected end of data"), OutputError);
+  CHECK(peakKiB() - before < 256 * 1024);
 }
 
 TEST_CASE("PNG bytes in memory that are not a whole PNG fail with libpng's message") {

@@ -84,6 +84,8 @@ def main():
         "grey2_interlaced.png": png(9, 9, 0, 2, interlace=True),
         # The largest side the reader accepts (kMaxImageSide), in a file far too short to hold it.
         "side16384_truncated.png": header(16384, 16384, 6, 8) + idat_iend(b"\x00" * 64),
+        # A zTXt chunk claiming 1.5 GB (0x5A5A5A5A bytes) in a 52-byte file: libpng allocated it.
+        "ztxt_claiming_1500MB.png": header(4, 3, 0, 8) + struct.pack(">I", 0x5A5A5A5A) + b"zTXt" + b"t\x00\x00xxxxxxxx",
     }
     for name, data in seeds.items():
         with open(os.path.join(out, name), "wb") as f:
