@@ -4,11 +4,11 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <string_view>
 
+#include "input/text_file.hpp"
 #include "plot/errors.hpp"
 
 namespace particles::plot {
@@ -110,17 +110,12 @@ bool spansDecades(std::initializer_list<const std::vector<double>*> columns) {
 }  // namespace
 
 StatsTable readStatsCsv(const std::filesystem::path& file, std::uintmax_t maxInputMiB) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw CsvError(file, 0, 0, "cannot open for reading");
   std::string text;
-  std::array<char, 1 << 16> chunk;
-  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {
-    text.append(chunk.data(), std::size_t(in.gcount()));
-    if (text.size() > maxInputMiB * 1024 * 1024) {
-      throw CsvError(file, 0, 0, fmt::format("larger than the input limit of {} MiB (--max-input MIB)", maxInputMiB));
-    }
+  try {
+    text = input::readTextFile(file, maxInputMiB);
+  } catch (const input::ReadError& e) {
+    throw CsvError(file, 0, 0, e.what());
   }
-  if (in.bad()) throw CsvError(file, 0, 0, "read error");
   return parseStatsCsv(text, file);
 }
 

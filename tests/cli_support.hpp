@@ -2,19 +2,37 @@
 // Running the real `particles` program from tests: a scratch directory per test case and the
 // program's exit code, stdout and stderr.
 #include <doctest/doctest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace particles::test {
 
 namespace fs = std::filesystem;
+
+// Built with AddressSanitizer (the program next to the tests is too): its shadow memory needs far
+// more address space than any cap, and it slows and grows the run.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
+#else
+inline constexpr bool kSanitized = false;
+#endif
 
 struct Result {
   int code = -1;
@@ -77,7 +95,51 @@ struct Scratch {
     REQUIRE_MESSAGE(fs::exists(exe), "the particles program is not built next to the tests: " << exe);
     const std::string command =
         "cd '" + dir.string() + "' && '" + exe.string() + "' " + args + " > stdout.txt 2> stderr.txt";
-    const int status = std::system(command.c_str());
+    return collect(std::system(command.c_str()));
+  }
+
+  // What a bounded run used: CPU seconds (user + system) and peak resident memory.
+  struct Usage {
+    double cpuSeconds = 0;
+    double peakMiB = 0;
+  };
+
+  // Runs `particles ARGS` as run() does, under guards that turn a hang or runaway memory into a
+  // failed test instead of a stuck CI machine: address space capped at 2 GiB and a wall-clock
+  // guard of 60 s after which the process is killed (code −1); no address-space cap under ASan.
+  // Reports what the run used.
+  Result runBounded(const std::string& args, Usage& usage) const {
+    const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
+    REQUIRE_MESSAGE(fs::exists(exe), "the particles program is not built next to the tests: " << exe);
+    const std::string command = "exec '" + exe.string() + "' " + args + " > stdout.txt 2> stderr.txt";
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      const rlimit memory{rlim_t(2) << 30, rlim_t(2) << 30};
+      if (::chdir(dir.c_str()) != 0 || (!kSanitized && ::setrlimit(RLIMIT_AS, &memory) != 0)) ::_exit(127);
+      ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    int status = 0;
+    rusage used{};
+    const auto start = std::chrono::steady_clock::now();
+    while (::wait4(pid, &status, WNOHANG, &used) == 0) {
+      if (std::chrono::steady_clock::now() - start > std::chrono::seconds(60)) {
+        ::kill(pid, SIGKILL);
+        ::wait4(pid, &status, 0, &used);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    usage.cpuSeconds = double(used.ru_utime.tv_sec + used.ru_stime.tv_sec) +
+                       1e-6 * double(used.ru_utime.tv_usec + used.ru_stime.tv_usec);
+    usage.peakMiB = double(used.ru_maxrss) / 1024.0;  // Linux reports KiB
+    return collect(status);
+  }
+
+ private:
+  // The exit code from a wait status (−1 when killed), and the output files, which are removed.
+  Result collect(int status) const {
     Result r;
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.out = slurp(dir / "stdout.txt");

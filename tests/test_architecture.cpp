@@ -28,10 +28,11 @@ const std::vector<Room>& rooms() {
   static const std::vector<Room> all = {
       {"core", kSource / "src/core", {}},
       {"output", kSource / "src/output", {}},
-      {"scenario", kSource / "src/scenario", {"core"}},
+      {"input", kSource / "src/input", {}},
+      {"scenario", kSource / "src/scenario", {"core", "input"}},
       {"render", kSource / "render", {"core", "output"}},
-      {"plot", kSource / "plot", {"output"}},
-      {"app", kSource / "src/app", {"core", "scenario", "render", "plot", "output"}},
+      {"plot", kSource / "plot", {"output", "input"}},
+      {"app", kSource / "src/app", {"core", "scenario", "render", "plot", "output", "input"}},
   };
   return all;
 }

@@ -121,16 +121,19 @@ TEST_CASE("cli exit codes: out-of-range, non-finite and empty option values are 
   CHECK_FALSE(std::filesystem::exists(s.dir / "a.png"));
 }
 
-// An endless input (/dev/zero) once grew memory without end; a file past the input limit is now
-// refused as it is read, and --max-input raises the limit for scenes that are meant to be large.
+// An endless input (/dev/zero) once grew memory without end; now a NUL byte ends the reading at
+// once, a file past the input limit is refused from its size or as it is read, and --max-input
+// raises the limit for scenes that are meant to be large.
 TEST_CASE("cli exit codes: inputs past the input limit, endless ones included, are refused") {
   Scratch s;
   s.write("big.yaml", "name: big\n# " + std::string(2 * 1024 * 1024, 'x') + "\n");
   const Case cases[] = {
-      {"check /dev/zero", 2,
-       "/dev/zero: error: the file is larger than the input limit of 64 MiB; if it is meant to be, raise the limit "
+      {"check /dev/zero", 2, "/dev/zero: error: byte 1 is a NUL byte, which no text holds: this is not a text file\n"},
+      {"plot /dev/zero -o z.svg", 2,
+       "error: /dev/zero: byte 1 is a NUL byte, which no text holds: this is not a text file\n"},
+      {"check /dev/stdin --max-input 1 < big.yaml", 2,
+       "/dev/stdin: error: the file is larger than the input limit of 1 MiB; if it is meant to be, raise the limit "
        "with --max-input MIB\n"},
-      {"plot /dev/zero -o z.svg", 2, "error: /dev/zero: larger than the input limit of 64 MiB (--max-input MIB)\n"},
       {"check big.yaml --max-input 1", 2,
        "big.yaml: error: the file is larger than the input limit of 1 MiB; if it is meant to be, raise the limit "
        "with --max-input MIB\n"},

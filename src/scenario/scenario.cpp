@@ -11,15 +11,13 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "core/grid.hpp"
 #include "core/forces/damped_spring_force.hpp"
 #include "core/kind.hpp"
+#include "input/text_file.hpp"
 #include "scenario/budget.hpp"
 #include "scenario/entry_args.hpp"
 #include "scenario/references.hpp"
@@ -498,26 +496,11 @@ Scenario loadScenarioText(std::string_view text, const std::string& file, std::s
 }
 
 std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t maxInputMiB) {
-  const std::string name = file.string();
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec)) throw ScenarioError(name, 0, 0, "", "cannot read: it is a directory");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ScenarioError(name, 0, 0, "", fmt::format("cannot open: {}", std::strerror(errno)));
-  // Read in chunks up to the limit, not to the end: a device such as /dev/zero has none.
-  const std::uintmax_t limit = maxInputMiB * 1024 * 1024;
-  std::string text;
-  std::array<char, 1 << 16> chunk;
-  while (in.read(chunk.data(), chunk.size()) || in.gcount() > 0) {
-    text.append(chunk.data(), size_t(in.gcount()));
-    if (text.size() > limit) {
-      throw ScenarioError(name, 0, 0, "",
-                          fmt::format("the file is larger than the input limit of {} MiB; if it is meant to be, "
-                                      "raise the limit with --max-input MIB",
-                                      maxInputMiB));
-    }
+  try {
+    return input::readTextFile(file, maxInputMiB);
+  } catch (const input::ReadError& e) {
+    throw ScenarioError(file.string(), 0, 0, "", e.what());
   }
-  if (in.bad()) throw ScenarioError(name, 0, 0, "", fmt::format("cannot read: {}", std::strerror(errno)));
-  return text;
 }
 
 Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides,

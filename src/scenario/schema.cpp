@@ -58,10 +58,16 @@ Json object(const std::vector<std::pair<std::string, Json>>& properties, const s
     if (isRequired) {
       props[key] = schema;
     } else {
-      Json nullable = {{"anyOf", Json::array({schema, {{"type", "null"}}})}};
+      // The description and default belong to the key, said once beside the anyOf.
+      Json value = schema;
+      Json nullable = Json::object();
       for (const char* k : {"description", "default"}) {
-        if (schema.contains(k)) nullable[k] = schema[k];
+        if (value.contains(k)) {
+          nullable[k] = value[k];
+          value.erase(k);
+        }
       }
+      nullable["anyOf"] = Json::array({value, {{"type", "null"}}});
       props[key] = nullable;
     }
   }

@@ -1,0 +1,33 @@
+#pragma once
+// Reading a text file nobody reviewed (a scenario, a stats CSV) without trusting its size: a
+// regular file past the limit is refused from its size before a byte is read, anything else (a
+// pipe, /dev/stdin, an endless device) is read only until it passes the limit, and a NUL byte, which
+// no text holds, ends the reading at once (so /dev/zero or a binary file is refused in its first
+// block instead of after 64 MiB).
+// The input room depends on nothing; the scenario loader and the figures wrap its ReadError in
+// their own error types, so the message says which file and, here, why.
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace particles::input {
+
+// Why a file could not be read, in words that follow "FILE: error: " ("cannot open: No such file
+// or directory"); reason() for callers that act on it.
+class ReadError : public std::runtime_error {
+ public:
+  enum class Reason { cannotOpen, isDirectory, tooLarge, notText, readFailed };
+  ReadError(Reason reason, const std::string& message) : std::runtime_error(message), reason_(reason) {}
+  Reason reason() const { return reason_; }
+
+ private:
+  Reason reason_;
+};
+
+// The whole of `file`, at most maxMiB mebibytes and without NUL bytes; throws ReadError. The
+// message for a file past the limit names the option that raises it, `--max-input MIB`.
+std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMiB);
+
+}  // namespace particles::input
