@@ -32,10 +32,7 @@ struct PngErrorSink {
 }
 void onPngWarning(png_structp, png_const_charp) {}  // e.g. unknown ancillary chunks: harmless
 
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+using output::FilePtr;
 
 struct PngWriteDeleter {
   void operator()(png_struct* p) const { png_destroy_write_struct(&p, nullptr); }
@@ -95,15 +92,7 @@ bool readRows(png_structp png, png_bytepp rows) {
   return true;
 }
 
-std::vector<png_bytep> rowPointers(Image& image) {
-  std::vector<png_bytep> rows(size_t(image.height));
-  for (int y = 0; y < image.height; ++y) rows[size_t(y)] = image.pixel(0, y);
-  return rows;
-}
-
-}  // namespace
-
-void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+void validatePngInput(const Image& image, const PngOptions& options) {
   if (options.compressionLevel < 0 || options.compressionLevel > 9) {
     throw std::invalid_argument("PNG compression level " + std::to_string(options.compressionLevel) +
                                 " is out of range 0–9");
@@ -111,9 +100,11 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
   if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * size_t(image.height) * 4) {
     throw std::invalid_argument("writePng: image is empty or its buffer does not match its size");
   }
-  FilePtr file(std::fopen(path.c_str(), "wb"));
-  if (!file) throw OutputError("cannot open " + path.string() + " for writing: " + std::strerror(errno));
+}
 
+// Encodes the image into `file` and closes it; `path` names it in messages.
+void writePngStream(output::FilePtr file, const std::filesystem::path& path, const Image& image,
+                    const PngOptions& options) {
   PngErrorSink sink;
   PngWritePtr png(png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
   if (!png) throw OutputError("png_create_write_struct failed for " + path.string());
@@ -132,9 +123,25 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
   }
 }
 
+std::vector<png_bytep> rowPointers(Image& image) {
+  std::vector<png_bytep> rows(size_t(image.height));
+  for (int y = 0; y < image.height; ++y) rows[size_t(y)] = image.pixel(0, y);
+  return rows;
+}
+
+}  // namespace
+
+void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+  validatePngInput(image, options);
+  FilePtr file(std::fopen(path.c_str(), "wb"));
+  if (!file) throw OutputError("cannot open " + path.string() + " for writing: " + std::strerror(errno));
+  writePngStream(std::move(file), path, image, options);
+}
+
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+  validatePngInput(image, options);
   output::PendingOutput out(path);
-  writePngDirect(out.temporary(), image, options);
+  writePngStream(out.openStream(), path, image, options);
   out.commit();
 }
 
