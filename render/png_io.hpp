@@ -5,7 +5,10 @@
 //
 // Frames are written as 8-bit RGB (the renderer's frames are opaque; alpha is dropped).
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 
 #include "render/image.hpp"
 
@@ -28,5 +31,7 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
 // Reads any 8-bit or 16-bit PNG as RGBA8 (grey, palette and 16-bit converted; alpha 255 if absent).
 // Throws OutputError naming the file and libpng's message.
 Image readPng(const std::filesystem::path& path);
+// The same from the bytes of a PNG file in memory; `name` labels messages.
+Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name = "PNG data");
 
 }  // namespace particles::render
