@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <set>
 #include <string>
 #include <thread>
@@ -227,20 +228,33 @@ TEST_CASE("output: a FIFO is written in place and its reader gets the data") {
   Scratch s;
   const fs::path fifo = s.dir / "pipe";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  // The FIFO is held open for reading and writing (Linux allows it) until the output is done, so
+  // the reader's open does not wait and its reads end only when this is closed too. Were the FIFO
+  // replaced or refused, the reader would see no data rather than wait forever.
+  struct Closer {
+    int fd;
+    explicit Closer(int descriptor) : fd(descriptor) {}
+    Closer(const Closer&) = delete;
+    ~Closer() { ::close(fd); }
+  };
   std::string received;
-  std::thread reader([&] {
-    std::FILE* in = std::fopen(fifo.c_str(), "r");
-    if (!in) return;
+  std::jthread reader;  // declared before `keeper`: on every way out, keeper is closed, then this joins
+  std::optional<Closer> keeper(std::in_place, ::open(fifo.c_str(), O_RDWR | O_CLOEXEC));
+  REQUIRE(keeper->fd >= 0);
+  std::FILE* readEnd = std::fopen(fifo.c_str(), "r");
+  REQUIRE(readEnd != nullptr);
+  reader = std::jthread([&] {
     char buffer[256];
-    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, in)) > 0;) received.append(buffer, n);
-    std::fclose(in);
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, readEnd)) > 0;) received.append(buffer, n);
+    std::fclose(readEnd);
   });
   {
-    OutputFile file(fifo);  // waits for the reader to open its end
+    OutputFile file(fifo);
     file.write("t,kinetic\n");
     file.write("0,1\n");
     file.commit();
   }
+  keeper.reset();
   reader.join();
   CHECK(received == "t,kinetic\n0,1\n");
   CHECK(S_ISFIFO(lstatOf(fifo).st_mode));
