@@ -36,10 +36,7 @@ struct PngErrorSink {
 }
 void onPngWarning(png_structp, png_const_charp) {}  // e.g. unknown ancillary chunks: harmless
 
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+using output::FilePtr;
 
 struct PngWriteDeleter {
   void operator()(png_struct* p) const { png_destroy_write_struct(&p, nullptr); }
@@ -176,9 +173,7 @@ bool hasPngSignature(std::span<const std::uint8_t> bytes) {
   return bytes.size() >= 8 && png_sig_cmp(bytes.data(), 0, 8) == 0;
 }
 
-}  // namespace
-
-void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+void validatePngInput(const Image& image, const PngOptions& options) {
   if (options.compressionLevel < 0 || options.compressionLevel > 9) {
     throw std::invalid_argument("PNG compression level " + std::to_string(options.compressionLevel) +
                                 " is out of range 0–9");
@@ -186,9 +181,11 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
   if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * size_t(image.height) * 4) {
     throw std::invalid_argument("writePng: image is empty or its buffer does not match its size");
   }
-  FilePtr file(std::fopen(path.c_str(), "wb"));
-  if (!file) throw OutputError("cannot open " + path.string() + " for writing: " + std::strerror(errno));
+}
 
+// Encodes the image into `file` and closes it; `path` names it in messages.
+void writePngStream(output::FilePtr file, const std::filesystem::path& path, const Image& image,
+                    const PngOptions& options) {
   PngErrorSink sink;
   PngWritePtr png(png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
   if (!png) throw OutputError("png_create_write_struct failed for " + path.string());
@@ -207,9 +204,19 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
   }
 }
 
+}  // namespace
+
+void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+  validatePngInput(image, options);
+  FilePtr file(std::fopen(path.c_str(), "wb"));
+  if (!file) throw OutputError("cannot open " + path.string() + " for writing: " + std::strerror(errno));
+  writePngStream(std::move(file), path, image, options);
+}
+
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+  validatePngInput(image, options);
   output::PendingOutput out(path);
-  writePngDirect(out.temporary(), image, options);
+  writePngStream(out.openStream(), path, image, options);
   out.commit();
 }
 

@@ -20,8 +20,9 @@ struct PngOptions {
   int compressionLevel = 6;
 };
 
-// Writes the image to `path` (under a temporary name, renamed on success; an existing file is
-// replaced only then). Throws OutputError naming the failing call; no file is left on failure.
+// Writes the image to `path` through output::PendingOutput: the file appears only when complete,
+// an existing one is replaced only then, a device or FIFO is written in place, a directory is
+// refused. Throws OutputError naming the failing call; no file is left on failure.
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options = {});
 
 // Writes to exactly `path`, no temporary name (for writers that manage their own temporaries).

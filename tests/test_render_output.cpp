@@ -175,12 +175,11 @@ TEST_CASE("an unwritable output is a clear error and leaves no file") {
       FAIL("opened");
     } catch (const OutputError& e) {
       const std::string what = e.what();
-      CHECK(what.find("avio_open") != std::string::npos);
-      CHECK(what.find("out.mp4") != std::string::npos);
+      CHECK(what.find("cannot write " + path.string()) != std::string::npos);
       CHECK((what.find("No such file") != std::string::npos || what.find("Not a directory") != std::string::npos));
     }
   }
-  CHECK_THROWS_WITH_AS(writePng(dir / "missing" / "f.png", frame), doctest::Contains("cannot open"), OutputError);
+  CHECK_THROWS_WITH_AS(writePng(dir / "missing" / "f.png", frame), doctest::Contains("cannot write"), OutputError);
   CHECK_THROWS_AS(openFrameWriter(dir / "missing" / "deeper" / "", writerOptions(30)), OutputError);
   CHECK_THROWS_AS(openFrameWriter(dir / "plain_file" / "", writerOptions(30)), OutputError);
   CHECK(dir.entries() == std::set<std::string>{"plain_file"});
