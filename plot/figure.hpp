@@ -76,9 +76,9 @@ ImageFormat formatForPath(const std::filesystem::path& out);
 // The encoded file contents. Throws FigureError (bad figure, missing font, cairo failure).
 std::vector<std::uint8_t> renderFigure(const Figure& figure, ImageFormat format);
 
-// Renders and writes `out` (SVG or PNG by extension). The bytes go to a temporary file in the same
-// directory, renamed over `out` only when complete; on any failure the temporary is removed, `out`
-// is left as it was, and FigureError says which path and which call failed.
+// Renders and writes `out` (SVG or PNG by extension) through output::PendingOutput: the figure
+// appears only when complete; on any failure `out` is left as it was and FigureError says which
+// path and which call failed.
 void writeFigure(const Figure& figure, const std::filesystem::path& out);
 
 }  // namespace particles::plot

@@ -44,6 +44,8 @@ double parseNumber(std::string_view field, const std::filesystem::path& file, st
   return value;
 }
 
+}  // namespace
+
 StatsTable parseStatsCsv(std::string_view text, const std::filesystem::path& file) {
   StatsTable table;
   std::array<std::vector<double>*, 6> columns = {&table.t,     &table.kinetic,         &table.potential,
@@ -88,6 +90,8 @@ StatsTable parseStatsCsv(std::string_view text, const std::filesystem::path& fil
     throw CsvError(file, 1, 1, "empty file: expected the header '" + std::string(kStatsCsvHeader) + "'");
   return table;
 }
+
+namespace {
 
 // Whether the positive values of the columns span at least two decades.
 bool spansDecades(std::initializer_list<const std::vector<double>*> columns) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string_view>
 #include <vector>
 
 #include "plot/figure.hpp"
@@ -25,6 +26,8 @@ inline constexpr const char* kStatsCsvHeader = "t,kinetic,potential,total,constr
 // lines). Throws CsvError with the file, line and column of the first problem.
 // Files past maxInputMiB are refused as they are read (an endless device such as /dev/zero too).
 StatsTable readStatsCsv(const std::filesystem::path& file, std::uintmax_t maxInputMiB = 64);
+// The same rules on text in memory; `file` only labels messages.
+StatsTable parseStatsCsv(std::string_view text, const std::filesystem::path& file);
 
 // Top panel "energy [J]": kinetic, potential, total against t [s]. Bottom panel "error [m]":
 // constraint error and penetration, on a log axis when their positive values span at least two

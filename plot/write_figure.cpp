@@ -3,7 +3,6 @@
 
 #include <cairo-svg.h>
 #include <cairo.h>
-#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -137,35 +136,21 @@ std::string lowerExtension(const std::filesystem::path& p) {
   return ext;
 }
 
-// Writes all of `bytes` to `out` through a PendingOutput ("<out>.partial-<pid>-<n>", renamed over
-// `out` when complete). The temporary is removed on every failure path.
+// Writes all of `bytes` to `out` through a PendingOutput: the figure appears whole or not at all,
+// and an output that cannot be written is a FigureError with the output room's message.
 void writeFileAtomically(const std::filesystem::path& out, const std::vector<std::uint8_t>& bytes) {
-  output::PendingOutput pending(out);
-  const std::filesystem::path& temporary = pending.temporary();
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) {
-    throw FigureError("cannot write figure " + out.string() + ": cannot create " + temporary.string() + ": " +
-                      std::strerror(errno));
-  }
-  const auto fail = [&](const std::string& what, int error) {
-    throw FigureError("cannot write figure " + out.string() + ": " + what + ": " + std::strerror(error));
-  };
-  std::size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const int error = errno;
-      ::close(fd);
-      fail("write to " + temporary.string(), error);
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::close(fd) != 0) fail("close " + temporary.string(), errno);
   try {
+    output::PendingOutput pending(out);
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+      const ssize_t n = ::write(pending.fd(), bytes.data() + done, bytes.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) throw output::OutputError("cannot write figure " + out.string() + ": " + std::strerror(errno));
+      done += static_cast<std::size_t>(n);
+    }
     pending.commit();
   } catch (const output::OutputError& e) {
-    throw FigureError("cannot write figure " + out.string() + ": " + e.what());
+    throw FigureError(e.what());
   }
 }
 

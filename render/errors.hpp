@@ -17,8 +17,8 @@ class RenderError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A PNG or MP4 output could not be opened, encoded or written (the output room's error; the
-// partial file is removed).
+// A PNG or MP4 output could not be opened, encoded or written (the output room's error; what was
+// written is discarded).
 using output::OutputError;
 
 }  // namespace particles::render

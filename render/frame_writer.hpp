@@ -3,9 +3,9 @@
 //   OUT.mp4  H.264 video (Mp4Writer)            OUT/  numbered PNGs (PngSequenceWriter)
 //   OUT.png  one frame at --at T: not a stream; call writePng (png_io.hpp) directly.
 //
-// A writer encodes on its own thread behind a bounded queue, writes under a temporary name and
-// moves the result into place in finish(). Until then an existing output is untouched; abort(),
-// an error, or destroying an unfinished writer removes everything it wrote.
+// A writer encodes on its own thread behind a bounded queue, writes to a temporary (an anonymous
+// file, or the staging directory of a PNG sequence) and moves the result into place in finish(). Until then an existing
+// output is untouched; abort(), an error, or destroying an unfinished writer removes everything it wrote.
 //
 // Interruption (SIGINT/SIGTERM). abort() is not async-signal-safe (it joins a thread and frees
 // codec state), so the signal handler only sets a flag that the frame loop polls:

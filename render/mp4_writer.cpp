@@ -80,16 +80,26 @@ void validate(const FrameWriterOptions& o) {
   if (!tuneOk) throw std::invalid_argument("unknown x264 tune '" + o.video.tune + "'");
 }
 
+// The options are checked before the output is opened: opening a FIFO waits for its reader, and
+// bad options would then be reported only once one came.
+const std::filesystem::path& validated(const std::filesystem::path& path, const FrameWriterOptions& options) {
+  validate(options);
+  return path;
+}
+
 }  // namespace
 
 Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions& options)
-    : PipelinedFrameWriter(options.width, options.height, "the video"), out_(path) {
-  validate(options);
+    : PipelinedFrameWriter(options.width, options.height, "the video"), out_(validated(path, options)) {
   auto enc = std::make_unique<Encoder>();
   enc->path = path.string();
-  const std::string temp = out_.temporary().string();
+  // libav opens its output by name, and with +faststart the mp4 muxer opens it again by that name
+  // (the context's url) to read it back while moving the index to the front. The name is that of
+  // the file PendingOutput holds open ("/proc/self/fd/N" for an anonymous one). "file:" keeps a
+  // colon in a named temporary from being read as a protocol ("out:1.mp4.partial-…").
+  const std::string temp = "file:" + out_.reopenablePath().string();
 
-  // The temporary name does not end in .mp4, so the muxer is named, not guessed.
+  // The name does not end in .mp4, so the muxer is named, not guessed.
   AVFormatContext* fmt = nullptr;
   check(avformat_alloc_output_context2(&fmt, nullptr, "mp4", temp.c_str()), "avformat_alloc_output_context2(mp4)");
   enc->format.reset(fmt);
@@ -123,7 +133,15 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions
   enc->stream->time_base = c->time_base;  // a hint: the muxer may pick a finer one in write_header
   enc->stream->avg_frame_rate = c->framerate;
 
-  check(avio_open(&fmt->pb, temp.c_str(), AVIO_FLAG_WRITE), "avio_open(" + temp + ")");
+  // truncate=0: the file protocol would open with O_TRUNC; what we opened is empty already, or a
+  // device or FIFO written in place, which is not ours to truncate.
+  AVDictionary* fileOptions = nullptr;
+  check(av_dict_set(&fileOptions, "truncate", "0", 0), "av_dict_set(truncate)");
+  const int openResult = avio_open2(&fmt->pb, temp.c_str(), AVIO_FLAG_WRITE, nullptr, &fileOptions);
+  const bool truncateIgnored = av_dict_count(fileOptions) > 0;
+  av_dict_free(&fileOptions);
+  check(openResult, "avio_open2(" + path.string() + ")");
+  if (truncateIgnored) throw OutputError("avio_open2: the file protocol did not accept truncate=0");
   AVDictionary* muxOptions = nullptr;
   check(av_dict_set(&muxOptions, "movflags", "+faststart", 0), "av_dict_set(movflags)");
   const int headerResult = avformat_write_header(fmt, &muxOptions);
@@ -168,7 +186,7 @@ void Mp4Writer::finish() {
     encoder_->send(nullptr);
     AVFormatContext* fmt = encoder_->format.get();
     check(av_write_trailer(fmt), "av_write_trailer(" + out_.destination().string() + ")");
-    check(avio_closep(&fmt->pb), "avio_closep(" + out_.temporary().string() + ")");
+    check(avio_closep(&fmt->pb), "avio_closep(" + out_.destination().string() + ")");
     encoder_.reset();
     out_.commit();
   } catch (...) {

@@ -30,7 +30,7 @@ class Mp4Writer final : public PipelinedFrameWriter {
 
  private:
   struct Encoder;
-  output::PendingOutput out_;  // first: the temporary file is removed after the encoder has closed it
+  output::PendingOutput out_;  // first: the output is discarded after the encoder has closed its own descriptor
   std::unique_ptr<Encoder> encoder_;
 };
 

@@ -2,11 +2,15 @@
 
 #include <png.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <limits>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -32,10 +36,7 @@ struct PngErrorSink {
 }
 void onPngWarning(png_structp, png_const_charp) {}  // e.g. unknown ancillary chunks: harmless
 
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+using output::FilePtr;
 
 struct PngWriteDeleter {
   void operator()(png_struct* p) const { png_destroy_write_struct(&p, nullptr); }
@@ -66,13 +67,19 @@ bool writeRows(png_structp png, png_infop info, std::FILE* file, const Image& im
 
 struct PngHeader {
   png_uint_32 width = 0, height = 0;
-  size_t rowBytes = 0;
+  size_t rowBytes = 0;      // after conversion to RGBA8
+  size_t fileRowBytes = 0;  // as stored: colour type and bit depth of the file, before conversion
 };
 
-bool readHeader(png_structp png, png_infop info, std::FILE* file, PngHeader* header) {
+bool readHeader(png_structp png, png_infop info, PngHeader* header) {
   if (setjmp(png_jmpbuf(png))) return false;
-  png_init_io(png, file);
+  // Only IHDR, PLTE, tRNS, IDAT and IEND make the pixels; every other chunk is skipped unread (a
+  // negative count means all of them, libpng(3)). libpng 1.6.39 allocates an ancillary chunk's
+  // declared length before reading it: a 91-byte file with a zTXt chunk claiming 1.5 GB cost 1.5 GB
+  // (found by tests/fuzz/fuzz_png).
+  png_set_keep_unknown_chunks(png, PNG_HANDLE_CHUNK_NEVER, nullptr, -1);
   png_read_info(png, info);
+  header->fileRowBytes = png_get_rowbytes(png, info);
   const int colorType = png_get_color_type(png, info);
   png_set_expand(png);  // palette → RGB, grey < 8 bits → 8 bits, tRNS → alpha
   png_set_strip_16(png);
@@ -95,15 +102,78 @@ bool readRows(png_structp png, png_bytepp rows) {
   return true;
 }
 
+// The bytes readPngBytes decodes, handed to libpng as it asks for them.
+struct MemoryReader {
+  std::span<const std::uint8_t> bytes;
+  std::size_t offset = 0;
+};
+
+void readFromMemory(png_structp png, png_bytep out, png_size_t length) {
+  auto* reader = static_cast<MemoryReader*>(png_get_io_ptr(png));
+  if (length > reader->bytes.size() - reader->offset) png_error(png, "unexpected end of data");
+  std::memcpy(out, reader->bytes.data() + reader->offset, length);
+  reader->offset += length;
+}
+
 std::vector<png_bytep> rowPointers(Image& image) {
   std::vector<png_bytep> rows(size_t(image.height));
   for (int y = 0; y < image.height; ++y) rows[size_t(y)] = image.pixel(0, y);
   return rows;
 }
 
-}  // namespace
+// zlib's largest compression ratio ("Maximum Compression Factor", zlib.net/zlib_tech.html): deflate
+// codes at most 258 bytes in about 2 bits, so n bytes of IDAT decompress to at most 1032·n.
+constexpr std::uintmax_t kMaxDeflateRatio = 1032;
 
-void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+// Decodes a PNG whose signature the caller has checked, from the source `setSource` gives libpng
+// (a FILE* or bytes in memory) of `inputBytes` bytes (UINTMAX_MAX when unknown); `name` labels
+// messages.
+Image decodePng(const std::string& name, std::uintmax_t inputBytes, const std::function<void(png_structp)>& setSource) {
+  PngErrorSink sink;
+  PngReadPtr png(png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
+  if (!png) throw OutputError("png_create_read_struct failed for " + name);
+  PngInfoPtr info(png_create_info_struct(png.get()), PngInfoDeleter{png.get()});
+  if (!info) throw OutputError("png_create_info_struct failed for " + name);
+  setSource(png.get());
+
+  PngHeader header;
+  if (!readHeader(png.get(), info.get(), &header)) {
+    throw OutputError("libpng could not read " + name + ": " + sink.message);
+  }
+  if (header.rowBytes != size_t(header.width) * 4) {
+    throw OutputError(name + ": unexpected PNG layout after conversion to RGBA8");
+  }
+  // Checked on the header, before any pixel is allocated: a 68-byte file claiming 20000 × 20000
+  // pixels would otherwise cost 1.6 GB first.
+  if (header.width > png_uint_32(kMaxImageSide) || header.height > png_uint_32(kMaxImageSide)) {
+    throw OutputError(name + ": its header claims " + std::to_string(header.width) + "x" +
+                      std::to_string(header.height) + " pixels; images are at most " + std::to_string(kMaxImageSide) +
+                      " pixels a side");
+  }
+  // A header that claims more pixels than the file could decompress to is refused before the image
+  // is allocated too: a 69-byte file claiming 16384 × 16384 would otherwise cost 1 GiB first (found
+  // by tests/fuzz/fuzz_png). Every stored row holds at least fileRowBytes − 1 bytes of pixels,
+  // interlaced or not.
+  const std::uintmax_t pixelBytes = std::uintmax_t(header.height) * (std::max<size_t>(header.fileRowBytes, 1) - 1);
+  if (inputBytes < std::numeric_limits<std::uintmax_t>::max() / kMaxDeflateRatio &&
+      pixelBytes > inputBytes * kMaxDeflateRatio) {
+    throw OutputError(name + ": its header claims " + std::to_string(header.width) + "x" +
+                      std::to_string(header.height) + " pixels, more than its " + std::to_string(inputBytes) +
+                      " bytes can hold");
+  }
+  Image image(int(header.width), int(header.height));
+  std::vector<png_bytep> rows = rowPointers(image);
+  if (!readRows(png.get(), rows.data())) {
+    throw OutputError("libpng could not read " + name + ": " + sink.message);
+  }
+  return image;
+}
+
+bool hasPngSignature(std::span<const std::uint8_t> bytes) {
+  return bytes.size() >= 8 && png_sig_cmp(bytes.data(), 0, 8) == 0;
+}
+
+void validatePngInput(const Image& image, const PngOptions& options) {
   if (options.compressionLevel < 0 || options.compressionLevel > 9) {
     throw std::invalid_argument("PNG compression level " + std::to_string(options.compressionLevel) +
                                 " is out of range 0–9");
@@ -111,9 +181,11 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
   if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * size_t(image.height) * 4) {
     throw std::invalid_argument("writePng: image is empty or its buffer does not match its size");
   }
-  FilePtr file(std::fopen(path.c_str(), "wb"));
-  if (!file) throw OutputError("cannot open " + path.string() + " for writing: " + std::strerror(errno));
+}
 
+// Encodes the image into `file` and closes it; `path` names it in messages.
+void writePngStream(output::FilePtr file, const std::filesystem::path& path, const Image& image,
+                    const PngOptions& options) {
   PngErrorSink sink;
   PngWritePtr png(png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
   if (!png) throw OutputError("png_create_write_struct failed for " + path.string());
@@ -132,47 +204,39 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
   }
 }
 
+}  // namespace
+
+void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+  validatePngInput(image, options);
+  FilePtr file(std::fopen(path.c_str(), "wb"));
+  if (!file) throw OutputError("cannot open " + path.string() + " for writing: " + std::strerror(errno));
+  writePngStream(std::move(file), path, image, options);
+}
+
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options) {
+  validatePngInput(image, options);
   output::PendingOutput out(path);
-  writePngDirect(out.temporary(), image, options);
+  writePngStream(out.openStream(), path, image, options);
   out.commit();
 }
 
 Image readPng(const std::filesystem::path& path) {
   FilePtr file(std::fopen(path.c_str(), "rb"));
   if (!file) throw OutputError("cannot open " + path.string() + ": " + std::strerror(errno));
-  png_byte signature[8];
-  if (std::fread(signature, 1, 8, file.get()) != 8 || png_sig_cmp(signature, 0, 8) != 0) {
-    throw OutputError(path.string() + " is not a PNG file");
-  }
+  std::uint8_t signature[8];
+  const std::size_t got = std::fread(signature, 1, 8, file.get());
+  if (!hasPngSignature({signature, got})) throw OutputError(path.string() + " is not a PNG file");
   std::rewind(file.get());
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);  // unknown for a pipe: no check
+  return decodePng(path.string(), ec ? std::numeric_limits<std::uintmax_t>::max() : size,
+                   [&](png_structp png) { png_init_io(png, file.get()); });
+}
 
-  PngErrorSink sink;
-  PngReadPtr png(png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
-  if (!png) throw OutputError("png_create_read_struct failed for " + path.string());
-  PngInfoPtr info(png_create_info_struct(png.get()), PngInfoDeleter{png.get()});
-  if (!info) throw OutputError("png_create_info_struct failed for " + path.string());
-
-  PngHeader header;
-  if (!readHeader(png.get(), info.get(), file.get(), &header)) {
-    throw OutputError("libpng could not read " + path.string() + ": " + sink.message);
-  }
-  if (header.rowBytes != size_t(header.width) * 4) {
-    throw OutputError(path.string() + ": unexpected PNG layout after conversion to RGBA8");
-  }
-  // Checked on the header, before any pixel is allocated: a 68-byte file claiming 20000 × 20000
-  // pixels would otherwise cost 1.6 GB first.
-  if (header.width > png_uint_32(kMaxImageSide) || header.height > png_uint_32(kMaxImageSide)) {
-    throw OutputError(path.string() + ": its header claims " + std::to_string(header.width) + "x" +
-                      std::to_string(header.height) + " pixels; images are at most " + std::to_string(kMaxImageSide) +
-                      " pixels a side");
-  }
-  Image image(int(header.width), int(header.height));
-  std::vector<png_bytep> rows = rowPointers(image);
-  if (!readRows(png.get(), rows.data())) {
-    throw OutputError("libpng could not read " + path.string() + ": " + sink.message);
-  }
-  return image;
+Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name) {
+  if (!hasPngSignature(bytes)) throw OutputError(name + " is not a PNG file");
+  MemoryReader reader{bytes};
+  return decodePng(name, bytes.size(), [&](png_structp png) { png_set_read_fn(png, &reader, readFromMemory); });
 }
 
 }  // namespace particles::render

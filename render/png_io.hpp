@@ -5,7 +5,10 @@
 //
 // Frames are written as 8-bit RGB (the renderer's frames are opaque; alpha is dropped).
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string>
 
 #include "render/image.hpp"
 
@@ -17,8 +20,9 @@ struct PngOptions {
   int compressionLevel = 6;
 };
 
-// Writes the image to `path` (under a temporary name, renamed on success; an existing file is
-// replaced only then). Throws OutputError naming the failing call; no file is left on failure.
+// Writes the image to `path` through output::PendingOutput: the file appears only when complete,
+// an existing one is replaced only then, a device or FIFO is written in place, a directory is
+// refused. Throws OutputError naming the failing call; no file is left on failure.
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options = {});
 
 // Writes to exactly `path`, no temporary name (for writers that manage their own temporaries).
@@ -27,5 +31,7 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
 // Reads any 8-bit or 16-bit PNG as RGBA8 (grey, palette and 16-bit converted; alpha 255 if absent).
 // Throws OutputError naming the file and libpng's message.
 Image readPng(const std::filesystem::path& path);
+// The same from the bytes of a PNG file in memory; `name` labels messages.
+Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name = "PNG data");
 
 }  // namespace particles::render

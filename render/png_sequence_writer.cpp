@@ -44,13 +44,13 @@ PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWrite
     createdDirectory_ = fs::create_directory(directory_, ec);
     if (ec) throw OutputError("cannot create directory " + directory_.string() + ": " + ec.message());
   }
-  staging_ = std::make_unique<output::PendingOutput>(directory_ / "frames");
-  fs::create_directory(staging_->temporary(), ec);
-  if (ec) {
+  try {
+    staging_.emplace(directory_ / "frames");
+  } catch (const OutputError&) {
     abort();
-    throw OutputError("cannot create " + staging_->temporary().string() + ": " + ec.message());
+    throw;
   }
-  const fs::path staging = staging_->temporary();
+  const fs::path staging = staging_->path();
   const PngOptions png = options.png;
   pipeline_ = std::make_unique<FramePipeline>(options.queueFrames, [staging, png](const Image& image, long index) {
     writePngDirect(staging / sequenceFrameName(index), image, png);
@@ -68,7 +68,7 @@ void PngSequenceWriter::finish() {
     std::error_code ec;
     for (long i = 0; i < frames_; ++i) {
       const std::string name = sequenceFrameName(i);
-      fs::rename(staging_->temporary() / name, directory_ / name, ec);
+      fs::rename(staging_->path() / name, directory_ / name, ec);
       if (ec) throw OutputError("cannot move " + name + " into " + directory_.string() + ": " + ec.message());
     }
     // Frames beyond this run's last, left by an earlier run.

@@ -1,11 +1,12 @@
 #pragma once
 // A directory of numbered PNGs, frame_000000.png, frame_000001.png, … (frame i at t = i / fps).
 //
-// Frames are written into a temporary subdirectory "<dir>/frames.partial-<pid>-<n>" and moved
-// into <dir> by finish(); frame_NNNNNN.png files there from an earlier, longer run are removed
-// then, so the directory holds exactly this run. Other files in <dir> are never touched. The
-// directory is created if missing (its parent must exist) and removed again on abort if it was
-// created here and is empty.
+// Frames are written into a staging subdirectory "<dir>/frames.partial-<pid>-<n>"
+// (output::StagingDirectory) and moved into <dir> by finish(); frame_NNNNNN.png files there from
+// an earlier, longer run are removed then, so the directory holds exactly this run. Other files in
+// <dir> are never touched, except staging directories that killed runs left there. The directory
+// is created if missing (its parent must exist) and removed again on abort if it was created here
+// and is empty.
 
 #include <optional>
 #include <string>
@@ -13,7 +14,7 @@
 #include "render/frame_pipeline.hpp"
 #include "render/frame_writer.hpp"
 #include "render/pipelined_frame_writer.hpp"
-#include "output/pending_output.hpp"
+#include "output/staging_directory.hpp"
 
 namespace particles::render {
 
@@ -35,7 +36,7 @@ class PngSequenceWriter final : public PipelinedFrameWriter {
  private:
   std::filesystem::path directory_;
   bool createdDirectory_ = false;
-  std::unique_ptr<output::PendingOutput> staging_;  // the temporary subdirectory
+  std::optional<output::StagingDirectory> staging_;
 };
 
 }  // namespace particles::render

@@ -6,9 +6,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -66,14 +68,14 @@ inline const std::string kSwingScenario =
     "constraints:\n"
     "  - {type: rod, a: pivot, b: bob}\n";
 
-// A scratch directory per test case, removed afterwards.
+// A scratch directory per test case, removed afterwards. mkdtemp: a fresh directory of our own,
+// never one that happens to exist already.
 struct Scratch {
   fs::path dir;
   Scratch() {
-    static int counter = 0;
-    dir = fs::temp_directory_path() /
-          ("particles_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::create_directories(dir);
+    std::string pattern = (fs::temp_directory_path() / "particles_cli_test_XXXXXX").string();
+    REQUIRE_MESSAGE(::mkdtemp(pattern.data()) != nullptr, "mkdtemp " << pattern << ": " << std::strerror(errno));
+    dir = pattern;
   }
   ~Scratch() {
     std::error_code ignored;

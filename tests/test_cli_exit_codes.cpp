@@ -87,13 +87,9 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
       {"render s.yaml -o blocker/frames/ --quiet", 3,
        "error: cannot create directory blocker/frames/: Not a directory\n"},
       {"plot good.csv -o out.txt", 3, "error: cannot write figure out.txt: unknown format '.txt' (use .svg or .png)\n"},
+      {"compare a.png a.png --quiet --diff blocker/d.png", 3, "error: --diff: cannot write blocker/d.png: Not a directory\n"},
   };
   checkCases(s, cases);
-  // Names of temporary files differ from run to run: the start and the end of the message.
-  const Result r = s.run("compare a.png a.png --quiet --diff blocker/d.png");
-  CHECK(r.code == 3);
-  CHECK(r.err.rfind("error: --diff: cannot open blocker/d.png.partial-", 0) == 0);
-  CHECK(r.err.find("for writing: Not a directory\n") != std::string::npos);
 }
 
 // Numbers on the command line that were accepted silently (a fallback to the scenario's value, or

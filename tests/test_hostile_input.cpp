@@ -6,8 +6,14 @@
 // hanging the machine. Under the sanitizers the resource bounds are not checked: ASan's shadow
 // memory and slowdown are not the program's.
 #include <doctest/doctest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <csignal>
+#include <thread>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -106,6 +112,40 @@ TEST_CASE("hostile input row 3: a few hundred bytes that expand to gigabytes of 
                  "aliases.yaml:7:5: error: forces[8]: this makes 8991000 springs and forces in the scene so far, more "
                  "than the limit of 8000000 (counted before anything is built); if the scene is meant to be this "
                  "large, raise the limit with --limit springs=N\n"}});
+}
+
+TEST_CASE("hostile input row 4: --stats /dev/null (once replaced by a regular file when run as root)") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  checkRows(s, {{"run s.yaml --quiet --stats /dev/null", 0, ""}, {"run s.yaml --quiet --trace /dev/null", 0, ""}});
+  struct stat devNull {};
+  REQUIRE(::lstat("/dev/null", &devNull) == 0);
+  CHECK(S_ISCHR(devNull.st_mode));
+}
+
+TEST_CASE("hostile input row 5: kill -9 during render -o x.mp4 leaves no file behind") {
+  Scratch s;
+  // 20 simulated seconds at 30 fps: several seconds of rendering, killed after half a second.
+  std::string longer = kSwingScenario;
+  longer.replace(longer.find("duration: 1"), 11, "duration: 20");
+  longer.replace(longer.find("fps: 10"), 7, "fps: 30");
+  s.write("s.yaml", longer);
+  const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    if (::chdir(s.dir.c_str()) != 0) ::_exit(127);
+    ::execl(exe.c_str(), "particles", "render", "s.yaml", "-o", "x.mp4", "--quiet", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  int status = 0;
+  const bool stillRunning = ::waitpid(pid, &status, WNOHANG) == 0;
+  ::kill(pid, SIGKILL);
+  if (stillRunning) ::waitpid(pid, &status, 0);
+  REQUIRE_MESSAGE(stillRunning, "the render ended before it could be killed; make the scenario longer");
+  CHECK(WIFSIGNALED(status));
+  CHECK(s.files() == std::vector<std::string>{"s.yaml"});
 }
 
 TEST_CASE("hostile input row 6: a 65-byte PNG whose header claims 100000 × 100000 pixels") {

@@ -54,6 +54,14 @@ TEST_CASE("plot stats CSV: rows are read into columns, CRLF and a missing final 
   CHECK(readStatsCsv(writeText(dir, kHeader + "\n")).rows() == 0);
 }
 
+TEST_CASE("plot stats CSV: text in memory is read by the same rules, its name labelling errors") {
+  const auto table = parseStatsCsv(kHeader + "\n0,1,2,3,0,0\n0.5,1,2,3,1e-9,0\n", "memory.csv");
+  CHECK(table.t == std::vector<double>{0, 0.5});
+  CHECK(table.constraintError == std::vector<double>{0, 1e-9});
+  CHECK_THROWS_WITH_AS(parseStatsCsv(kHeader + "\n0,1,2,3,0\n", "memory.csv"),
+                       doctest::Contains("memory.csv:2:10: expected 6 fields, found 5"), CsvError);
+}
+
 TEST_CASE("plot stats CSV: errors carry the line and the column of the offending field") {
   SUBCASE("header") {
     const CsvError e = csvError("t,kinetic,potential,total,constraint_err,penetration\n");

@@ -71,7 +71,7 @@ int compareCommand(const CompareOptions& o) {
   }
   if (!o.diff.empty()) {
     try {
-      render::writePng(o.diff, render::diffImage(expected, actual, o.threshold));  // temporary name + rename
+      render::writePng(o.diff, render::diffImage(expected, actual, o.threshold));  // appears only when complete
     } catch (const render::OutputError& e) {
       throw render::OutputError(std::string("--diff: ") + e.what());
     }

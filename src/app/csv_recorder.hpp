@@ -1,7 +1,7 @@
 #pragma once
 // The --stats and --trace CSV files of `run` and `render` (docs/physics.md §12): one row (stats) or one row
 // per traced object (trace) each time record() is called, numbers in shortest round-trip form.
-// Both files are written under temporary names and appear only on commit().
+// Both files are written through output::OutputFile and appear only on commit().
 
 #include <memory>
 #include <optional>

@@ -3,21 +3,12 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 
 namespace particles::output {
 
-OutputFile::OutputFile(std::filesystem::path path) : pending_(std::move(path)) {
-  if (pending_.destination().empty()) throw OutputError("cannot write to an empty file name");
-  std::error_code ec;
-  if (std::filesystem::is_directory(pending_.destination(), ec)) {
-    throw OutputError(fmt::format("cannot write {}: it is a directory", pending_.destination().string()));
-  }
-  file_.reset(std::fopen(pending_.temporary().c_str(), "wb"));
-  if (!file_) {
-    throw OutputError(fmt::format("cannot write {}: {}", pending_.destination().string(), std::strerror(errno)));
-  }
-}
+OutputFile::OutputFile(std::filesystem::path path) : pending_(std::move(path)), file_(pending_.openStream()) {}
 
 void OutputFile::write(std::string_view text) {
   if (std::fwrite(text.data(), 1, text.size(), file_.get()) != text.size()) {
@@ -31,6 +22,7 @@ void OutputFile::commit() {
   const int flushErrno = errno;
   const bool closed = std::fclose(f) == 0;
   if (!flushed || !closed) {
+    pending_.discard();
     throw OutputError(fmt::format("cannot write {}: {}", pending_.destination().string(),
                                   std::strerror(flushed ? errno : flushErrno)));
   }

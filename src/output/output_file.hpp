@@ -1,12 +1,10 @@
 #pragma once
-// A text output file (the CSVs) written under a temporary name next to its destination and renamed
-// over it only on commit() (PendingOutput), so that a failed or interrupted run never
-// leaves a truncated file behind; an uncommitted file is removed when the object dies. Failures
-// throw OutputError (exit code 3).
+// A text output file (the CSVs) written through PendingOutput: it appears whole on commit() or
+// not at all, replaces a regular file only then, writes a device or FIFO (/dev/null, a named
+// pipe) in place, follows a symbolic link to its target, and refuses a directory or socket.
+// Failures throw OutputError (exit code 3).
 
-#include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <string_view>
 
 #include "output/output_error.hpp"
@@ -21,16 +19,13 @@ class OutputFile {
   OutputFile& operator=(const OutputFile&) = delete;
 
   void write(std::string_view text);
-  // Flushes, closes and renames onto the destination.
+  // Flushes and closes the stream, then publishes the file (PendingOutput::commit).
   void commit();
   const std::filesystem::path& path() const { return pending_.destination(); }
 
  private:
-  struct Closer {
-    void operator()(std::FILE* f) const { std::fclose(f); }
-  };
-  PendingOutput pending_;  // declared first: the file is closed before it is removed
-  std::unique_ptr<std::FILE, Closer> file_;
+  PendingOutput pending_;  // declared first: the stream is closed before the file is discarded
+  FilePtr file_;
 };
 
 }  // namespace particles::output

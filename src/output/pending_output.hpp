@@ -1,29 +1,87 @@
 #pragma once
-// An output written under a temporary name beside its destination and renamed over it only when
-// complete, so a reader never sees a half-written file and an existing output is replaced only
-// on success. The temporary name is "<destination>.partial-<pid>-<n>"; if the process is killed
-// outright (SIGKILL) that file is what is left behind, and its name says what it is.
+// One output file that appears whole or not at all, and never clobbers what is not ours (issue 13).
+//
+// What the destination is decides how it is written:
+//  - absent or a regular file: a temporary is written and, on commit(), renamed over the
+//    destination, so a reader never sees a half-written file and an existing output is replaced
+//    only on success. Where the filesystem allows (Linux O_TMPFILE, and /proc for its name) the
+//    temporary is anonymous: it has no name in the folder until commit() links it in, so even a
+//    run killed outright (SIGKILL) leaves nothing behind. Elsewhere it is named
+//    "<destination>.partial-<pid>-<n>" (partial_names.hpp); such names left by killed runs are
+//    removed by the next output of the same name into that folder.
+//  - a character or block device or a FIFO (/dev/null, a terminal, a named pipe): written in
+//    place, opened as it is. Nothing is replaced or removed, on success or failure.
+//  - a process's open file, a link in /proc (/dev/stdout, /dev/fd/N): written in place too, and
+//    appended to, so stdout redirected to a file keeps what was printed before.
+//  - a directory or a socket (or any other kind of file): refused with OutputError naming it.
+//  - a symbolic link (a chain of them, or a dangling one): the file at its end is what is written,
+//    by the rules above, and the link stays a link. The temporary lives in the target's folder, so
+//    the rename stays within one filesystem and is atomic.
+// A replaced file keeps its permission bits, and a new one gets 0666 less the umask: what
+// fopen(…, "w") gives.
 
+#include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <string>
 
 namespace particles::output {
 
+struct FileCloser {
+  void operator()(std::FILE* file) const { std::fclose(file); }
+};
+using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
+
 class PendingOutput {
  public:
-  explicit PendingOutput(std::filesystem::path destination);
-  ~PendingOutput();  // discards the temporary unless committed
+  enum class Temporary {
+    anonymousWherePossible,  // O_TMPFILE, falling back to a named temporary
+    named,                   // always "<destination>.partial-<pid>-<n>" (tests of the fallback)
+  };
+  enum class Route { anonymous, named, inPlace };
+
+  // Opens the file to write (see above). A FIFO blocks here until a reader opens it, as any
+  // writer to a FIFO does. Throws OutputError naming the destination and the reason.
+  explicit PendingOutput(std::filesystem::path destination, Temporary temporary = Temporary::anonymousWherePossible);
+  ~PendingOutput();  // discard() unless committed
   PendingOutput(const PendingOutput&) = delete;
   PendingOutput& operator=(const PendingOutput&) = delete;
 
+  // As the caller named it; messages use it.
   const std::filesystem::path& destination() const { return destination_; }
-  const std::filesystem::path& temporary() const { return temporary_; }
-  // rename(temporary, destination), atomically replacing a file already there. Throws OutputError.
+  // The file that is written: the destination with symbolic links followed.
+  const std::filesystem::path& target() const { return target_; }
+  Route route() const { return route_; }
+
+  // The open file, write-only, owned here: write to it, do not close it.
+  int fd() const { return fd_; }
+  // A stdio stream over a duplicate of fd(). The caller closes it (and checks fclose, where a
+  // full disk shows) before commit().
+  FilePtr openStream();
+  // A name under which the file being written can be opened again, for libraries that insist on a
+  // name (libav, whose mp4 muxer also reopens it for reading to move the index to the front):
+  // "/proc/self/fd/<fd>" for an anonymous file, else the named temporary or the device itself.
+  const std::filesystem::path& reopenablePath() const { return reopenablePath_; }
+
+  // Publishes the file: renames the temporary over the target, atomically replacing a regular
+  // file there; for a device or FIFO only closes it. Throws OutputError (and discards).
   void commit();
-  // Removes the temporary (file or directory tree) if it exists; never throws.
+  // Drops what was written: an anonymous temporary vanishes with its descriptor, a named one is
+  // removed; a device or FIFO is only closed. Never throws; idempotent.
   void discard() noexcept;
 
  private:
-  std::filesystem::path destination_, temporary_;
+  void openInPlace(int flags);
+  bool openAnonymous();
+  void openNamed();
+  void linkAnonymous();
+  [[noreturn]] void fail(const std::string& reason) const;
+
+  std::filesystem::path destination_, target_;
+  std::filesystem::path temporary_;  // the temporary's name while it has one (removed by discard)
+  std::filesystem::path reopenablePath_;
+  Route route_ = Route::named;
+  int fd_ = -1;
   bool done_ = false;
 };
 

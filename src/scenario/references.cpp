@@ -96,7 +96,11 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   }
 
   if (text.empty() || !isNameStart(text[0])) bad(fmt::format("expected {}", kForms));
-  const auto [name, rest] = splitName(text);
+  // Plain references rather than a structured binding: the `range` lambda below uses `name`, and
+  // clang before 16 cannot capture a structured binding (the fuzz build uses Debian's clang 14).
+  const auto split = splitName(text);
+  const std::string& name = split.first;
+  const std::string& rest = split.second;
   const NameTable::Entry* entry = names.find(name);
   if (!entry) {
     const std::string suggestion = closestName(name, names.names());
