@@ -8,6 +8,9 @@
 
 #include <cstdlib>
 #include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "render/renderer.hpp"
 #include "core/drawing.hpp"
@@ -42,6 +45,50 @@ void BM_Render(benchmark::State& state, const std::string& file, double at) {
   state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["msaa"] = double(options.msaa);
 }
+
+// The cloth demo at n × n particles (its springs, 2n(n − 1), grow with it) over the same 1.92 m
+// square, so larger grids are denser in the same frame: 25 (625 particles, the demo), 100 (10,000)
+// and 316 (99,856, issue 14's large scene), drawn at 1 s, 4 samples, 1280×720, through each raster
+// path (render/render_options.hpp). The counters give the cost per primitive the renderer draws
+// (particles, springs, guides and the cursor).
+void BM_RenderLargeCloth(benchmark::State& state) {
+  const int n = int(state.range(0));
+  const std::vector<scenario::Override> overrides = {
+      scenario::parseOverride(fmt::format("grids.0.size=[{0}, {0}]", n)),
+      scenario::parseOverride(fmt::format("grids.0.spacing=[{0}, {0}]", 1.92 / double(n - 1))),
+      scenario::parseOverride(fmt::format("mouse.0.grab=cloth[{}][{}]", n - 1, n / 2))};  // bottom middle
+  scenario::Scenario s =
+      scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/cloth.yaml", overrides);
+  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(1.0);
+  render::RenderOptions options;
+  options.width = 1280;
+  options.height = 720;
+  options.msaa = 4;
+  options.raster = render::Raster(state.range(1));
+  render::Renderer renderer(options, glRequestFromEnvironment());
+  state.SetLabel(std::string(render::glBackendName(renderer.gl().backend)) + " " +
+                 (options.raster == render::Raster::tiles ? "tiles" : "triangles"));
+  const render::Camera camera{s.render.viewCenter, s.render.viewHeight};
+  const Drawing first = s.system.draw();
+  const double primitives = double(first.particles.size() + first.springs.size() + first.rods.size() +
+                                   first.guideLines.size() + first.guideCircles.size() + first.cursors.size() +
+                                   first.halfPlanes.size() + first.disks.size() + first.bodies.size());
+  for (auto _ : state) {
+    const render::Image& image = renderer.render(s.system.draw(), camera);
+    benchmark::DoNotOptimize(image.rgba.data());
+  }
+  state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["primitives"] = primitives;
+  state.counters["ns_per_primitive"] =
+      benchmark::Counter(double(state.iterations()) * primitives * 1e-9,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+// Second argument: 1 triangles, 2 tiles (render::Raster).
+BENCHMARK(BM_RenderLargeCloth)
+    ->ArgsProduct({{25, 100, 316}, {1, 2}})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(BM_Render, cloth, std::string("cloth.yaml"), 2.5)
     ->Arg(1)

@@ -7,7 +7,7 @@
 namespace particles::render {
 
 void buildFrameMesh(const Drawing& f, const Camera& camera, const RenderOptions& options, const Theme& c,
-                    ShapeMesh& mesh) {
+                    ShapeSink& mesh) {
   if (!(camera.height > 0.0)) throw std::invalid_argument("camera height must be positive");
   const float w = float(options.width), h = float(options.height);
   const double scale = double(options.height) / camera.height;  // pixels per world unit

@@ -17,9 +17,9 @@ namespace particles::render {
 // How far (pixels) guide lines reach past every edge of the image, so that their ends never show.
 inline constexpr float kGuideOverhangPx = 8.0f;
 
-// Replaces what `mesh` holds with the frame's shapes (its storage is reused from frame to frame).
+// Replaces what `shapes` (a ShapeMesh or TileBins) holds with the frame's shapes, back to front.
 // Throws std::invalid_argument when the camera's height is not positive.
 void buildFrameMesh(const Drawing& frame, const Camera& camera, const RenderOptions& options, const Theme& colors,
-                    ShapeMesh& mesh);
+                    ShapeSink& shapes);
 
 }  // namespace particles::render

@@ -4,6 +4,7 @@
 // the frame's mesh (render/frame_mesh.hpp).
 
 #include <array>
+#include <cstddef>
 
 #include "core/state.hpp"
 #include "render/theme.hpp"
@@ -32,10 +33,19 @@ inline constexpr int kMaxImageSide = 16384;
 // render/shader_program.hpp).
 inline constexpr std::array<int, 5> kSampleCounts = {1, 2, 4, 8, 16};
 
+// How shapes reach the pixels (render/renderer.hpp): triangles, one GL primitive per piece of a
+// shape; tiles, shapes binned into screen tiles on the CPU and one full-screen pass
+// (render/tile_bins.hpp); automatic, tiles from kTilesFromShapes shapes in a frame.
+enum class Raster { automatic, triangles, tiles };
+// The shape count from which automatic draws with tiles: about where the two cost the same on
+// llvmpipe (bench/README.md, "Large scenes").
+inline constexpr size_t kTilesFromShapes = 20000;
+
 struct RenderOptions {
   int width = 1280;  // pixels
   int height = 720;
   int msaa = 4;  // samples per pixel: one of kSampleCounts (1 is off)
+  Raster raster = Raster::automatic;
   ThemeName themeName = ThemeName::dark;
   Length particleRadius{4.0, Length::Unit::pixels};
   double springWidthPx = 1.5;

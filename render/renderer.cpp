@@ -4,6 +4,8 @@
 #include "render/gl_context.hpp"
 #include "render/shader_program.hpp"
 #include "render/shape_mesh.hpp"
+#include "render/tile_bins.hpp"
+#include "render/tile_program.hpp"
 
 namespace particles::render {
 
@@ -14,6 +16,8 @@ struct Renderer::Impl {
   std::unique_ptr<GlContext> context;
   ShaderProgram program;
   ShapeMesh mesh;  // the frame's triangles, storage reused from frame to frame
+  TileBins bins;   // or its shapes in tiles
+  std::unique_ptr<TileProgram> tiles;  // made when first needed
 
   Impl(const RenderOptions& o, const GlRequest& gl)
       : options(o),
@@ -41,9 +45,26 @@ const GlInfo& Renderer::gl() const {
 
 const Image& Renderer::render(const Drawing& frame, const Camera& camera) {
   Impl& m = *impl_;
-  buildFrameMesh(frame, camera, m.options, m.colors, m.mesh);
+  bool tiled = m.options.raster != Raster::triangles;
+  if (tiled) {
+    m.bins.reset(m.options.width, m.options.height);
+    buildFrameMesh(frame, camera, m.options, m.colors, m.bins);
+    tiled = m.options.raster == Raster::tiles || m.bins.shapes().size() >= kTilesFromShapes;
+  }
   m.context->beginFrame(m.colors.background);
-  m.program.draw(m.mesh);
+  if (tiled) {
+    m.bins.bin();
+    if (!m.tiles) {
+      m.tiles = std::make_unique<TileProgram>(m.context->gl(), m.options.msaa, m.options.height, m.context->flipsY());
+    }
+    tiled = m.tiles->fits(m.bins);  // else too large for GL's texture buffers: triangles
+  }
+  if (tiled) {
+    m.tiles->draw(m.bins, m.colors.background);
+  } else {
+    buildFrameMesh(frame, camera, m.options, m.colors, m.mesh);
+    m.program.draw(m.mesh);
+  }
   return m.context->finishFrame();
 }
 

@@ -110,28 +110,41 @@ const std::vector<Vec2>& samplePattern(int samples) {
   }
 }
 
-ShaderProgram::ShaderProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY) : gl_(gl) {
-  const std::string ySign = std::string("#version 130\n#define Y_SIGN ") + (flipY ? "-1.0" : "1.0") + "\n";
-  const std::string vertexSource = ySign + kVertexShader;
-  const GLuint vs = compileShader(gl, GL_VERTEX_SHADER, vertexSource.c_str(), "vertex");
+std::string samplePatternGlsl(int samples) {
   const std::vector<Vec2>& pattern = samplePattern(samples);
-  std::string header = ySign + "#define SAMPLE_COUNT " + std::to_string(pattern.size()) + "\n#define SAMPLES ";
+  std::string text = "#define SAMPLE_COUNT " + std::to_string(pattern.size()) + "\n#define SAMPLES ";
   for (size_t i = 0; i < pattern.size(); ++i) {
     char buf[64];
     std::snprintf(buf, sizeof buf, "%svec2(%.6f, %.6f)", i ? ", " : "", pattern[i].x(), pattern[i].y());
-    header += buf;
+    text += buf;
   }
-  const std::string fragmentSource = header + "\n" + kFragmentShader;
-  const GLuint fs = compileShader(gl, GL_FRAGMENT_SHADER, fragmentSource.c_str(), "fragment");
-  program_ = gl.glCreateProgram();
-  gl.glAttachShader(program_, vs);
-  gl.glAttachShader(program_, fs);
-  gl.glLinkProgram(program_);
+  return text + "\n";
+}
+
+unsigned linkProgram(const GlFunctions& gl, const std::string& vertexSource, const std::string& fragmentSource) {
+  const GLuint vs = compileShader(gl, GL_VERTEX_SHADER, vertexSource.c_str(), "vertex");
+  GLuint fs = 0;
+  try {
+    fs = compileShader(gl, GL_FRAGMENT_SHADER, fragmentSource.c_str(), "fragment");
+  } catch (...) {
+    gl.glDeleteShader(vs);
+    throw;
+  }
+  const GLuint program = gl.glCreateProgram();
+  gl.glAttachShader(program, vs);
+  gl.glAttachShader(program, fs);
+  gl.glLinkProgram(program);
   gl.glDeleteShader(vs);  // freed with the program
   gl.glDeleteShader(fs);
-  if (const auto log = failureLog(program_, GL_LINK_STATUS, gl.glGetProgramiv, gl.glGetProgramInfoLog)) {
+  if (const auto log = failureLog(program, GL_LINK_STATUS, gl.glGetProgramiv, gl.glGetProgramInfoLog)) {
     throw RenderError(std::string("linking the shader program failed: ") + *log);
   }
+  return program;
+}
+
+ShaderProgram::ShaderProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY) : gl_(gl) {
+  const std::string ySign = std::string("#version 130\n#define Y_SIGN ") + (flipY ? "-1.0" : "1.0") + "\n";
+  program_ = linkProgram(gl, ySign + kVertexShader, ySign + samplePatternGlsl(samples) + kFragmentShader);
   positionAttr_ = gl.glGetAttribLocation(program_, "position");
   colorAttr_ = gl.glGetAttribLocation(program_, "color");
   shapeAttr_ = gl.glGetAttribLocation(program_, "shape");

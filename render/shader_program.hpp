@@ -6,6 +6,7 @@
 // is exactly what a multisampled framebuffer resolves to (render/renderer.hpp says why we do not
 // use one).
 
+#include <string>
 #include <vector>
 
 #include "core/state.hpp"
@@ -19,6 +20,13 @@ struct GlFunctions;  // render/gl_functions.hpp
 // pixel centre in pixels, x right, y down (Direct3D's and Vulkan's standard patterns; 1 is the
 // centre itself). Throws std::invalid_argument for another count.
 const std::vector<Vec2>& samplePattern(int samples);
+
+// `#define SAMPLE_COUNT n` and `#define SAMPLES vec2(…), …`: the pattern of `samples` for a shader.
+std::string samplePatternGlsl(int samples);
+
+// Compiles and links a program of the two sources in the current context. Throws RenderError with
+// the compiler's or the linker's log.
+unsigned linkProgram(const GlFunctions& gl, const std::string& vertexSource, const std::string& fragmentSource);
 
 class ShaderProgram {
  public:

@@ -15,40 +15,50 @@ ShapeVertex vertex(P2 p, Rgb col, float kind) {
 
 }  // namespace
 
-void ShapeMesh::convex(const std::vector<P2>& corners, Rgb col, unsigned smoothEdges) {
+ConvexEdges convexEdges(std::span<const P2> corners, unsigned smoothEdges) {
+  ConvexEdges e;
   const size_t n = corners.size();
-  if (n < 3 || n > 4) throw std::logic_error("ShapeMesh::convex takes 3 or 4 corners");
+  if (n < 3 || n > 4) throw std::logic_error("a convex shape takes 3 or 4 corners");
+  e.count = n;
   float cx = 0, cy = 0;
   for (const P2& p : corners) cx += p[0] / float(n), cy += p[1] / float(n);
-  std::array<P2, 4> normal{};  // unit, pointing into the polygon
-  std::array<float, 4> push{};
   for (size_t i = 0; i < n; ++i) {
     const P2 a = corners[i], b = corners[(i + 1) % n];
     const float len = std::hypot(b[0] - a[0], b[1] - a[1]);
-    if (!(len > 1e-4f)) return;  // degenerate: nothing to draw
+    if (!(len > 1e-4f)) return e;  // degenerate: nothing to draw
     P2 m = {-(b[1] - a[1]) / len, (b[0] - a[0]) / len};
     if (m[0] * (cx - a[0]) + m[1] * (cy - a[1]) < 0) m = {-m[0], -m[1]};
-    normal[i] = m;
-    push[i] = (smoothEdges >> i & 1u) ? kFringePx : 0.0f;
+    e.normal[i] = m;
+    e.push[i] = (smoothEdges >> i & 1u) ? kFringePx : 0.0f;
   }
   // Corner i of the grown polygon: where edges i − 1 and i, each moved out by its push, meet.
-  std::array<ShapeVertex, 4> grown{};
   for (size_t i = 0; i < n; ++i) {
     const size_t j = (i + n - 1) % n;
-    const P2 p = corners[i], u = normal[j], v = normal[i];
+    const P2 p = corners[i], u = e.normal[j], v = e.normal[i];
     const float det = u[0] * v[1] - u[1] * v[0];
-    P2 q;
     if (std::abs(det) < 1e-6f) {  // the two edges are parallel
-      q = {p[0] - v[0] * push[i], p[1] - v[1] * push[i]};
+      e.grown[i] = {p[0] - v[0] * e.push[i], p[1] - v[1] * e.push[i]};
     } else {  // solve u·(q − p) = −push[j], v·(q − p) = −push[i]
-      const float rj = -push[j], ri = -push[i];
-      q = {p[0] + (rj * v[1] - ri * u[1]) / det, p[1] + (ri * u[0] - rj * v[0]) / det};
+      const float rj = -e.push[j], ri = -e.push[i];
+      e.grown[i] = {p[0] + (rj * v[1] - ri * u[1]) / det, p[1] + (ri * u[0] - rj * v[0]) / det};
     }
+  }
+  e.valid = true;
+  return e;
+}
+
+void ShapeMesh::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges) {
+  const ConvexEdges e = convexEdges(corners, smoothEdges);
+  if (!e.valid) return;
+  const size_t n = e.count;
+  std::array<ShapeVertex, 4> grown{};
+  for (size_t i = 0; i < n; ++i) {
+    const P2 q = e.grown[i];
     ShapeVertex& out = grown[i];
     out = vertex(q, col, 0.0f);
-    for (size_t e = 0; e < 4; ++e) {
-      const bool tested = e < n && (smoothEdges >> e & 1u);
-      out.shape[e] = tested ? normal[e][0] * (q[0] - corners[e][0]) + normal[e][1] * (q[1] - corners[e][1]) : kFarPx;
+    for (size_t k = 0; k < 4; ++k) {
+      const bool tested = k < n && (smoothEdges >> k & 1u);
+      out.shape[k] = tested ? e.normal[k][0] * (q[0] - corners[k][0]) + e.normal[k][1] * (q[1] - corners[k][1]) : kFarPx;
     }
   }
   for (size_t i = 1; i + 1 < n; ++i) {
@@ -58,7 +68,7 @@ void ShapeMesh::convex(const std::vector<P2>& corners, Rgb col, unsigned smoothE
   }
 }
 
-void ShapeMesh::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
+void ShapeSink::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
   float dx = b[0] - a[0], dy = b[1] - a[1];
   const float len = std::hypot(dx, dy);
   if (!(len > 1e-4f)) return;
@@ -73,11 +83,11 @@ void ShapeMesh::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
   convex({{a[0] + nx, a[1] + ny}, {b[0] + nx, b[1] + ny}, {b[0] - nx, b[1] - ny}, {a[0] - nx, a[1] - ny}}, col);
 }
 
-void ShapeMesh::closedOutline(const std::vector<P2>& pts, float width, Rgb col) {
+void ShapeSink::closedOutline(std::span<const P2> pts, float width, Rgb col) {
   for (size_t i = 0; i < pts.size(); ++i) line(pts[i], pts[(i + 1) % pts.size()], width, col, true);
 }
 
-void ShapeMesh::ring(P2 c, float r, float width, Rgb col) {
+void ShapeSink::ring(P2 c, float r, float width, Rgb col) {
   annulus(c, std::max(0.0f, r - 0.5f * width), r + 0.5f * width, col);
 }
 

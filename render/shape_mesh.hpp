@@ -8,6 +8,8 @@
 
 #include <array>
 #include <cstdint>
+#include <initializer_list>
+#include <span>
 #include <vector>
 
 #include "render/theme.hpp"
@@ -36,26 +38,58 @@ struct ShapeVertex {
   std::uint8_t rgba[4];
 };
 
-// Triangles in pixel coordinates, drawn in the order the shapes are added (painter's order).
-class ShapeMesh {
+// The shapes of a frame in painter's order, as the frame's builder (render/frame_mesh.hpp) adds
+// them. Every shape is a convex polygon or an annulus; two sinks take them: ShapeMesh (triangles for
+// the per-primitive path) and TileBins (records binned into screen tiles for the tile path,
+// render/tile_bins.hpp).
+class ShapeSink {
  public:
-  void clear() { vertices_.clear(); }
-  const std::vector<ShapeVertex>& vertices() const { return vertices_; }
+  virtual ~ShapeSink() = default;
+
+  // Forgets every shape (storage is kept for the next frame).
+  virtual void clear() = 0;
 
   // A convex polygon of 3 or 4 corners (either winding). Edge i runs from corner i to corner
   // i + 1; bit i of `smoothEdges` anti-aliases it. An edge left out is shared with a neighbouring
   // piece of the same shape: not pushed out and not tested, so the pieces tile without a seam.
-  void convex(const std::vector<P2>& corners, Rgb col, unsigned smoothEdges = 0xF);
+  virtual void convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges = 0xF) = 0;
+  void convex(std::initializer_list<P2> corners, Rgb col, unsigned smoothEdges = 0xF) {
+    convex(std::span<const P2>(corners.begin(), corners.size()), col, smoothEdges);
+  }
   // A segment of the given pixel width; squareCaps extends it by half the width at both ends.
-  void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false);
-  void closedOutline(const std::vector<P2>& pts, float width, Rgb col);
+  virtual void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false);
+  void closedOutline(std::span<const P2> pts, float width, Rgb col);
   void disc(P2 c, float r, Rgb col) { annulus(c, 0.0f, r, col); }
   void ring(P2 c, float r, float width, Rgb col);
+  // The points between radii `inner` and `outer` (inner 0: a disc).
+  virtual void annulus(P2 c, float inner, float outer, Rgb col) = 0;
+};
+
+// A convex polygon's edges, as both sinks need them: unit normals pointing inside, how far each
+// edge is pushed out (kFringePx when smoothed, else 0), and the corners of the polygon grown by
+// those pushes. `valid` is false for a degenerate polygon (an edge shorter than 1e-4 px), which is
+// not drawn.
+struct ConvexEdges {
+  size_t count = 0;
+  std::array<P2, 4> normal{};
+  std::array<float, 4> push{};
+  std::array<P2, 4> grown{};
+  bool valid = false;
+};
+// Throws std::logic_error unless there are 3 or 4 corners.
+ConvexEdges convexEdges(std::span<const P2> corners, unsigned smoothEdges);
+
+// Triangles in pixel coordinates, drawn in the order the shapes are added (painter's order).
+class ShapeMesh final : public ShapeSink {
+ public:
+  using ShapeSink::convex;
+  void clear() override { vertices_.clear(); }
+  const std::vector<ShapeVertex>& vertices() const { return vertices_; }
+
+  void convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges = 0xF) override;
+  void annulus(P2 c, float inner, float outer, Rgb col) override;
 
  private:
-  // The points between radii `inner` and `outer` (inner 0: a disc).
-  void annulus(P2 c, float inner, float outer, Rgb col);
-
   std::vector<ShapeVertex> vertices_;
 };
 

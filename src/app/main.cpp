@@ -2,6 +2,7 @@
 // work is in its own file (commands.cpp: check and run; render_, stability_, plot_, compare_ and
 // schema_command.cpp); errors become exit codes and messages in exit_codes.cpp only.
 #include <CLI/CLI.hpp>
+#include <map>
 #include <fmt/format.h>
 
 #include "app/commands.hpp"
@@ -88,6 +89,16 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: 1 (off), 2, 4, 8 or 16")
       ->check(CLI::IsMember(particles::render::kSampleCounts))
       ->capture_default_str();
+  renderCmd
+      ->add_option("--raster", render.raster,
+                   "How shapes become pixels: triangles (one GL primitive each), tiles (binned on the CPU, one "
+                   "pass; fast for large scenes) or auto (tiles from 20000 shapes)")
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, particles::render::Raster>{{"auto", particles::render::Raster::automatic},
+                                                           {"triangles", particles::render::Raster::triangles},
+                                                           {"tiles", particles::render::Raster::tiles}},
+          CLI::ignore_case))
+      ->default_str("auto");
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
   renderCmd->add_option("--particle-radius", render.particleRadius,
                         "Particle disc radius: 4px (pixels) or 0.02m (world)");

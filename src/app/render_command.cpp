@@ -92,6 +92,7 @@ render::RenderOptions lookOf(const scenario::Scenario& s, const RenderCommandOpt
     look.height = h;
   }
   look.msaa = options.msaa;
+  look.raster = options.raster;
   if (options.theme == "dark") {
     look.themeName = render::ThemeName::dark;
   } else if (options.theme == "light") {

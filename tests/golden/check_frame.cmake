@@ -6,6 +6,7 @@
 #   -DOUT_DIR=<build>/golden  -DNAME=<file stem of the outputs, unique per test>
 #   -DRENDER_OPTIONS=--size|320x240   options of golden/frames.txt, '|'-separated
 #   -DEXTRA=--set|forces[2].ks=420    more render options (a perturbation), '|'-separated; optional
+#   -DCOMPARE_OPTIONS=--max-share|0.0005  options of `particles compare`, '|'-separated; optional
 #   -DEXPECT=match|differ             match (default): the frame must pass the comparison;
 #                                     differ: it must fail it (the test can see the perturbation)
 #
@@ -28,6 +29,7 @@ if(NOT EXPECT MATCHES "^(match|differ)$")
 endif()
 string(REPLACE "|" ";" render_options "${RENDER_OPTIONS}")
 string(REPLACE "|" ";" extra "${EXTRA}")
+string(REPLACE "|" ";" compare_options "${COMPARE_OPTIONS}")
 
 if(NOT EXISTS "${GOLDEN}")
   message(FATAL_ERROR "no golden frame ${GOLDEN}: render it with scripts/update-golden")
@@ -44,7 +46,7 @@ if(NOT code EQUAL 0)
   message(FATAL_ERROR "render failed (exit ${code}):\n  ${shown}\n${out}${err}")
 endif()
 
-set(compare_command "${PARTICLES}" compare "${GOLDEN}" "${actual}" --diff "${diff}")
+set(compare_command "${PARTICLES}" compare "${GOLDEN}" "${actual}" --diff "${diff}" ${compare_options})
 execute_process(COMMAND ${compare_command} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 list(JOIN compare_command " " compared)
 

@@ -1,0 +1,147 @@
+#include "render/tile_program.hpp"
+
+#include <string>
+
+#include "render/errors.hpp"
+#include "render/gl_functions.hpp"
+#include "render/shader_program.hpp"
+
+namespace particles::render {
+
+namespace {
+
+constexpr const char* kVertexShader = R"(
+in vec2 position;  // a triangle covering the viewport, in NDC
+void main() { gl_Position = vec4(position, 0.0, 1.0); }
+)";
+
+// SAMPLE_COUNT, SAMPLES (samplePatternGlsl), FLIP_Y, TILE and FAR are defined before this text.
+// Records: render/tile_bins.hpp.
+constexpr const char* kFragmentShader = R"(
+uniform samplerBuffer shapes;
+uniform usamplerBuffer tiles;
+uniform usamplerBuffer items;
+uniform int tilesPerRow;
+uniform float imageHeight;
+uniform vec3 background;  // 0 … 255
+out vec4 fragColor;
+
+const vec2 samples[SAMPLE_COUNT] = vec2[SAMPLE_COUNT](SAMPLES);
+
+// How many of the samples around pixel centre c (image pixels, y down) shape s covers: the test of
+// the triangle path's fragment shader (render/shader_program.cpp), with the edge distances
+// evaluated here instead of interpolated. No branches: llvmpipe runs both sides of one anyway.
+// Also gives the shape's colour (0 … 255).
+int coveredSamples(int s, vec2 c, out vec3 color) {
+  vec4 t0 = texelFetch(shapes, 4 * s), t1 = texelFetch(shapes, 4 * s + 1);
+  vec4 t2 = texelFetch(shapes, 4 * s + 2), t3 = texelFetch(shapes, 4 * s + 3);
+  float b = floor(t3.x / 65536.0), g = floor((t3.x - 65536.0 * b) / 256.0);
+  color = vec3(t3.x - 65536.0 * b - 256.0 * g, g, b);
+  bool annulus = t3.y == KIND_ANNULUS;
+  // Convex: edge distances at the centre. An edge shared with another piece of the same shape
+  // (not smoothed) is decided by the centre, as the rasteriser does for the triangle path's
+  // unpushed edge, and not tested per sample.
+  vec4 d = t2 + t0 * c.x + t1 * c.y;
+  vec4 smoothed = vec4(notEqual(ivec4(int(t3.y)) & ivec4(1, 2, 4, 8), ivec4(0)));
+  vec4 untested = (1.0 - smoothed) * FAR;
+  bool centreInside = annulus || !any(lessThan(d + smoothed * FAR, vec4(0.0)));
+  // Annulus: the offset from the centre, and the radii squared.
+  vec2 q = c - t0.xy;
+  float outer2 = t0.z * t0.z, inner2 = t0.w * t0.w;
+  int n = 0;
+  for (int i = 0; i < SAMPLE_COUNT; ++i) {
+    vec2 o = samples[i];
+    bool inEdges = all(greaterThanEqual(d + t0 * o.x + t1 * o.y + untested, vec4(0.0)));
+    vec2 p = q + o;
+    float r2 = dot(p, p);
+    bool inRing = r2 <= outer2 && r2 >= inner2;
+    n += (annulus ? inRing : inEdges) ? 1 : 0;
+  }
+  return centreInside ? n : 0;
+}
+
+void main() {
+  vec2 c = vec2(gl_FragCoord.x, FLIP_Y ? imageHeight - gl_FragCoord.y : gl_FragCoord.y);
+  ivec2 pixel = ivec2(c);
+  uvec2 range = texelFetch(tiles, (pixel.y / TILE) * tilesPerRow + pixel.x / TILE).xy;
+  int first = int(range.x);
+  // Front to back: each shape adds its colour times its covered share of what still shows
+  // (transmittance), until a shape covers every sample. The share is rounded to 8 bits as the
+  // triangle path's alpha is; its framebuffer also rounds after every blend, which this does not,
+  // hence differences of a unit or two where shapes overlap partly (tests/test_render_tiles.cpp).
+  vec3 color = vec3(0.0);
+  float transmitted = 1.0;
+  for (int i = int(range.y) - 1; i >= 0 && transmitted > 0.0; --i) {
+    vec3 shapeColor;
+    int n = coveredSamples(int(texelFetch(items, first + i).x), c, shapeColor);
+    float alpha = floor(float(n) * 255.0 / float(SAMPLE_COUNT) + 0.5) / 255.0;
+    color += transmitted * alpha * shapeColor;
+    transmitted *= 1.0 - alpha;
+  }
+  color += transmitted * background;
+  fragColor = vec4(floor(color + 0.5) / 255.0, 1.0);
+}
+)";
+
+// Which texture buffer holds what, and its texel format.
+constexpr GLenum kFormats[3] = {GL_RGBA32F, GL_RG32UI, GL_R32UI};
+constexpr const char* kSamplers[3] = {"shapes", "tiles", "items"};
+
+}  // namespace
+
+TileProgram::TileProgram(const GlFunctions& gl, int samples, int height, bool flipY) : gl_(gl) {
+  const std::string header = std::string("#version 330\n#define FLIP_Y ") + (flipY ? "true" : "false") +
+                             "\n#define TILE " + std::to_string(kTileSizePx) + "\n#define FAR " +
+                             std::to_string(kFarPx) + "\n#define KIND_ANNULUS " + std::to_string(kAnnulusKind) + "\n" +
+                             samplePatternGlsl(samples);
+  program_ = linkProgram(gl, std::string("#version 330\n") + kVertexShader, header + kFragmentShader);
+  positionAttr_ = gl.glGetAttribLocation(program_, "position");
+  gl.glUseProgram(program_);
+  gl.glGenBuffers(3, buffers_);
+  gl.glGenTextures(3, textures_);
+  for (int i = 0; i < 3; ++i) gl.glUniform1i(gl.glGetUniformLocation(program_, kSamplers[i]), i);
+  gl.glUniform1f(gl.glGetUniformLocation(program_, "imageHeight"), float(height));
+  backgroundUniform_ = gl.glGetUniformLocation(program_, "background");
+  GLint most = 0;
+  gl.glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
+  maxTexels_ = most;
+  checkGl(gl, "tile program setup");
+}
+
+bool TileProgram::fits(const TileBins& bins) const {
+  return 4 * (long long)bins.shapes().size() <= maxTexels_ && (long long)bins.items().size() <= maxTexels_ &&
+         (long long)bins.tiles().size() / 2 <= maxTexels_;
+}
+
+void TileProgram::draw(const TileBins& bins, Rgb background) const {
+  const GlFunctions& gl = gl_;
+  gl.glUseProgram(program_);
+  gl.glUniform1i(gl.glGetUniformLocation(program_, "tilesPerRow"), bins.tilesPerRow());
+  gl.glUniform3f(backgroundUniform_, float(background.r), float(background.g), float(background.b));
+  // GL needs a buffer of at least one texel; an empty frame binds one zero.
+  static const std::uint32_t kZero[4] = {0, 0, 0, 0};
+  const void* data[3] = {bins.shapes().data(), bins.tiles().data(), bins.items().data()};
+  const size_t bytes[3] = {bins.shapes().size() * sizeof(ShapeRecord), bins.tiles().size() * sizeof(std::uint32_t),
+                           bins.items().size() * sizeof(std::uint32_t)};
+  for (int i = 0; i < 3; ++i) {
+    gl.glActiveTexture(GL_TEXTURE0 + i);
+    gl.glBindBuffer(GL_TEXTURE_BUFFER, buffers_[i]);
+    // A new store each frame (no wait for the previous frame's reads).
+    gl.glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(bytes[i] ? bytes[i] : sizeof kZero), bytes[i] ? data[i] : kZero,
+                    GL_STREAM_DRAW);
+    gl.glBindTexture(GL_TEXTURE_BUFFER, textures_[i]);
+    gl.glTexBuffer(GL_TEXTURE_BUFFER, kFormats[i], buffers_[i]);
+  }
+  gl.glActiveTexture(GL_TEXTURE0);
+  gl.glBindBuffer(GL_TEXTURE_BUFFER, 0);
+  gl.glDisable(GL_BLEND);  // every pixel is written whole; GlContext::beginFrame enables it again
+  static const float kCover[6] = {-1.0f, -1.0f, 3.0f, -1.0f, -1.0f, 3.0f};
+  if (positionAttr_ >= 0) {
+    gl.glEnableVertexAttribArray(GLuint(positionAttr_));
+    gl.glVertexAttribPointer(GLuint(positionAttr_), 2, GL_FLOAT, GL_FALSE, 0, kCover);
+  }
+  gl.glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (positionAttr_ >= 0) gl.glDisableVertexAttribArray(GLuint(positionAttr_));
+}
+
+}  // namespace particles::render

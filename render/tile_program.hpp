@@ -1,0 +1,48 @@
+#pragma once
+// Internal to render/: the tile path's full-screen pass (render/tile_bins.hpp says why it exists).
+// Each pixel walks its tile's shapes: first from the front to the last one covering all its
+// samples (nothing behind that one shows), then from there to the front again, blending each
+// shape's covered share over the colour so far exactly as the triangle path's GL blending does in
+// the 8-bit framebuffer (render/gl_context.cpp), so both paths give the same pixels up to the
+// rounding of the edge distances (tests/test_render_tiles.cpp measures how close).
+//
+// The shapes, the tiles' (first, count) and the tiles' shape lists go to GL as texture buffers
+// (GL 3.1), refilled each frame.
+
+#include "render/theme.hpp"
+#include "render/tile_bins.hpp"
+
+namespace particles::render {
+
+struct GlFunctions;  // render/gl_functions.hpp
+
+class TileProgram {
+ public:
+  // Compiles the pass for `samples` per pixel (render/shader_program.hpp's patterns) in the
+  // current GL context, whose functions `gl` are, and makes its buffers there. Image row y is GL
+  // window row y, or height − y with `flipY` (images `height` rows tall). Throws RenderError with the compiler's log.
+  TileProgram(const GlFunctions& gl, int samples, int height, bool flipY);
+  // No destructor: the program, buffers and textures are freed with their context (as ShaderProgram's).
+  TileProgram(const TileProgram&) = delete;
+  TileProgram& operator=(const TileProgram&) = delete;
+
+  // The most texels a texture buffer holds here (GL_MAX_TEXTURE_BUFFER_SIZE): a frame whose
+  // shapes (4 texels each) or tile lists need more must take the triangle path.
+  long long maxTexels() const { return maxTexels_; }
+  bool fits(const TileBins& bins) const;
+
+  // Draws every pixel of the frame in the current context over `background`: the whole image, so
+  // nothing drawn before shows. `bins` must have been binned for this image size.
+  void draw(const TileBins& bins, Rgb background) const;
+
+ private:
+  const GlFunctions& gl_;
+  unsigned program_ = 0;
+  int positionAttr_ = -1;
+  unsigned buffers_[3] = {0, 0, 0};   // shapes, tiles, items
+  unsigned textures_[3] = {0, 0, 0};  // their texture buffers
+  int backgroundUniform_ = -1;
+  long long maxTexels_ = 0;
+};
+
+}  // namespace particles::render
