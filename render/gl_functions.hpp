@@ -27,8 +27,8 @@ namespace particles::render {
   X(glGetUniformLocation) X(glUniform2f)                                                                \
   /* drawing */ X(glEnableVertexAttribArray) X(glDisableVertexAttribArray) X(glVertexAttribPointer)     \
   X(glDrawArrays)                                                                                       \
-  /* the tile path's texture buffers */ X(glGenBuffers) X(glBindBuffer) X(glBufferData) X(glGenTextures) \
-  X(glBindTexture) X(glTexBuffer) X(glActiveTexture) X(glUniform1i) X(glUniform1f) X(glUniform3f)        \
+  /* the tile path's texture buffers */ X(glGenBuffers) X(glBindBuffer) X(glBufferData) X(glBufferSubData) \
+  X(glGenTextures) X(glBindTexture) X(glTexBuffer) X(glActiveTexture) X(glUniform1i) X(glUniform1f) X(glUniform3f)        \
   X(glGetIntegerv)                                                                                      \
   /* the EGL backend's framebuffer */ X(glGenRenderbuffers) X(glBindRenderbuffer)                       \
   X(glRenderbufferStorage) X(glGenFramebuffers) X(glBindFramebuffer) X(glFramebufferRenderbuffer)       \

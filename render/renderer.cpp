@@ -55,7 +55,8 @@ const Image& Renderer::render(const Drawing& frame, const Camera& camera) {
   if (tiled) {
     m.bins.bin();
     if (!m.tiles) {
-      m.tiles = std::make_unique<TileProgram>(m.context->gl(), m.options.msaa, m.options.height, m.context->flipsY());
+      m.tiles = std::make_unique<TileProgram>(m.context->gl(), m.options.msaa, m.options.width, m.options.height,
+                                              m.context->flipsY());
     }
     tiled = m.tiles->fits(m.bins);  // else too large for GL's texture buffers: triangles
   }

@@ -118,6 +118,33 @@ void TileBins::annulus(P2 c, float inner, float outer, Rgb col) {
   addReach(c[0] - reach, c[1] - reach, c[0] + reach, c[1] + reach);
 }
 
+// Whether the shape covers every sample of every pixel of the tile: samples lie within ±0.5 px of
+// their pixel's centre (samplePattern), so it must contain the tile grown by half a pixel. Corners
+// suffice for a convex shape; an annulus needs the farthest corner inside its outer circle and the
+// nearest point outside its inner one.
+bool TileBins::coversTile(size_t shape, int tx, int ty) const {
+  const ShapeRecord& r = shapes_[shape];
+  constexpr float kSampleReach = 0.5f + 1e-3f;
+  const float loX = float(tx * kTileSizePx) + 0.5f - kSampleReach;
+  const float hiX = float(std::min((tx + 1) * kTileSizePx, width_)) - 0.5f + kSampleReach;
+  const float loY = float(ty * kTileSizePx) + 0.5f - kSampleReach;
+  const float hiY = float(std::min((ty + 1) * kTileSizePx, height_)) - 0.5f + kSampleReach;
+  if (r.texel[3][1] == kAnnulusKind) {
+    const float cx = r.texel[0][0], cy = r.texel[0][1], outer = r.texel[0][2], inner = r.texel[0][3];
+    const float fx = std::max(std::abs(loX - cx), std::abs(hiX - cx));
+    const float fy = std::max(std::abs(loY - cy), std::abs(hiY - cy));
+    if (fx * fx + fy * fy > outer * outer) return false;
+    if (!(inner > 0.0f)) return true;
+    const float nx = std::clamp(cx, loX, hiX) - cx, ny = std::clamp(cy, loY, hiY) - cy;
+    return nx * nx + ny * ny > inner * inner;
+  }
+  for (int k = 0; k < 4; ++k) {
+    const float a = r.texel[0][k], b = r.texel[1][k], c = r.texel[2][k];
+    if (c + std::min(a * loX, a * hiX) + std::min(b * loY, b * hiY) < 0.0f) return false;
+  }
+  return true;
+}
+
 bool TileBins::reachesTile(size_t shape, int tx, int ty) const {
   const ShapeRecord& r = shapes_[shape];
   // The pixel centres of the tile span [lo, hi] on each axis.
@@ -168,6 +195,36 @@ void TileBins::bin() {
   next.resize(tileCount);
   for (size_t t = 0; t < tileCount; ++t) next[t] = tiles_[2 * t];
   for (std::uint64_t p : pairs_) items_[next[p >> 32]++] = std::uint32_t(p);
+
+  // Nothing behind the last shape covering a whole tile shows there: the tile's list starts at it.
+  // (The pass would stop at it or before, from the front; this spares it the walk.)
+  for (int ty = 0; ty < tilesY_; ++ty) {
+    for (int tx = 0; tx < tilesX_; ++tx) {
+      std::uint32_t* range = &tiles_[2 * size_t(ty * tilesX_ + tx)];
+      for (std::uint32_t i = range[1]; i-- > 1;) {
+        if (coversTile(items_[range[0] + i], tx, ty)) {
+          range[0] += i;
+          range[1] -= i;
+          break;
+        }
+      }
+    }
+  }
+
+  runs_.clear();
+  for (int ty = 0; ty < tilesY_; ++ty) {
+    for (int tx = 0; tx < tilesX_;) {
+      if (tiles_[2 * size_t(ty * tilesX_ + tx) + 1] == 0) {
+        ++tx;
+        continue;
+      }
+      const int start = tx;
+      while (tx < tilesX_ && tiles_[2 * size_t(ty * tilesX_ + tx) + 1] != 0) ++tx;
+      const float x0 = float(start * kTileSizePx), x1 = float(std::min(tx * kTileSizePx, width_));
+      const float y0 = float(ty * kTileSizePx), y1 = float(std::min((ty + 1) * kTileSizePx, height_));
+      runs_.insert(runs_.end(), {x0, y0, x1, y0, x1, y1, x0, y0, x1, y1, x0, y1});
+    }
+  }
 }
 
 }  // namespace particles::render

@@ -24,9 +24,9 @@ inline constexpr float kAnnulusKind = 16.0f;
 
 namespace particles::render {
 
-// Pixels per tile side. 8: the cloth at 316 × 316 puts ~200 shapes in a tile (16: ~600), while the
-// lists of all tiles stay a few times the shapes (measured in bench/README.md).
-inline constexpr int kTileSizePx = 8;
+// Pixels per tile side: 4 drew the cloth at 316 × 316 fastest (2 and 8 were slower: longer lists
+// to walk per pixel against more tiles to bin, bench/README.md).
+inline constexpr int kTileSizePx = 4;
 
 struct ShapeRecord {
   float texel[4][4];
@@ -48,7 +48,8 @@ class TileBins final : public ShapeSink {
   // Sorts the shapes into tiles: after this, tile t's shapes are items()[first .. first + count)
   // with (first, count) = tiles()[2t], tiles()[2t + 1], in the order they were added. Tiles are
   // numbered row by row from the top-left; a tile lists each shape that may cover one of its
-  // pixels (a shape's grown box, less tiles wholly outside one of its edges or its ring).
+  // pixels (a shape's grown box, less tiles wholly outside one of its edges or its ring), from
+  // the last shape that covers all of it, if one does.
   void bin();
 
   int width() const { return width_; }
@@ -58,6 +59,9 @@ class TileBins final : public ShapeSink {
   const std::vector<ShapeRecord>& shapes() const { return shapes_; }
   const std::vector<std::uint32_t>& tiles() const { return tiles_; }
   const std::vector<std::uint32_t>& items() const { return items_; }
+  // The tiles with shapes as rectangles for the pass to draw: each run of such tiles along a row
+  // of tiles is two triangles, 6 corners (x, y) in image pixels, clipped to the image.
+  const std::vector<float>& runs() const { return runs_; }
 
  private:
   // A shape's tiles: an inclusive range of tile columns and rows, and the test that drops tiles of
@@ -67,11 +71,13 @@ class TileBins final : public ShapeSink {
   };
   void addReach(float x0, float y0, float x1, float y1);
   bool reachesTile(size_t shape, int tx, int ty) const;
+  bool coversTile(size_t shape, int tx, int ty) const;
 
   int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
   std::vector<ShapeRecord> shapes_;
   std::vector<Reach> reach_;  // per shape
   std::vector<std::uint32_t> tiles_, items_;
+  std::vector<float> runs_;
   std::vector<std::uint64_t> pairs_;  // (tile << 32 | shape) while binning, storage reused
   std::vector<std::uint32_t> scratch_;
 };

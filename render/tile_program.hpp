@@ -9,6 +9,8 @@
 // The shapes, the tiles' (first, count) and the tiles' shape lists go to GL as texture buffers
 // (GL 3.1), refilled each frame.
 
+#include <cstddef>
+
 #include "render/theme.hpp"
 #include "render/tile_bins.hpp"
 
@@ -20,8 +22,8 @@ class TileProgram {
  public:
   // Compiles the pass for `samples` per pixel (render/shader_program.hpp's patterns) in the
   // current GL context, whose functions `gl` are, and makes its buffers there. Image row y is GL
-  // window row y, or height − y with `flipY` (images `height` rows tall). Throws RenderError with the compiler's log.
-  TileProgram(const GlFunctions& gl, int samples, int height, bool flipY);
+  // window row y, or height − y with `flipY` (images `width` × `height` pixels). Throws RenderError with the compiler's log.
+  TileProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY);
   // No destructor: the program, buffers and textures are freed with their context (as ShaderProgram's).
   TileProgram(const TileProgram&) = delete;
   TileProgram& operator=(const TileProgram&) = delete;
@@ -31,8 +33,9 @@ class TileProgram {
   long long maxTexels() const { return maxTexels_; }
   bool fits(const TileBins& bins) const;
 
-  // Draws every pixel of the frame in the current context over `background`: the whole image, so
-  // nothing drawn before shows. `bins` must have been binned for this image size.
+  // Draws the frame's shapes over `background` in the current context, every pixel of the tiles
+  // that have shapes written whole; the other pixels keep what the frame was cleared to (the
+  // same background). `bins` must have been binned for this image size.
   void draw(const TileBins& bins, Rgb background) const;
 
  private:
@@ -41,6 +44,7 @@ class TileProgram {
   int positionAttr_ = -1;
   unsigned buffers_[3] = {0, 0, 0};   // shapes, tiles, items
   unsigned textures_[3] = {0, 0, 0};  // their texture buffers
+  mutable size_t capacity_[3] = {0, 0, 0};  // bytes each buffer's store holds
   int backgroundUniform_ = -1;
   long long maxTexels_ = 0;
 };
