@@ -18,6 +18,10 @@ bool isX264Preset(const std::string& name) {
   return std::any_of(std::begin(presets), std::end(presets), [&](const char* p) { return name == p; });
 }
 
+int VideoOptions::keyframeInterval() const {
+  return int(std::max(1.0, std::round(keyintSeconds * double(fps))));
+}
+
 OutputKind outputKind(const std::filesystem::path& path) {
   const std::string s = path.string();
   std::error_code ec;

@@ -63,7 +63,16 @@ struct VideoOptions {
   // x264 tune, "" for none. "animation" sounds right for line art but measured worse on the 25×25
   // cloth at 1280×720, crf 18: 15 % larger files and no faster than none.
   std::string tune;
+  // Longest time between keyframes, s: a web player seeks to the keyframe before the time asked
+  // for and decodes on from there, so 2 s keeps scrubbing quick. x264's default, 250 frames, is
+  // 4.2 s at 60 fps. x264 may put keyframes closer together, at scene cuts. In frames:
+  // keyframeInterval().
+  double keyintSeconds = 2.0;
+  // round(keyintSeconds · fps), at least 1.
+  int keyframeInterval() const;
 };
+// The largest --keyint, s: an hour.
+inline constexpr double kMaxKeyintSeconds = 3600.0;
 
 // True for the names x264 accepts as --preset.
 bool isX264Preset(const std::string& name);

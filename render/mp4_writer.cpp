@@ -65,6 +65,10 @@ void validate(const FrameWriterOptions& o) {
   if (o.video.fps < 1 || o.video.fps > 1000) {
     throw std::invalid_argument("fps " + std::to_string(o.video.fps) + " is out of range (1 to 1000)");
   }
+  if (!(o.video.keyintSeconds > 0.0 && o.video.keyintSeconds <= kMaxKeyintSeconds)) {  // NaN fails too
+    throw std::invalid_argument("keyframe interval " + std::to_string(o.video.keyintSeconds) +
+                                " s is out of range (above 0, at most 3600)");
+  }
   if (o.video.crf < 0 || o.video.crf > 51) {
     throw std::invalid_argument("crf " + std::to_string(o.video.crf) + " is out of range (0 to 51)");
   }
@@ -121,6 +125,9 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions
   c->color_primaries = AVCOL_PRI_BT709;
   c->color_trc = AVCOL_TRC_BT709;
   c->color_range = AVCOL_RANGE_MPEG;
+  // x264's keyint: the longest run between keyframes. Its min-keyint (libav's keyint_min, default
+  // 25) is clamped by x264 to half of it plus one.
+  c->gop_size = options.video.keyframeInterval();
   if (fmt->oformat->flags & AVFMT_GLOBALHEADER) c->flags |= AV_CODEC_FLAG_GLOBAL_HEADER;
   check(av_opt_set(c->priv_data, "preset", options.video.preset.c_str(), 0), "av_opt_set(preset)");
   if (!options.video.tune.empty()) {

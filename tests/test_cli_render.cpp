@@ -3,6 +3,8 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <vector>
 #include <string>
 
 #include "cli_support.hpp"
@@ -197,4 +199,87 @@ TEST_CASE("cli render --hud: text in the top-left corner, the rest of the frame 
   CHECK(changedInCorner > 1000);  // the translucent panel darkens the corner
   CHECK(brightInCorner > 100);    // light glyphs on it (dark theme)
   CHECK(changedElsewhere == 0);
+}
+
+namespace {
+
+// The presentation times of the keyframes of `video`, in seconds, from ffprobe's packet list
+// (flags "K" mark a keyframe).
+std::vector<double> keyframeTimes(const fs::path& video) {
+  const std::string command = "ffprobe -v error -select_streams v:0 -show_entries packet=pts_time,flags -of csv=p=0 '" +
+                              video.string() + "'";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE_MESSAGE(pipe != nullptr, "popen " << command);
+  std::string text;
+  char buffer[4096];
+  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) text.append(buffer, n);
+  REQUIRE_MESSAGE(::pclose(pipe) == 0, "ffprobe failed on " << video << " (scripts/deps installs ffmpeg)");
+  std::vector<double> times;
+  for (const std::string& line : lines(text)) {
+    const size_t comma = line.find(',');
+    if (comma != std::string::npos && line.find('K', comma) != std::string::npos) {
+      times.push_back(std::stod(line.substr(0, comma)));
+    }
+  }
+  std::sort(times.begin(), times.end());  // packets come in decoding order
+  return times;
+}
+
+}  // namespace
+
+// The longest time from a keyframe to the next one or to the end of a video `duration` s long:
+// what a player may have to decode to reach a point.
+double longestKeyframeGap(const std::vector<double>& keyframes, double duration) {
+  REQUIRE(!keyframes.empty());
+  CHECK(keyframes.front() == 0.0);
+  double longest = duration - keyframes.back();
+  for (size_t i = 1; i < keyframes.size(); ++i) longest = std::max(longest, keyframes[i] - keyframes[i - 1]);
+  return longest;
+}
+
+TEST_CASE("cli render --keyint: a keyframe at least every 2 s by default, or as asked; bad values refused") {
+  Scratch s;
+  // A still picture for 7 s at 10 fps: x264 adds keyframes of its own at scene cuts, and a still
+  // picture has none, so every keyframe here is the interval's. x264 puts one at most keyint
+  // frames after the last (a frame early where the frame due would be a B-frame), and with its
+  // own default, 250 frames, there would be one keyframe in these 70 frames.
+  s.write("s.yaml",
+          "name: still\n"
+          "simulation: {integrator: rk4, dt: 0.01, duration: 7}\n"
+          "render: {size: [160, 120], fps: 10}\n"
+          "particles:\n"
+          "  - {name: pin, pos: [0, 0], fixed: true}\n");
+  REQUIRE(s.run("render s.yaml -o default.mp4 --quiet").code == 0);
+  const std::vector<double> byDefault = keyframeTimes(s.dir / "default.mp4");
+  CHECK(longestKeyframeGap(byDefault, 7.0) <= 2.0 + 1e-6);
+  CHECK(byDefault.size() >= 4);
+  CHECK(byDefault.size() <= 5);
+  REQUIRE(s.run("render s.yaml -o half.mp4 --set simulation.duration=3 --keyint 0.5 --quiet").code == 0);
+  const std::vector<double> half = keyframeTimes(s.dir / "half.mp4");
+  CHECK(longestKeyframeGap(half, 3.0) <= 0.5 + 1e-6);
+  CHECK(half.size() >= 6);
+  // Shorter than a frame: every frame is a keyframe.
+  REQUIRE(s.run("render s.yaml -o every.mp4 --keyint 0.01 --quiet").code == 0);
+  CHECK(keyframeTimes(s.dir / "every.mp4").size() == 70);
+  for (const char* bad : {"0", "-1", "nan", "inf", "3601", "two"}) {
+    CAPTURE(bad);
+    const Result r = s.run(std::string("render s.yaml -o bad.mp4 --keyint ") + bad);
+    CHECK(r.code == 2);
+    CHECK_MESSAGE(r.err.find("--keyint") != std::string::npos, r.err);
+  }
+  CHECK(!fs::exists(s.dir / "bad.mp4"));
+}
+
+TEST_CASE("cli render --raster: the three paths by name, anything else refused") {
+  Scratch s;
+  s.write("s.yaml", kSwing);
+  for (const char* raster : {"auto", "triangles", "tiles"}) {
+    CAPTURE(raster);
+    const Result r = s.run(std::string("render s.yaml -o f.png --at 0.5 --quiet --raster ") + raster);
+    CHECK_MESSAGE(r.code == 0, r.err);
+  }
+  const Result r = s.run("render s.yaml -o g.png --at 0.5 --raster quads");
+  CHECK(r.code == 2);
+  CHECK_MESSAGE(r.err.find("--raster") != std::string::npos, r.err);
+  CHECK(!fs::exists(s.dir / "g.png"));
 }

@@ -60,6 +60,7 @@ struct RenderCommandOptions {
   std::string theme = "dark";          // dark | light
   std::string particleRadius;          // "4px" or "0.02m"; empty: the renderer's default
   int crf = 18;                        // x264 quality (see render/frame_writer.hpp)
+  double keyint = 2.0;                 // --keyint: longest time between keyframes, s
   std::string preset = "medium";       // x264 preset
   int pngLevel = 6;                    // zlib level for PNG output
   bool verbose = false;                // the GL backend on stderr, and libav/x264's log

@@ -10,6 +10,7 @@
 #include "app/exit_codes.hpp"
 #include "app/gl_options.hpp"
 #include "render/gl_backend.hpp"
+#include "render/frame_writer.hpp"
 #include "render/renderer.hpp"
 
 namespace {
@@ -103,6 +104,11 @@ int main(int argc, char** argv) {
   renderCmd->add_option("--particle-radius", render.particleRadius,
                         "Particle disc radius: 4px (pixels) or 0.02m (world)");
   renderCmd->add_option("--crf", render.crf, "x264 constant rate factor, 0 (lossless) … 51")->capture_default_str();
+  renderCmd
+      ->add_option("--keyint", render.keyint,
+                   "Longest time between keyframes, s (MP4): players seek to a keyframe, so shorter seeks faster")
+      ->check(CLI::Range(1e-3, particles::render::kMaxKeyintSeconds))
+      ->capture_default_str();
   renderCmd->add_option("--preset", render.preset, "x264 preset: ultrafast … veryslow")->capture_default_str();
   renderCmd->add_option("--png-level", render.pngLevel, "PNG compression level 0 … 9")->capture_default_str();
   renderCmd->add_flag("--verbose", render.verbose, "Name the GL backend and renderer; show libav/x264's own log");

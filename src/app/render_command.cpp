@@ -131,6 +131,10 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
     throw InputError(fmt::format("--fps: expected a whole number of frames per second from 1 to 1000, not {}",
                                  *options.fps));
   }
+  if (!(options.keyint >= 1e-3 && options.keyint <= render::kMaxKeyintSeconds)) {  // NaN fails both
+    throw InputError(fmt::format("--keyint: expected seconds from 0.001 to 3600 between keyframes, not {}",
+                                 options.keyint));
+  }
   if (options.at && !std::isfinite(*options.at)) {
     throw InputError(fmt::format("--at: expected a simulated time in seconds, not {}", *options.at));
   }
@@ -172,6 +176,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   job.look = look;
   job.gl = gl;
   job.video.crf = options.crf;
+  job.video.keyintSeconds = options.keyint;
   job.video.preset = options.preset;
   job.png.compressionLevel = options.pngLevel;
   long framesReached = 0;  // frames whose time the simulation reached
