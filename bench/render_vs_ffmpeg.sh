@@ -3,7 +3,8 @@
 # the encoder's own throughput). Renders scenarios/cloth.yaml (1280×720, 60 fps, 10 s = 600 frames)
 # once to raw RGBA frames (not timed), then times, REPS times each:
 #   encoder alone:  ffmpeg encoding those raw frames with the same settings as ours
-#                   (libx264, preset medium, crf 18, yuv420p, +faststart)
+#                   (libx264, preset medium, crf 18, keyframes every 2 s = 120 frames, yuv420p,
+#                   +faststart)
 #   end to end:     particles render scenarios/cloth.yaml -o cloth.mp4 (simulate, draw, encode)
 # and prints median wall times, frames per second and their ratio.
 # Usage: bench/render_vs_ffmpeg.sh [BUILD_DIR] [REPS]     (default build-bench, 3)
@@ -29,7 +30,7 @@ median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
 enc=(); e2e=()
 for _ in $(seq "$reps"); do
   enc+=("$(seconds ffmpeg -y -v error -f rawvideo -pix_fmt rgba -s 1280x720 -r 60 -i "$tmp/frames.raw" \
-           -c:v libx264 -preset medium -crf 18 -pix_fmt yuv420p -movflags +faststart "$tmp/ffmpeg.mp4")")
+           -c:v libx264 -preset medium -crf 18 -g 120 -pix_fmt yuv420p -movflags +faststart "$tmp/ffmpeg.mp4")")
   # shellcheck disable=SC2086  # RENDER_ARGS is a list of words
   e2e+=("$(seconds "$particles" render "$scenario" -o "$tmp/particles.mp4" --quiet ${RENDER_ARGS:-})")
 done
