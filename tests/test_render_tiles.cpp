@@ -226,7 +226,8 @@ TEST_CASE("tile path: the demos' pixels are the triangle path's within the golde
 }
 
 TEST_CASE("tile path: the same frame twice is the same bytes, and auto takes it for large scenes only") {
-  // The cloth at 100 × 100: 10,000 particles and 19,800 springs, past kTilesFromShapes.
+  // The cloth at 100 × 100: 10,000 particles and 19,800 springs, past kTilesFromShapes; the demo's
+  // 25 × 25 is below it.
   const DemoFrame large = demoFrame("cloth", 0.5,
                                     {scenario::parseOverride("grids.0.size=[100, 100]"),
                                      scenario::parseOverride(fmt::format("grids.0.spacing=[{0}, {0}]", 1.92 / 99))});

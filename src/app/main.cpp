@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
   renderCmd
       ->add_option("--raster", render.raster,
                    "How shapes become pixels: triangles (one GL primitive each), tiles (binned on the CPU, one "
-                   "pass; fast for large scenes) or auto (tiles from 20000 shapes)")
+                   "pass; fast for large scenes) or auto (tiles from 5000 shapes)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, particles::render::Raster>{{"auto", particles::render::Raster::automatic},
                                                            {"triangles", particles::render::Raster::triangles},
