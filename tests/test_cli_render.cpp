@@ -278,8 +278,11 @@ TEST_CASE("cli render --raster: the three paths by name, anything else refused")
     const Result r = s.run(std::string("render s.yaml -o f.png --at 0.5 --quiet --raster ") + raster);
     CHECK_MESSAGE(r.code == 0, r.err);
   }
-  const Result r = s.run("render s.yaml -o g.png --at 0.5 --raster quads");
-  CHECK(r.code == 2);
-  CHECK_MESSAGE(r.err.find("--raster") != std::string::npos, r.err);
+  for (const char* bad : {"quads", "1", "TILES"}) {
+    CAPTURE(bad);
+    const Result r = s.run(std::string("render s.yaml -o g.png --at 0.5 --raster ") + bad);
+    CHECK(r.code == 2);
+    CHECK_MESSAGE(r.err.find("--raster") != std::string::npos, r.err);
+  }
   CHECK(!fs::exists(s.dir / "g.png"));
 }

@@ -9,7 +9,6 @@
 
 #include "app/exit_codes.hpp"
 #include "core/integrators.hpp"
-#include "render/render_options.hpp"
 #include "scenario/scenario.hpp"
 
 namespace particles::app {
@@ -56,7 +55,7 @@ struct RenderCommandOptions {
   std::string size;                    // --size WxH; empty: the scenario's render.size
   std::optional<double> fps;           // --fps; none: the scenario's render.fps
   int msaa = 4;                        // anti-aliasing samples per pixel: 1 (off), 2, 4, 8, 16
-  render::Raster raster = render::Raster::automatic;  // --raster auto | triangles | tiles
+  std::string raster = "auto";         // --raster auto | triangles | tiles
   std::string theme = "dark";          // dark | light
   std::string particleRadius;          // "4px" or "0.02m"; empty: the renderer's default
   int crf = 18;                        // x264 quality (see render/frame_writer.hpp)

@@ -5,8 +5,6 @@
 #include <fmt/format.h>
 #include <malloc.h>
 
-#include <map>
-
 #include "app/commands.hpp"
 #include "app/compare_command.hpp"
 #include "app/exit_codes.hpp"
@@ -107,14 +105,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   renderCmd
       ->add_option("--raster", render.raster,
-                   "How shapes become pixels: triangles (one GL primitive each), tiles (binned on the CPU, one "
-                   "pass; fast for large scenes) or auto (tiles from 5000 shapes)")
-      ->transform(CLI::CheckedTransformer(
-          std::map<std::string, particles::render::Raster>{{"auto", particles::render::Raster::automatic},
-                                                           {"triangles", particles::render::Raster::triangles},
-                                                           {"tiles", particles::render::Raster::tiles}},
-          CLI::ignore_case))
-      ->default_str("auto");
+                   "How shapes become pixels: triangles (one GL primitive each), tiles (sorted into screen tiles "
+                   "on the CPU, one pass; fast for large scenes) or auto (tiles from 5000 shapes)")
+      ->check(CLI::IsMember({"auto", "triangles", "tiles"}))
+      ->capture_default_str();
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
   renderCmd->add_option("--particle-radius", render.particleRadius,
                         "Particle disc radius: 4px (pixels) or 0.02m (world)");

@@ -92,7 +92,9 @@ render::RenderOptions lookOf(const scenario::Scenario& s, const RenderCommandOpt
     look.height = h;
   }
   look.msaa = options.msaa;
-  look.raster = options.raster;
+  look.raster = options.raster == "tiles"       ? render::Raster::tiles
+                : options.raster == "triangles" ? render::Raster::triangles
+                                                : render::Raster::automatic;
   if (options.theme == "dark") {
     look.themeName = render::ThemeName::dark;
   } else if (options.theme == "light") {
