@@ -86,7 +86,7 @@ void BM_RenderLargeCloth(benchmark::State& state) {
 
 // Second argument: 1 triangles, 2 tiles (render::Raster).
 BENCHMARK(BM_RenderLargeCloth)
-    ->ArgsProduct({{25, 40, 60, 100, 316}, {1, 2}})
+    ->ArgsProduct({{25, 40, 60, 80, 100, 316}, {1, 2}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

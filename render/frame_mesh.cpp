@@ -105,4 +105,11 @@ void buildFrameMesh(const Drawing& f, const Camera& camera, const RenderOptions&
   }
 }
 
+size_t frameShapeCount(const Drawing& f) {
+  constexpr size_t kArrowPieces = 4, kArrowOutline = 7;  // the cursor drawn above
+  return 2 * f.halfPlanes.size() + 2 * f.disks.size() + f.guideCircles.size() + f.guideLines.size() +
+         f.springs.size() + f.rods.size() + 5 * f.bodies.size() + f.particles.size() +
+         f.cursors.size() * (1 + kArrowPieces + kArrowOutline);
+}
+
 }  // namespace particles::render

@@ -22,4 +22,8 @@ inline constexpr float kGuideOverhangPx = 8.0f;
 void buildFrameMesh(const Drawing& frame, const Camera& camera, const RenderOptions& options, const Theme& colors,
                     ShapeSink& shapes);
 
+// How many shapes buildFrameMesh gives `frame` before any is dropped as off-screen: an upper bound
+// on what a sink receives, counted without building anything (the renderer's choice of raster path).
+size_t frameShapeCount(const Drawing& frame);
+
 }  // namespace particles::render

@@ -1,11 +1,19 @@
 #include "render/frame_pipeline.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace particles::render {
 
-FramePipeline::FramePipeline(size_t capacity, Consumer consume)
-    : capacity_(std::max<size_t>(1, capacity)), consume_(std::move(consume)), worker_([this] { run(); }) {}
+std::size_t FramePipeline::slotCount(std::size_t capacity) {
+  return std::max<std::size_t>(1, capacity) + 2;
+}
+
+FramePipeline::FramePipeline(std::size_t capacity, Fill fill, Consumer consume)
+    : capacity_(std::max<std::size_t>(1, capacity)), fill_(std::move(fill)), consume_(std::move(consume)) {
+  for (std::size_t slot = slotCount(capacity); slot-- > 0;) free_.push_back(slot);  // slot 0 is used first
+  worker_ = std::thread([this] { run(); });
+}
 
 FramePipeline::~FramePipeline() {
   cancel();
@@ -17,21 +25,22 @@ void FramePipeline::rethrowIfFailed() {
 
 void FramePipeline::push(const Image& frame) {
   std::unique_lock lock(mutex_);
+  // Queue not full implies a free slot: capacity_ queued + 1 consumed leave one of slotCount.
   changed_.wait(lock, [&] { return queue_.size() < capacity_ || error_ || cancelled_; });
   rethrowIfFailed();
   if (cancelled_ || closing_) throw std::logic_error("FramePipeline::push after close or cancel");
-  Image buffer;
-  if (!spare_.empty()) {
-    buffer = std::move(spare_.back());
-    spare_.pop_back();
-  }
+  const std::size_t slot = free_.back();
+  free_.pop_back();
   lock.unlock();
-  // Copy outside the lock; assign() reuses the spare buffer's memory when the size matches.
-  buffer.width = frame.width;
-  buffer.height = frame.height;
-  buffer.rgba.assign(frame.rgba.begin(), frame.rgba.end());
+  try {
+    fill_(frame, slot);  // outside the lock: the worker goes on consuming meanwhile
+  } catch (...) {
+    lock.lock();
+    free_.push_back(slot);
+    throw;
+  }
   lock.lock();
-  queue_.push_back(std::move(buffer));
+  queue_.push_back(slot);
   changed_.notify_all();
 }
 
@@ -62,12 +71,12 @@ void FramePipeline::run() {
   for (;;) {
     changed_.wait(lock, [&] { return !queue_.empty() || closing_ || cancelled_; });
     if (cancelled_ || queue_.empty()) return;  // cancelled, or closing with nothing left
-    Image frame = std::move(queue_.front());
+    const std::size_t slot = queue_.front();
     queue_.pop_front();
     changed_.notify_all();  // room for the producer
     lock.unlock();
     try {
-      consume_(frame, index++);
+      consume_(slot, index++);
     } catch (...) {
       lock.lock();
       error_ = std::current_exception();
@@ -76,7 +85,7 @@ void FramePipeline::run() {
       return;
     }
     lock.lock();
-    spare_.push_back(std::move(frame));
+    free_.push_back(slot);
   }
 }
 

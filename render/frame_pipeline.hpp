@@ -1,10 +1,15 @@
 #pragma once
 // Internal to render/: a worker thread behind a bounded queue of frames, so that rendering frame
-// n+1 overlaps encoding frame n. push() copies the frame into a recycled buffer and blocks while
-// the queue is full; the worker calls `consume` for each frame in order. An exception thrown by
-// `consume` stops the worker and is rethrown by the next push() or close().
+// n+1 overlaps encoding frame n. The frames live in slots the writer owns, in whatever form its
+// encoder takes (an RGBA Image for PNG, a yuv420p AVFrame for H.264): push() hands a free slot and
+// the renderer's image to `fill` on the calling thread (a copy or a conversion, straight into the
+// slot, so the frame is never copied twice), queues it, and blocks while the queue is full; the
+// worker calls `consume` for each queued slot in order and then frees it. An exception thrown by
+// `fill` propagates from push(); one thrown by `consume` stops the worker and is rethrown by the
+// next push() or close().
 
 #include <condition_variable>
+#include <cstddef>
 #include <deque>
 #include <exception>
 #include <functional>
@@ -18,9 +23,15 @@ namespace particles::render {
 
 class FramePipeline {
  public:
-  using Consumer = std::function<void(const Image& frame, long index)>;
+  // Slots are numbered 0 … slotCount(capacity) − 1; a slot is touched by one thread at a time.
+  using Fill = std::function<void(const Image& frame, std::size_t slot)>;
+  using Consumer = std::function<void(std::size_t slot, long index)>;
 
-  FramePipeline(size_t capacity, Consumer consume);
+  // The slots a pipeline of `capacity` queued frames uses: those queued, the one being filled and
+  // the one being consumed.
+  static std::size_t slotCount(std::size_t capacity);
+
+  FramePipeline(std::size_t capacity, Fill fill, Consumer consume);
   ~FramePipeline();  // cancel()
   FramePipeline(const FramePipeline&) = delete;
   FramePipeline& operator=(const FramePipeline&) = delete;
@@ -35,12 +46,13 @@ class FramePipeline {
   void run();
   void rethrowIfFailed();  // with the lock held
 
-  const size_t capacity_;
+  const std::size_t capacity_;
+  Fill fill_;
   Consumer consume_;
   std::mutex mutex_;
   std::condition_variable changed_;
-  std::deque<Image> queue_;
-  std::vector<Image> spare_;  // consumed buffers, reused by push()
+  std::deque<std::size_t> queue_;  // filled slots, oldest first
+  std::vector<std::size_t> free_;  // slots no thread is using
   bool closing_ = false, cancelled_ = false;
   std::exception_ptr error_;
   std::thread worker_;  // last: started after everything it uses exists

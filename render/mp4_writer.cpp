@@ -1,9 +1,11 @@
 #include "render/mp4_writer.hpp"
 
 #include <string>
+#include <vector>
 
 #include "render/errors.hpp"
 #include "render/libav_util.hpp"
+#include "render/yuv420.hpp"
 
 extern "C" {
 #include <libavutil/opt.h>
@@ -18,9 +20,8 @@ using libav::check;
 struct Mp4Writer::Encoder {
   libav::OutputFormatPtr format;
   libav::CodecContextPtr codec;
-  libav::FramePtr frame;
+  std::vector<libav::FramePtr> frames;  // the pipeline's slots: yuv420p pictures
   libav::PacketPtr packet;
-  libav::SwsPtr sws;
   AVStream* stream = nullptr;  // owned by format
   std::string path;            // for messages
 
@@ -38,15 +39,19 @@ struct Mp4Writer::Encoder {
     }
   }
 
-  void encodeFrame(const Image& image, long index) {
-    check(av_frame_make_writable(frame.get()), "av_frame_make_writable");
-    const uint8_t* src[1] = {image.rgba.data()};
-    const int srcStride[1] = {int(image.stride())};
-    const int rows = sws_scale(sws.get(), src, srcStride, 0, image.height, frame->data, frame->linesize);
-    if (rows != image.height)
-      throw OutputError("sws_scale(RGBA → yuv420p) converted " + std::to_string(rows) + " rows");
-    frame->pts = index;
-    send(frame.get());
+  // On the rendering thread: the frame straight into a slot's picture. If libav still holds a
+  // reference to the slot's buffer, make_writable gives the slot a fresh one.
+  void fill(const Image& image, size_t slot) {
+    AVFrame* f = frames[slot].get();
+    check(av_frame_make_writable(f), "av_frame_make_writable");
+    rgbaToYuv420(image, {f->data[0], f->data[1], f->data[2], f->linesize[0], f->linesize[1], f->linesize[2]});
+  }
+
+  // On the pipeline's worker: frame `index` of the video.
+  void encode(size_t slot, long index) {
+    AVFrame* f = frames[slot].get();
+    f->pts = index;
+    send(f);
   }
 };
 
@@ -157,29 +162,28 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions
   check(headerResult, "avformat_write_header(" + path.string() + ")");
   if (optionIgnored) throw OutputError("avformat_write_header: the mp4 muxer did not accept movflags=+faststart");
 
-  enc->frame.reset(av_frame_alloc());
   enc->packet.reset(av_packet_alloc());
-  if (!enc->frame || !enc->packet) throw OutputError("av_frame_alloc/av_packet_alloc: out of memory");
-  enc->frame->format = c->pix_fmt;
-  enc->frame->width = c->width;
-  enc->frame->height = c->height;
-  check(av_frame_get_buffer(enc->frame.get(), 0), "av_frame_get_buffer");
-
-  // Same size, so the filter only matters for chroma: ACCURATE_RND and full chroma input keep thin
-  // coloured lines from shifting hue; 4:2:0 is then averaged from all four pixels.
-  enc->sws.reset(sws_getContext(c->width, c->height, AV_PIX_FMT_RGBA, c->width, c->height, AV_PIX_FMT_YUV420P,
-                                SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INP, nullptr, nullptr, nullptr));
-  if (!enc->sws) throw OutputError("sws_getContext(RGBA → yuv420p): unsupported conversion");
-  // Full-range RGB in, BT.709 limited-range YUV out, matching the stream's colour tags.
-  if (sws_setColorspaceDetails(enc->sws.get(), sws_getCoefficients(SWS_CS_ITU709), 1,
-                               sws_getCoefficients(SWS_CS_ITU709), 0, 0, 1 << 16, 1 << 16) < 0) {
-    throw OutputError("sws_setColorspaceDetails(BT.709): not supported");
+  if (!enc->packet) throw OutputError("av_packet_alloc: out of memory");
+  // RGBA → yuv420p is ours (render/yuv420.hpp), done as each frame is queued.
+  enc->frames.resize(FramePipeline::slotCount(options.queueFrames));
+  for (libav::FramePtr& frame : enc->frames) {
+    frame.reset(av_frame_alloc());
+    if (!frame) throw OutputError("av_frame_alloc: out of memory");
+    frame->format = c->pix_fmt;
+    frame->width = c->width;
+    frame->height = c->height;
+    frame->color_range = c->color_range;
+    frame->colorspace = c->colorspace;
+    frame->color_primaries = c->color_primaries;
+    frame->color_trc = c->color_trc;
+    check(av_frame_get_buffer(frame.get(), 0), "av_frame_get_buffer");
   }
 
   encoder_ = std::move(enc);
   Encoder* e = encoder_.get();
-  pipeline_ = std::make_unique<FramePipeline>(options.queueFrames,
-                                              [e](const Image& image, long index) { e->encodeFrame(image, index); });
+  pipeline_ = std::make_unique<FramePipeline>(
+      options.queueFrames, [e](const Image& image, size_t slot) { e->fill(image, slot); },
+      [e](size_t slot, long index) { e->encode(slot, index); });
 }
 
 Mp4Writer::~Mp4Writer() {

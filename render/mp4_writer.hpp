@@ -1,6 +1,7 @@
 #pragma once
-// H.264 MP4 output (docs/physics.md §9) through libavcodec (libx264), libswscale and libavformat, encoded
-// in-process frame by frame: RGBA → yuv420p (BT.709, limited range, tagged as such), the
+// H.264 MP4 output (docs/physics.md §9) through libavcodec (libx264) and libavformat, encoded
+// in-process frame by frame: RGBA → yuv420p (BT.709, limited range, tagged as such; converted by
+// render/yuv420.hpp as the frame is queued, no other copy of it is made), the
 // send-frame / receive-packet loop of FFmpeg's encode_video.c, muxed as in mux.c with
 // "+faststart" (the index moves to the front at the end so players can start before the whole
 // file has arrived). Frame i has pts i in a 1/fps time base: the video has exactly as many frames

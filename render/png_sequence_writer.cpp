@@ -52,9 +52,19 @@ PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWrite
   }
   const fs::path staging = staging_->path();
   const PngOptions png = options.png;
-  pipeline_ = std::make_unique<FramePipeline>(options.queueFrames, [staging, png](const Image& image, long index) {
-    writePngDirect(staging / sequenceFrameName(index), image, png);
-  });
+  slots_.resize(FramePipeline::slotCount(options.queueFrames));
+  Image* slots = slots_.data();
+  pipeline_ = std::make_unique<FramePipeline>(
+      options.queueFrames,
+      // assign() reuses the slot's memory once it has held a frame of this size.
+      [slots](const Image& image, size_t slot) {
+        slots[slot].width = image.width;
+        slots[slot].height = image.height;
+        slots[slot].rgba.assign(image.rgba.begin(), image.rgba.end());
+      },
+      [slots, staging, png](size_t slot, long index) {
+        writePngDirect(staging / sequenceFrameName(index), slots[slot], png);
+      });
 }
 
 PngSequenceWriter::~PngSequenceWriter() {

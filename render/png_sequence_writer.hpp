@@ -10,6 +10,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "render/frame_pipeline.hpp"
 #include "render/frame_writer.hpp"
@@ -37,6 +38,9 @@ class PngSequenceWriter final : public PipelinedFrameWriter {
   std::filesystem::path directory_;
   bool createdDirectory_ = false;
   std::optional<output::StagingDirectory> staging_;
+  // The pipeline's frames (FramePipeline::slotCount). The destructor stops the pipeline before
+  // they go (abort(), or finish() has closed it).
+  std::vector<Image> slots_;
 };
 
 }  // namespace particles::render

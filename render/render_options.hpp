@@ -40,7 +40,7 @@ enum class Raster { automatic, triangles, tiles };
 // The shape count from which automatic draws with tiles: where the two cost the same for the
 // cloth at 1280×720 on llvmpipe (40 × 40 particles, 4,721 shapes: 8.5 ms each; bench/README.md,
 // "Large scenes"). Below it the triangle path, which the goldens were drawn with, is faster.
-inline constexpr size_t kTilesFromShapes = 5000;
+inline constexpr size_t kTilesFromShapes = 15000;
 
 struct RenderOptions {
   int width = 1280;  // pixels

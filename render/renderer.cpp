@@ -45,7 +45,10 @@ const GlInfo& Renderer::gl() const {
 
 const Image& Renderer::render(const Drawing& frame, const Camera& camera) {
   Impl& m = *impl_;
-  bool tiled = m.options.raster != Raster::triangles;
+  // automatic: a frame that cannot reach the threshold goes straight to triangles; one that may
+  // is built as tiles first and decided on the shapes it really has (some may be off-screen).
+  bool tiled = m.options.raster == Raster::tiles ||
+               (m.options.raster == Raster::automatic && frameShapeCount(frame) >= kTilesFromShapes);
   if (tiled) {
     m.bins.reset(m.options.width, m.options.height);
     buildFrameMesh(frame, camera, m.options, m.colors, m.bins);

@@ -92,11 +92,28 @@ void ShapeSink::ring(P2 c, float r, float width, Rgb col) {
 }
 
 // Covered by a band of quads (a fan when inner is 0) whose polygons contain the annulus grown by
-// kFringePx on both sides: the outer polygon is circumscribed, the inner one inscribed.
+// kFringePx on both sides: the outer polygon is circumscribed, the inner one inscribed. A small
+// disc is one square instead, two triangles rather than a fan of eight: llvmpipe's cost is per
+// triangle more than per pixel at that size (a particle of the cloth is ~6 px across), and the
+// shader decides coverage from the distance to the centre whatever the triangles.
 void ShapeMesh::annulus(P2 c, float inner, float outer, Rgb col) {
   const float fringeOuter = outer + kFringePx;
   const float fringeInner = std::max(0.0f, inner - kFringePx);
   const int n = std::clamp(int(std::ceil(2.0f * std::numbers::pi_v<float> * fringeOuter / 16.0f)), 8, 256);
+  if (inner <= 0.0f && n == 8) {
+    auto corner = [&](float dx, float dy) {
+      ShapeVertex v = vertex({c[0] + dx, c[1] + dy}, col, 1.0f);
+      v.shape[0] = dx;
+      v.shape[1] = dy;
+      v.shape[2] = outer;
+      v.shape[3] = inner;
+      return v;
+    };
+    const float r = fringeOuter;
+    const ShapeVertex a = corner(-r, -r), b = corner(r, -r), d = corner(r, r), e = corner(-r, r);
+    vertices_.insert(vertices_.end(), {a, b, d, a, d, e});
+    return;
+  }
   const float polyOuter = fringeOuter / std::cos(std::numbers::pi_v<float> / float(n));
   auto at = [&](float radius, int i) {
     const double a = 2.0 * std::numbers::pi * double(i % n) / double(n);

@@ -109,6 +109,7 @@ TileProgram::TileProgram(const GlFunctions& gl, int samples, int width, int heig
   gl.glUniform1f(gl.glGetUniformLocation(program_, "imageHeight"), float(height));
   gl.glUniform2f(gl.glGetUniformLocation(program_, "imageSize"), float(width), float(height));
   backgroundUniform_ = gl.glGetUniformLocation(program_, "background");
+  tilesPerRowUniform_ = gl.glGetUniformLocation(program_, "tilesPerRow");
   GLint most = 0;
   gl.glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
   maxTexels_ = most;
@@ -123,7 +124,7 @@ bool TileProgram::fits(const TileBins& bins) const {
 void TileProgram::draw(const TileBins& bins, Rgb background) const {
   const GlFunctions& gl = gl_;
   gl.glUseProgram(program_);
-  gl.glUniform1i(gl.glGetUniformLocation(program_, "tilesPerRow"), bins.tilesPerRow());
+  gl.glUniform1i(tilesPerRowUniform_, bins.tilesPerRow());
   gl.glUniform3f(backgroundUniform_, float(background.r), float(background.g), float(background.b));
   // GL needs a buffer of at least one texel; an empty frame binds one zero.
   static const std::uint32_t kZero[4] = {0, 0, 0, 0};

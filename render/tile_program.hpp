@@ -28,9 +28,8 @@ class TileProgram {
   TileProgram(const TileProgram&) = delete;
   TileProgram& operator=(const TileProgram&) = delete;
 
-  // The most texels a texture buffer holds here (GL_MAX_TEXTURE_BUFFER_SIZE): a frame whose
-  // shapes (4 texels each) or tile lists need more must take the triangle path.
-  long long maxTexels() const { return maxTexels_; }
+  // Whether the frame's shapes (4 texels each) and tile lists fit GL's texture buffers here
+  // (GL_MAX_TEXTURE_BUFFER_SIZE texels each); a frame that does not must take the triangle path.
   bool fits(const TileBins& bins) const;
 
   // Draws the frame's shapes over `background` in the current context, every pixel of the tiles
@@ -45,8 +44,8 @@ class TileProgram {
   unsigned buffers_[3] = {0, 0, 0};   // shapes, tiles, items
   unsigned textures_[3] = {0, 0, 0};  // their texture buffers
   mutable size_t capacity_[3] = {0, 0, 0};  // bytes each buffer's store holds
-  int backgroundUniform_ = -1;
-  long long maxTexels_ = 0;
+  int backgroundUniform_ = -1, tilesPerRowUniform_ = -1;
+  long long maxTexels_ = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE
 };
 
 }  // namespace particles::render

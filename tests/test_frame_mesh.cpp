@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -283,4 +284,59 @@ TEST_CASE("frame mesh: an empty drawing is no triangles, and the mesh is replace
   CHECK(mesh.vertices().empty());
   CHECK_THROWS_AS(buildFrameMesh(frame, Camera{Vec2::Zero(), 0.0}, smallRenderOptions(), theme(ThemeName::dark), mesh),
                   std::invalid_argument);
+}
+
+TEST_CASE("frame mesh: frameShapeCount is the number of shapes built, for every kind of drawing item") {
+  // Counts what the builder hands a sink; TileBins drops off-screen shapes, this does not.
+  struct CountingSink final : ShapeSink {
+    size_t shapes = 0;
+    void clear() override { shapes = 0; }
+    void convex(std::span<const P2>, Rgb, unsigned) override { ++shapes; }
+    void line(P2, P2, float, Rgb, bool) override { ++shapes; }
+    void annulus(P2, float, float, Rgb) override { ++shapes; }
+  };
+  Drawing f;
+  CountingSink sink;
+  auto built = [&] {
+    buildFrameMesh(f, kCamera, smallRenderOptions(), theme(ThemeName::dark), sink);
+    return sink.shapes;
+  };
+  CHECK(frameShapeCount(f) == 0);
+  CHECK(built() == 0);
+  // Each kind on its own, then twice over, so that a wrong count per item shows.
+  for (int copies = 1; copies <= 2; ++copies) {
+    CAPTURE(copies);
+    f = Drawing{};
+    for (int i = 0; i < copies; ++i) {
+      f.halfPlanes.push_back({Vec2(0, 1), -0.8});
+      f.disks.push_back({Vec2(-0.8, 0.5), 0.2});
+      f.guideCircles.push_back({Vec2(0, 0.3), 0.3});
+      f.guideLines.push_back({Vec2(0, 0.8), Vec2(1, 0)});
+      f.springs.push_back({Vec2(-0.5, 0.2), Vec2(0.5, 0.2), 0.0});
+      f.rods.push_back({Vec2(-0.5, -0.3), Vec2(0.5, -0.3)});
+      f.bodies.push_back({Vec2(0.8, 0.5), 0.3, Vec2(0.4, 0.2)});
+      f.particles.push_back(Vec2(0.1, 0.1));
+      f.particles.push_back(Vec2(-0.1, 0.1));
+      f.particleFixed = std::vector<char>(f.particles.size(), 0);
+      f.particleFixed.back() = 1;
+      f.cursors.push_back({Vec2(0.0, -0.55), Vec2(-0.9, -0.55)});
+    }
+    CHECK(frameShapeCount(f) == built());
+    const Drawing all = f;
+    auto only = [&](auto member) {
+      f = Drawing{};
+      f.*member = all.*member;
+      f.particleFixed = std::vector<char>(f.particles.size(), 1);  // squares: one shape each, as discs
+      CHECK(frameShapeCount(f) == built());
+    };
+    only(&Drawing::halfPlanes);
+    only(&Drawing::disks);
+    only(&Drawing::guideCircles);
+    only(&Drawing::guideLines);
+    only(&Drawing::springs);
+    only(&Drawing::rods);
+    only(&Drawing::bodies);
+    only(&Drawing::particles);
+    only(&Drawing::cursors);
+  }
 }

@@ -125,9 +125,10 @@ TEST_CASE("hostile input row 4: --stats /dev/null (once replaced by a regular fi
 
 TEST_CASE("hostile input row 5: kill -9 during render -o x.mp4 leaves no file behind") {
   Scratch s;
-  // 20 simulated seconds at 30 fps: several seconds of rendering, killed after half a second.
+  // 600 simulated seconds at 30 fps: about 10 s of rendering (600 frames of it took 0.4 s), killed
+  // after half a second.
   std::string longer = kSwingScenario;
-  longer.replace(longer.find("duration: 1"), 11, "duration: 20");
+  longer.replace(longer.find("duration: 1"), 11, "duration: 600");
   longer.replace(longer.find("fps: 10"), 7, "fps: 30");
   s.write("s.yaml", longer);
   const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
