@@ -37,10 +37,11 @@ inline constexpr std::array<int, 5> kSampleCounts = {1, 2, 4, 8, 16};
 // shape; tiles, shapes binned into screen tiles on the CPU and one full-screen pass
 // (render/tile_bins.hpp); automatic, tiles from kTilesFromShapes shapes in a frame.
 enum class Raster { automatic, triangles, tiles };
-// The shape count from which automatic draws with tiles: where the two cost the same for the
-// cloth at 1280×720 on llvmpipe (40 × 40 particles, 4,721 shapes: 8.5 ms each; bench/README.md,
-// "Large scenes"). Below it the triangle path, which the goldens were drawn with, is faster.
-inline constexpr size_t kTilesFromShapes = 15000;
+// The shape count from which automatic draws with tiles: about where the two cost the same for
+// the cloth at 1280×720 on llvmpipe (between 80 × 80 particles, 19,041 shapes: triangles 10.5 ms,
+// tiles 11.4 ms, and 100 × 100, 29,801 shapes: 16.8 against 12.7 ms; bench/README.md, "Large
+// scenes"). Below it the triangle path, which the goldens were drawn with, is faster.
+inline constexpr size_t kTilesFromShapes = 20000;
 
 struct RenderOptions {
   int width = 1280;  // pixels
