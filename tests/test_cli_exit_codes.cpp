@@ -77,8 +77,9 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
       {"render s.yaml -o out.mp4 --size 65x48", 2,
        "error: MP4 (H.264, yuv420p) needs an even width and height; 65x48 is not (try 66x48, or write PNG frames)\n"},
       {"run s.yaml --stats x.csv --trace x.csv", 2, "error: --stats and --trace name the same file 'x.csv'\n"},
-      {"stability s.yaml --integrators verlet", 2,
-       "error: --integrators: unknown integrator 'verlet' (expected euler, midpoint or rk4)\n"},
+      {"stability s.yaml --integrators leapfrog", 2,
+       "error: --integrators: unknown integrator 'leapfrog' (expected euler, midpoint, rk4, symplectic_euler, verlet or "
+       "backward_euler)\n"},
       {"plot bad.csv -o out.svg", 2,
        "error: bad.csv:1:10: the header must be exactly 't,kinetic,potential,total,constraint_error,penetration'\n"},
       {"compare a.png missing.png", 2, "error: cannot open missing.png: No such file or directory\n"},

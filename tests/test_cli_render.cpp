@@ -160,7 +160,7 @@ TEST_CASE("cli stability and plot: the table as CSV and figures") {
   CHECK(rows[1].rfind("midpoint,2,", 0) == 0);
   CHECK(rows[2].rfind("rk4,4,", 0) == 0);
   CHECK(slurp(s.dir / "table.svg").find("<svg") != std::string::npos);
-  CHECK(s.run("stability s.yaml --integrators verlet").code == 2);
+  CHECK(s.run("stability s.yaml --integrators leapfrog").code == 2);
 
   REQUIRE(s.run("run s.yaml --stats stats.csv --quiet").code == 0);
   r = s.run("plot stats.csv -o energy.png --quiet");

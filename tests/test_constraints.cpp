@@ -15,6 +15,11 @@ using namespace particles::test;
 
 namespace {
 
+// The integrators whose constraint drift is held to the same bounds: RK4 (the report's) and the
+// three that project after each step.
+constexpr Integrator kConstrainedIntegrators[] = {Integrator::Rk4, Integrator::SymplecticEuler, Integrator::Verlet,
+                                                  Integrator::BackwardEuler};
+
 // A state of three particles with arbitrary (fixed, so reproducible) positions and velocities.
 Eigen::VectorXd sampleState(const StateLayout& layout) {
   Eigen::VectorXd y(layout.size());
@@ -72,6 +77,11 @@ TEST_CASE("bead on a circular wire under gravity stays on the wire and goes thro
   // no work) gives the speed v = √(v0² + 2 g h). Its amplitude is just over 90° (cos θ0 =
   // −v0²/2gr), its period 4 √(r/g) K(sin(θ0/2)) = 2.37 s: it passes the bottom at 0.64 s and every
   // 1.19 s after, eight times in 10 s (the ninth would be at 10.14 s).
+  // The drift bound holds for every integrator that keeps constraints (the explicit ones through the
+  // multipliers' feedback, the others through the projection after each step); the swing itself
+  // is checked on RK4, whose energy error is small enough for the speed at the bottom.
+  for (Integrator integrator : kConstrainedIntegrators) {
+  CAPTURE(integratorName(integrator));
   const double r = 1.0, g = 9.81, v0 = 0.5, h = 0.01;
   SystemBuilder b;
   ParticleSpec bead = particleAt(r, 0.0);
@@ -87,7 +97,7 @@ TEST_CASE("bead on a circular wire under gravity stays on the wire and goes thro
   // that, 5e-5 for the integration: the speed error of a 1e-4 error in the bottom's kinetic
   // energy, the energy bound the rod pendulum below is held to.
   const double speedTolerance = g * h * h / (8 * r) + 5e-5;
-  Solver solver(Integrator::Rk4);
+  Solver solver(integrator);
   double worst = 0.0, worstSpeedError = 0.0;
   int passes = 0;
   Vec2 prevPos = sys.view().pos(i);
@@ -112,11 +122,16 @@ TEST_CASE("bead on a circular wire under gravity stays on the wire and goes thro
   CAPTURE(worstSpeedError);
   CAPTURE(speedTolerance);
   CHECK(worst < 1e-4 * r);
-  CHECK(passes == 8);
-  CHECK(worstSpeedError < speedTolerance);
+  if (integrator == Integrator::Rk4) {
+    CHECK(passes == 8);
+    CHECK(worstSpeedError < speedTolerance);
+  }
+  }
 }
 
 TEST_CASE("rod pendulum keeps its length and conserves energy") {
+  for (Integrator integrator : kConstrainedIntegrators) {
+  CAPTURE(integratorName(integrator));
   const double length = 1.0;
   SystemBuilder b;
   const int pivot = b.addParticle(particleAt(0, 0, 1.0, true));
@@ -124,7 +139,7 @@ TEST_CASE("rod pendulum keeps its length and conserves energy") {
   b.emplaceForce<GravityForce>(Vec2(0, -9.81));
   b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, length));
   System sys = b.build();
-  Solver solver(Integrator::Rk4);
+  Solver solver(integrator);
   const double e0 = sys.energy().total();
   double worst = 0.0;
   for (int s = 0; s < 1000; ++s) {
@@ -134,11 +149,25 @@ TEST_CASE("rod pendulum keeps its length and conserves energy") {
   CAPTURE(worst);
   CHECK(worst < 1e-4);
   // The constraint force does no work: energy stays within 1e-4 of its start (the drift feedback
-  // only removes the integrator's small error).
-  CHECK(std::abs(sys.energy().total() - e0) < 1e-4 * std::abs(e0));
+  // only removes the integrator's small error). Verlet (multiplier forces, then projection) stays
+  // as close; symplectic Euler and backward Euler keep the rod by projection alone, which only
+  // takes energy out (measured: symplectic Euler −1.1 J of the 5.3 J swing in these 10 s,
+  // first order in h), never puts it in.
+  const double e1 = sys.energy().total();
+  CAPTURE(e1 - e0);
+  if (integrator == Integrator::Rk4) CHECK(std::abs(e1 - e0) < 1e-4 * std::abs(e0));
+  if (integrator == Integrator::Verlet) CHECK(std::abs(e1 - e0) < 1e-3 * std::abs(e0));
+  if (integrator == Integrator::SymplecticEuler) {
+    CHECK(e1 < e0);
+    CHECK(e0 - e1 < 0.25 * std::abs(e0));
+  }
+  if (integrator == Integrator::BackwardEuler) CHECK(e1 < e0);
+  }
 }
 
 TEST_CASE("a 25-particle row on a horizontal line stays on the line") {
+  for (Integrator integrator : kConstrainedIntegrators) {
+  CAPTURE(integratorName(integrator));
   SystemBuilder b;
   auto& springs = b.emplaceForce<DampedSpringForce>();
   std::vector<int> row;
@@ -154,7 +183,7 @@ TEST_CASE("a 25-particle row on a horizontal line stays on the line") {
   b.emplaceForce<GravityForce>(Vec2(0, -9.81));
   for (int i : row) b.addConstraint(std::make_unique<HorizontalLineConstraint>(i, 1.0));
   System sys = b.build();
-  Solver solver(Integrator::Rk4);
+  Solver solver(integrator);
   double worst = 0.0;
   for (int s = 0; s < 1000; ++s) {
     solver.doStep(sys, 0.01);
@@ -162,6 +191,7 @@ TEST_CASE("a 25-particle row on a horizontal line stays on the line") {
   }
   CAPTURE(worst);
   CHECK(worst < 1e-4);
+  }
 }
 
 TEST_CASE("singular constraint systems stay finite") {

@@ -4,8 +4,12 @@
 
 #include <cmath>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCore>
+
 #include "core/forces/drag_force.hpp"
 #include "core/grid.hpp"
+#include "core/colliders/disk_collider.hpp"
 #include "core/colliders/half_plane_collider.hpp"
 #include "core/forces/mouse_spring_force.hpp"
 #include "support.hpp"
@@ -183,4 +187,120 @@ TEST_CASE("grids: particle and spring counts, positions, names and graded stiffn
   // structural 3·3 + 2·4 = 17, shear 2·2·3 = 12, flexion 3·2 + 1·4 = 10
   CHECK(all.size() == 17 + 12 + 10);
   CHECK(all.spring(17).rest == doctest::Approx(0.08 * std::sqrt(2.0)));
+}
+
+namespace {
+
+Eigen::MatrixXd denseOf(const ForceJacobians::Triplets& t, Eigen::Index n) {
+  Eigen::SparseMatrix<double> m(n, n);
+  m.setFromTriplets(t.begin(), t.end());
+  return Eigen::MatrixXd(m);
+}
+
+struct JacobianPair {
+  Eigen::MatrixXd k, d;          // from the forces' addJacobians
+  Eigen::MatrixXd kFd, dFd;      // central differences of the accumulated force (m · dv/dt)
+};
+
+// Every point must be free (a fixed point's force is not in dv/dt).
+JacobianPair jacobiansAt(System& sys, const Eigen::VectorXd& y, double t) {
+  const StateLayout& layout = sys.layout();
+  const Eigen::Index n = 2 * Eigen::Index(layout.numPoints()), v = layout.velocityOffset();
+  auto force = [&](const Eigen::VectorXd& at) {
+    Eigen::VectorXd dydt;
+    sys.derivEval(at, t, dydt);
+    Eigen::VectorXd f(n);
+    for (Eigen::Index i = 0; i < n; ++i) f[i] = dydt[v + i] * sys.model().mass[i / 2];
+    return f;
+  };
+  JacobianPair out;
+  ForceJacobians jac;
+  sys.forceJacobians(y, t, jac);
+  out.k = denseOf(jac.dfdx, n);
+  out.d = denseOf(jac.dfdv, n);
+  out.kFd.resize(n, n);
+  out.dFd.resize(n, n);
+  const double eps = 1e-7;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::Index offset : {Eigen::Index(0), v}) {
+      Eigen::VectorXd plus = y, minus = y;
+      plus[offset + j] += eps;
+      minus[offset + j] -= eps;
+      (offset == 0 ? out.kFd : out.dFd).col(j) = (force(plus) - force(minus)) / (2 * eps);
+    }
+  }
+  return out;
+}
+
+double largestEigenvalue(const Eigen::MatrixXd& m) {
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(m).eigenvalues().maxCoeff();
+}
+
+}  // namespace
+
+TEST_CASE("force Jacobians for backward Euler match finite differences") {
+  SUBCASE("a stretched damped spring, drag and an active mouse") {
+    SystemBuilder b;
+    ParticleSpec p0 = particleAt(0.1, 0.2), p1 = particleAt(1.3, 0.9, 2.0), p2 = particleAt(-0.4, 1.5, 0.5);
+    p1.vel = Vec2(0.3, -0.2);
+    const int a = b.addParticle(p0), c = b.addParticle(p1), e = b.addParticle(p2);
+    auto& springs = b.emplaceForce<DampedSpringForce>();
+    springs.add({Endpoint::ofParticle(a), Endpoint::ofParticle(c), 0.9, 40.0, 0.0});  // stretched: |l| = 1.39
+    springs.add({Endpoint::ofParticle(c), Endpoint::ofParticle(e), 1.0, 25.0, 0.7});
+    b.emplaceForce<DragForce>(0.3);
+    b.emplaceForce<MouseSpringForce>(MouseScript{Endpoint::ofParticle(e), 0.0, 1.0, {Vec2(0, 0), Vec2(1, 1)}, 15.0});
+    b.emplaceForce<GravityForce>(Vec2(0, -9.81));
+    System sys = b.build();
+    // ∂f/∂v is exact at any velocity (f is linear in v); ∂f/∂x leaves out the damping's
+    // dependence on position by design, which vanishes at rest: compare K there.
+    const JacobianPair moving = jacobiansAt(sys, sys.state(), 0.5);
+    CHECK((moving.d - moving.dFd).norm() < 1e-6 * moving.d.norm());
+    CHECK(moving.d.norm() > 0.3);
+    Eigen::VectorXd atRest = sys.state();
+    atRest.segment(sys.layout().velocityOffset(), 6).setZero();
+    const JacobianPair j = jacobiansAt(sys, atRest, 0.5);
+    CHECK((j.k - j.kFd).norm() < 1e-5 * j.k.norm());
+    CHECK((j.k - j.k.transpose()).norm() == 0.0);
+    CHECK(largestEigenvalue(j.k) <= 1e-12);
+    CHECK(largestEigenvalue(j.d) <= 1e-12);
+  }
+  SUBCASE("undamped springs at rest: exact where stretched, the compressive part clamped") {
+    SystemBuilder b;
+    const int a = b.addParticle(particleAt(0.0, 0.0)), c = b.addParticle(particleAt(1.2, 0.5));
+    const int e = b.addParticle(particleAt(1.5, 1.0));
+    auto& springs = b.emplaceForce<DampedSpringForce>();
+    springs.add({Endpoint::ofParticle(a), Endpoint::ofParticle(c), 1.0, 40.0, 0.0});  // |l| = 1.3: stretched
+    System stretched = b.build();
+    JacobianPair j = jacobiansAt(stretched, stretched.state(), 0.0);
+    CHECK((j.k - j.kFd).norm() < 1e-5 * j.k.norm());
+
+    SystemBuilder b2;
+    const int a2 = b2.addParticle(particleAt(0.0, 0.0)), c2 = b2.addParticle(particleAt(0.6, 0.25));
+    b2.addParticle(particleAt(1.5, 1.0));
+    b2.emplaceForce<DampedSpringForce>().add({Endpoint::ofParticle(a2), Endpoint::ofParticle(c2), 1.0, 40.0, 0.0});
+    System compressed = b2.build();  // |l| = 0.65 < 1
+    j = jacobiansAt(compressed, compressed.state(), 0.0);
+    // Along the spring, exact; across it the true stiffness is positive (buckling), clamped to 0.
+    const Vec2 u = Vec2(0.6, 0.25).normalized(), across(-u.y(), u.x());
+    const Eigen::Matrix2d kaa = j.k.block<2, 2>(0, 0), kaaFd = j.kFd.block<2, 2>(0, 0);
+    CHECK(u.dot(kaa * u) == doctest::Approx(u.dot(kaaFd * u)).epsilon(1e-6));
+    CHECK(across.dot(kaaFd * across) > 1.0);
+    CHECK(std::abs(across.dot(kaa * across)) < 1e-12);
+    CHECK(largestEigenvalue(j.k) <= 1e-12);
+    (void)e;
+  }
+  SUBCASE("penalty contacts: half-plane exact, disk along its normal") {
+    SystemBuilder b;
+    b.addParticle(particleAt(0.3, -0.05));  // 5 cm into the ground
+    b.addParticle(particleAt(2.0, 0.9));    // inside the disk below
+    b.addCollider(std::make_unique<HalfPlaneCollider>(Vec2(0, 1), 0.0, PenaltyParams{2e4, 3.0}));
+    b.addCollider(std::make_unique<DiskCollider>(Vec2(2.0, 0.4), 0.6, PenaltyParams{1e4, 0.0}));
+    System sys = b.build();
+    const JacobianPair j = jacobiansAt(sys, sys.state(), 0.0);
+    CHECK((j.k.block<2, 2>(0, 0) - j.kFd.block<2, 2>(0, 0)).norm() < 1e-4 * j.k.norm());
+    CHECK((j.d - j.dFd).norm() < 1e-6);
+    const Vec2 n(0, 1);  // the disk's normal at (2.0, 0.9)
+    CHECK(n.dot(j.k.block<2, 2>(2, 2) * n) == doctest::Approx(n.dot(j.kFd.block<2, 2>(2, 2) * n)).epsilon(1e-5));
+    CHECK(n.dot(j.k.block<2, 2>(2, 2) * n) < 0.0);
+  }
 }

@@ -2,7 +2,11 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <utility>
 
+#include "core/forces/drag_force.hpp"
+#include "core/integrators/symplectic_euler.hpp"
+#include "core/integrators/verlet.hpp"
 #include "support.hpp"
 
 using namespace particles;
@@ -26,12 +30,25 @@ TEST_CASE("integrators are chosen by name") {
   CHECK(integratorFromName("euler") == Integrator::Euler);
   CHECK(integratorFromName("midpoint") == Integrator::Midpoint);
   CHECK(integratorFromName("rk4") == Integrator::Rk4);
+  CHECK(integratorFromName("symplectic_euler") == Integrator::SymplecticEuler);
+  CHECK(integratorFromName("verlet") == Integrator::Verlet);
+  CHECK(integratorFromName("backward_euler") == Integrator::BackwardEuler);
   CHECK_FALSE(integratorFromName("RK4").has_value());
-  CHECK_FALSE(integratorFromName("verlet").has_value());
-  for (Integrator i : allIntegrators()) CHECK(integratorFromName(integratorName(i)) == i);
+  CHECK_FALSE(integratorFromName("leapfrog").has_value());
+  // Every enum value has its row in the registry, once.
+  CHECK(allIntegrators().size() == 6);
+  for (Integrator i : allIntegrators()) {
+    CHECK(integratorFromName(integratorName(i)) == i);
+    CHECK_FALSE(integratorSummary(i).empty());
+  }
   CHECK(derivEvalsPerStep(Integrator::Euler) == 1);
   CHECK(derivEvalsPerStep(Integrator::Midpoint) == 2);
   CHECK(derivEvalsPerStep(Integrator::Rk4) == 4);
+  CHECK(derivEvalsPerStep(Integrator::SymplecticEuler) == 1);
+  CHECK(derivEvalsPerStep(Integrator::Verlet) == 1);
+  CHECK(derivEvalsPerStep(Integrator::BackwardEuler) == 1);
+  CHECK_FALSE(projectsConstraints(Integrator::Rk4));
+  CHECK(projectsConstraints(Integrator::Verlet));
 }
 
 TEST_CASE("convergence order on an undamped harmonic oscillator") {
@@ -44,7 +61,8 @@ TEST_CASE("convergence order on an undamped harmonic oscillator") {
     double expectedRatio;
   };
   for (const Case& c : {Case{Integrator::Euler, 1e-3, 2.0}, Case{Integrator::Midpoint, 1e-2, 4.0},
-                        Case{Integrator::Rk4, 5e-2, 16.0}}) {
+                        Case{Integrator::Rk4, 5e-2, 16.0}, Case{Integrator::SymplecticEuler, 1e-3, 2.0},
+                        Case{Integrator::Verlet, 1e-2, 4.0}, Case{Integrator::BackwardEuler, 1e-3, 2.0}}) {
     CAPTURE(integratorName(c.integrator));
     const double coarse = oscillatorError(c.integrator, c.h);
     const double fine = oscillatorError(c.integrator, c.h / 2);
@@ -129,4 +147,251 @@ TEST_CASE("integrators on a plain ODE: y' = -y") {
   y = Eigen::VectorXd::Ones(1);
   integrateRk4(f, y, 0.0, h, w);
   CHECK(y[0] == doctest::Approx(1 - h + h * h / 2 - h * h * h / 6 + h * h * h * h / 24).epsilon(1e-15));
+}
+
+namespace {
+
+// A damped, driven 2-D problem with every velocity-dependent force: two free particles joined by a
+// damped spring, one on a damped spring to a fixed anchor, under gravity and drag. Its x is
+// compared with RK4 at a step far below the tested ones.
+System dampedPair() {
+  SystemBuilder b;
+  const int anchor = b.addParticle(particleAt(0, 0, 1.0, true));
+  ParticleSpec p1 = particleAt(0.9, -0.4, 0.7);
+  p1.vel = Vec2(0.3, 0.8);
+  const int i1 = b.addParticle(p1);
+  const int i2 = b.addParticle(particleAt(1.6, -1.1, 1.3));
+  auto& springs = b.emplaceForce<DampedSpringForce>();
+  springs.add({Endpoint::ofParticle(anchor), Endpoint::ofParticle(i1), 0.8, 12.0, 0.4});
+  springs.add({Endpoint::ofParticle(i1), Endpoint::ofParticle(i2), 0.7, 20.0, 0.3});
+  b.emplaceForce<GravityForce>(Vec2(0.0, -9.81));
+  b.emplaceForce<DragForce>(0.15);
+  return b.build();
+}
+
+Eigen::VectorXd dampedPairAt(Integrator integrator, double h, double duration) {
+  System sys = dampedPair();
+  Solver solver(integrator);
+  advance(sys, solver, h, std::lround(duration / h));
+  return sys.state();
+}
+
+}  // namespace
+
+TEST_CASE("convergence orders with damping and drag (velocity-dependent forces)") {
+  // Verlet evaluates a₁ at a predicted velocity and backward Euler linearises the damping: both
+  // keep their orders (2 and 1) when forces depend on v. Errors against RK4 at h = 1e-4.
+  const double duration = 1.0;
+  const Eigen::VectorXd reference = dampedPairAt(Integrator::Rk4, 1e-4, duration);
+  struct Case {
+    Integrator integrator;
+    double h;
+    double expectedRatio;
+  };
+  for (const Case& c : {Case{Integrator::SymplecticEuler, 2e-3, 2.0}, Case{Integrator::Verlet, 1e-2, 4.0},
+                        Case{Integrator::BackwardEuler, 2e-3, 2.0}}) {
+    CAPTURE(integratorName(c.integrator));
+    const double coarse = (dampedPairAt(c.integrator, c.h, duration) - reference).norm();
+    const double fine = (dampedPairAt(c.integrator, c.h / 2, duration) - reference).norm();
+    CAPTURE(coarse);
+    CAPTURE(fine);
+    CHECK(coarse / fine == doctest::Approx(c.expectedRatio).epsilon(0.15));
+  }
+}
+
+namespace {
+
+struct EnergyHistory {
+  double worst = 0.0;      // largest |E − E₀| / E₀
+  double firstMean = 0.0;  // mean of (E − E₀)/E₀ over the first tenth of the run
+  double lastMean = 0.0;   // … and over the last tenth
+  bool monotoneDecreasing = true;
+};
+
+// The undamped oscillator of oscillatorError (ω = 2, period π) over `periods` periods at h.
+EnergyHistory oscillatorEnergy(Integrator integrator, double h, double periods) {
+  System sys = harmonicOscillator(4.0, 0.5);
+  Solver solver(integrator);
+  const long steps = std::lround(periods * M_PI / h);
+  const double e0 = sys.energy().total();
+  EnergyHistory out;
+  double previous = e0;
+  const long tenth = steps / 10;
+  for (long i = 0; i < steps; ++i) {
+    solver.doStep(sys, h);
+    const double e = sys.energy().total();
+    const double rel = (e - e0) / e0;
+    out.worst = std::max(out.worst, std::abs(rel));
+    if (i < tenth) out.firstMean += rel / double(tenth);
+    if (i >= steps - tenth) out.lastMean += rel / double(tenth);
+    if (!(e < previous)) out.monotoneDecreasing = false;
+    previous = e;
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("undamped oscillator over 10^4 periods: symplectic Euler and Verlet keep the energy bounded") {
+  // h ω = 0.2. A symplectic map conserves a modified energy within O(h^p) of the true one, so the
+  // error oscillates with the period and does not drift: its mean over the last thousand periods
+  // equals its mean over the first. On this linear oscillator the conserved quantities are exact
+  // quadratics: v² + ω²x² − h ω² x v for symplectic Euler, whose energy error then peaks at
+  // (hω/2) / (1 − hω/2) = 1/9, and v² / (1 − (hω)²/4) + ω²x² for Verlet, peaking at
+  // ((hω)²/4) / (1 − (hω)²/4) = 0.0101.
+  const double h = 0.1, periods = 1e4;
+  for (const auto& [integrator, peak] : {std::pair{Integrator::SymplecticEuler, 1.0 / 9.0},
+                                         std::pair{Integrator::Verlet, 0.01 / 0.99}}) {
+    CAPTURE(integratorName(integrator));
+    const EnergyHistory e = oscillatorEnergy(integrator, h, periods);
+    CAPTURE(e.worst);
+    CAPTURE(e.firstMean);
+    CAPTURE(e.lastMean);
+    CHECK(e.worst == doctest::Approx(peak).epsilon(1e-3));
+    CHECK(std::abs(e.lastMean - e.firstMean) < 1e-3 * e.worst);
+  }
+  {
+    // For contrast, RK4 at the same step is not symplectic: its energy drifts down, steadily
+    // (linearly in time, so the last tenth's mean is about 19 times the first's).
+    const EnergyHistory e = oscillatorEnergy(Integrator::Rk4, h, periods);
+    CAPTURE(e.firstMean);
+    CAPTURE(e.lastMean);
+    CHECK(e.firstMean < 0.0);
+    CHECK(e.lastMean < 10.0 * e.firstMean);
+    CHECK(e.lastMean < -1e-3);
+  }
+}
+
+TEST_CASE("backward Euler: the energy of a passive system falls every step") {
+  // On the undamped oscillator E₁ = E₀ / (1 + h² ω²) exactly (the spring is linear, so the one
+  // Newton step is the implicit step itself).
+  const EnergyHistory e = oscillatorEnergy(Integrator::BackwardEuler, 0.01, 100);
+  CHECK(e.monotoneDecreasing);
+  System sys = harmonicOscillator(4.0, 0.5);
+  Solver solver(Integrator::BackwardEuler);
+  const double e0 = sys.energy().total(), h = 0.05;
+  solver.doStep(sys, h);
+  CHECK(sys.energy().total() == doctest::Approx(e0 / (1.0 + h * h * 4.0)).epsilon(1e-9));
+  // A damped, driven system with gravity: energy is not conserved there, but the damped pair's
+  // mechanical energy still only falls.
+  System pair = dampedPair();
+  Solver s2(Integrator::BackwardEuler);
+  double previous = pair.energy().total();
+  bool falls = true;
+  for (int i = 0; i < 2000; ++i) {
+    s2.doStep(pair, 0.01);
+    const double now = pair.energy().total();
+    if (!(now <= previous)) falls = false;
+    previous = now;
+  }
+  CHECK(falls);
+}
+
+TEST_CASE("backward Euler is stable on a stiff undamped oscillator at h ω = 100") {
+  // ω = 100 rad/s, h = 1 s: every explicit method here explodes within a few steps (test_solver.cpp);
+  // backward Euler's amplitude shrinks by 1/√(1 + h²ω²) ≈ 1/100 a step.
+  System sys = harmonicOscillator(1e4, 0.5);
+  Solver solver(Integrator::BackwardEuler);
+  double worst = 0.0;
+  for (int i = 0; i < 1000; ++i) {
+    solver.doStep(sys, 1.0);
+    worst = std::max(worst, std::abs(sys.view().pos(1).x() - 1.0));
+  }
+  CHECK(sys.state().allFinite());
+  CHECK(worst < 0.5 / 50.0);
+  CHECK(std::abs(sys.view().pos(1).x() - 1.0) < 1e-12);
+  for (Integrator explicitOne : {Integrator::Euler, Integrator::Rk4, Integrator::SymplecticEuler, Integrator::Verlet}) {
+    System other = harmonicOscillator(1e4, 0.5);
+    Solver s2(explicitOne);
+    CHECK_THROWS_AS(advance(other, s2, 1.0, 100), SimulationError);
+  }
+}
+
+TEST_CASE("backward Euler keeps fixed particles in place and treats body rotation explicitly") {
+  SystemBuilder b;
+  const int anchor = b.addParticle(particleAt(0.2, 0.3, 1.0, true));
+  const int bob = b.addParticle(particleAt(1.0, 0.0));
+  RigidBodySpec body;
+  body.pos = Vec2(0.0, 5.0);
+  body.omega = 2.0;
+  body.size = Vec2(0.5, 0.2);
+  b.addRigidBody(body);
+  b.emplaceForce<DampedSpringForce>().add({Endpoint::ofParticle(bob), Endpoint::ofParticle(anchor), 0.5, 1e3, 1.0});
+  b.emplaceForce<GravityForce>(Vec2(0.0, -9.81));
+  System sys = b.build();
+  Solver solver(Integrator::BackwardEuler);
+  advance(sys, solver, 0.1, 50);
+  CHECK(sys.view().pos(anchor) == Vec2(0.2, 0.3));
+  CHECK(sys.view().vel(anchor) == Vec2(0.0, 0.0));
+  // No torque: ω stays and θ = ω t; the centre falls as backward Euler's free fall,
+  // y_n = y₀ − g h² n(n+1)/2 (each step's velocity is the end-of-step one).
+  CHECK(sys.view().omega(0) == 2.0);
+  CHECK(sys.view().angle(0) == doctest::Approx(2.0 * 5.0).epsilon(1e-12));
+  CHECK(sys.view().pos(sys.layout().bodyPoint(0)).y() == doctest::Approx(5.0 - 9.81 * 0.01 * 50 * 51 / 2).epsilon(1e-12));
+}
+
+TEST_CASE("Verlet evaluates once per step after the first, and afresh when the state was moved") {
+  int evals = 0;
+  const DerivFn f = [&evals](const Eigen::VectorXd& y, double, Eigen::VectorXd& dydt) {
+    ++evals;
+    dydt.resize(y.size());
+    dydt.head(2) = y.tail(2);       // dx/dt = v
+    dydt.tail(2) = -4.0 * y.head(2);  // dv/dt = −4 x
+  };
+  const StateLayout layout{1, 0};
+  IntegratorScratch w;
+  Eigen::VectorXd y(4);
+  y << 1.0, 0.0, 0.0, 1.0;
+  integrateVerlet(f, layout, y, 0.0, 0.1, w);
+  CHECK(evals == 2);
+  for (int i = 1; i <= 10; ++i) integrateVerlet(f, layout, y, 0.1 * i, 0.1, w);
+  CHECK(evals == 12);
+  y[0] += 1e-3;  // moved from outside: the cached a₀ no longer belongs to y
+  integrateVerlet(f, layout, y, 1.1, 0.1, w);
+  CHECK(evals == 14);
+  integrateVerlet(f, layout, y, 5.0, 0.1, w);  // a jump in time
+  CHECK(evals == 16);
+  // One step by hand: x₁ = x₀ + h v₀ + h²/2 a₀, v₁ = v₀ + h/2 (a₀ + a(x₁)).
+  IntegratorScratch fresh;
+  Eigen::VectorXd z(4);
+  z << 1.0, 0.0, 0.0, 1.0;
+  integrateVerlet(f, layout, z, 0.0, 0.1, fresh);
+  const double x1 = 1.0 - 0.5 * 0.01 * 4.0;
+  CHECK(z[0] == doctest::Approx(x1).epsilon(1e-15));
+  CHECK(z[1] == doctest::Approx(0.1).epsilon(1e-15));
+  CHECK(z[2] == doctest::Approx(0.05 * (-4.0 - 4.0 * x1)).epsilon(1e-15));
+  CHECK(z[3] == doctest::Approx(1.0 + 0.05 * (0.0 - 4.0 * 0.1)).epsilon(1e-15));
+}
+
+TEST_CASE("symplectic Euler: velocity first, then position with the new velocity") {
+  const DerivFn f = [](const Eigen::VectorXd& y, double, Eigen::VectorXd& dydt) {
+    dydt.resize(y.size());
+    dydt.head(2) = y.tail(2);
+    dydt.tail(2) = -4.0 * y.head(2);
+  };
+  IntegratorScratch w;
+  Eigen::VectorXd y(4);
+  y << 1.0, 0.0, 0.0, 1.0;
+  integrateSymplecticEuler(f, StateLayout{1, 0}, y, 0.0, 0.1, w);
+  CHECK(y[2] == doctest::Approx(-0.4).epsilon(1e-15));
+  CHECK(y[0] == doctest::Approx(1.0 - 0.04).epsilon(1e-15));
+  CHECK(y[3] == doctest::Approx(1.0).epsilon(1e-15));
+  CHECK(y[1] == doctest::Approx(0.1).epsilon(1e-15));
+}
+
+TEST_CASE("rigid bodies under the new integrators: free spin and free fall") {
+  for (Integrator integrator : {Integrator::SymplecticEuler, Integrator::Verlet, Integrator::BackwardEuler}) {
+    CAPTURE(integratorName(integrator));
+    SystemBuilder b;
+    RigidBodySpec body;
+    body.pos = Vec2(0.0, 0.0);
+    body.vel = Vec2(1.0, 0.0);
+    body.omega = 3.0;
+    b.addRigidBody(body);
+    System sys = b.build();
+    Solver solver(integrator);
+    advance(sys, solver, 0.01, 100);
+    CHECK(sys.view().angle(0) == doctest::Approx(3.0).epsilon(1e-12));
+    CHECK(sys.view().pos(0).x() == doctest::Approx(1.0).epsilon(1e-12));
+  }
 }

@@ -17,6 +17,8 @@ using namespace particles::test;
 
 TEST_CASE("an absurd dt on a stiff spring gives the explosion error, not NaNs") {
   for (Integrator integrator : allIntegrators()) {
+    // Backward Euler is stable at any step on a spring (test_integrators.cpp checks it).
+    if (integrator == Integrator::BackwardEuler) continue;
     CAPTURE(integratorName(integrator));
     System sys = harmonicOscillator(1e6, 0.1);  // ω = 1000 rad/s
     Solver solver(integrator);
@@ -75,25 +77,28 @@ System clothWithRail() {
 }  // namespace
 
 TEST_CASE("two identical runs are bit-for-bit identical") {
-  System a = clothWithRail(), b = clothWithRail();
-  Solver sa(Integrator::Rk4), sb(Integrator::Rk4);
-  // The rail holds the top row up: nothing else does (no particle is fixed), so without it the
-  // cloth falls ½ g t² = 20 m in these 2 s. 1e-4 m is the drift bound of the constraint tests
-  // (test_constraints.cpp).
-  double worstRail = 0.0;
-  for (int s = 0; s < 400; ++s) {
-    sa.doStep(a, 0.005);
-    // Particles 0 … 9 are the top row: the grid is the first thing the builder was given.
-    for (int c = 0; c < 10; ++c) worstRail = std::max(worstRail, std::abs(a.view().pos(c).y() - kRailHeight));
+  for (Integrator integrator : allIntegrators()) {
+    CAPTURE(integratorName(integrator));
+    System a = clothWithRail(), b = clothWithRail();
+    Solver sa(integrator), sb(integrator);
+    // The rail holds the top row up: nothing else does (no particle is fixed), so without it the
+    // cloth falls ½ g t² = 20 m in these 2 s. 1e-4 m is the drift bound of the constraint tests
+    // (test_constraints.cpp). Explicit Euler's drift grows with its energy error: its bound is looser.
+    double worstRail = 0.0;
+    for (int s = 0; s < 400; ++s) {
+      sa.doStep(a, 0.005);
+      // Particles 0 … 9 are the top row: the grid is the first thing the builder was given.
+      for (int c = 0; c < 10; ++c) worstRail = std::max(worstRail, std::abs(a.view().pos(c).y() - kRailHeight));
+    }
+    advance(b, sb, 0.005, 400);
+    CAPTURE(worstRail);
+    CHECK(worstRail < (integrator == Integrator::Euler ? 1e-2 : 1e-4));
+    REQUIRE(a.state().size() == b.state().size());
+    CHECK(std::memcmp(a.state().data(), b.state().data(), sizeof(double) * size_t(a.state().size())) == 0);
+    CHECK(a.time() == b.time());
+    // …and the run did something.
+    CHECK((a.state() - clothWithRail().state()).norm() > 0.1);
   }
-  advance(b, sb, 0.005, 400);
-  CAPTURE(worstRail);
-  CHECK(worstRail < 1e-4);
-  REQUIRE(a.state().size() == b.state().size());
-  CHECK(std::memcmp(a.state().data(), b.state().data(), sizeof(double) * size_t(a.state().size())) == 0);
-  CHECK(a.time() == b.time());
-  // …and the run did something.
-  CHECK((a.state() - clothWithRail().state()).norm() > 0.1);
 }
 
 TEST_CASE("the builder rejects bad masses, sizes and references") {

@@ -39,6 +39,22 @@ void applyCollisions(const Model& model, const StateView& s, const ColliderList&
   });
 }
 
+void addCollisionJacobians(const Model& model, const StateView& s, const ColliderList& colliders, ForceJacobians& out) {
+  if (colliders.empty()) return;
+  forEachCollisionPoint(model, [&](const Endpoint& e) {
+    const Vec2 p = endpointPosition(s, e);
+    const int point = e.point(model.layout);
+    for (const auto& collider : colliders) {
+      const auto c = collider->contact(p);
+      if (!c) continue;
+      const PenaltyParams& k = collider->params();
+      const Eigen::Matrix2d nn = c->normal * c->normal.transpose();
+      ForceJacobians::addBlock(out.dfdx, point, point, (-2.0 * k.k * c->depth) * nn);
+      if (k.damping != 0.0) ForceJacobians::addBlock(out.dfdv, point, point, -k.damping * nn);
+    }
+  });
+}
+
 double collisionPotential(const Model& model, const StateView& s, const ColliderList& colliders) {
   double u = 0.0;
   forEachCollisionPoint(model, [&](const Endpoint& e) {

@@ -1,15 +1,17 @@
 #include "core/constraint_solver.hpp"
 
+#include <algorithm>
+
 namespace particles {
 
 template <class Precond>
-void ConstraintSolver::runCg(ConstraintSolveStats& stats) {
+void ConstraintSolver::runCg(Eigen::VectorXd& x, ConstraintSolveStats& stats) {
   // A local solver: it keeps a reference to a_, which must not outlive a move of this object.
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper, Precond> cg;
   if (options_.maxIterations > 0) cg.setMaxIterations(options_.maxIterations);
   cg.setTolerance(options_.tolerance);
   cg.compute(a_);
-  lambda_ = cg.solveWithGuess(rhs_, lambda_);
+  x = cg.solveWithGuess(rhs_, x);
   stats.iterations = int(cg.iterations());
   stats.relativeResidual = cg.error();
 }
@@ -39,33 +41,24 @@ Preconditioner ConstraintSolver::automaticPreconditioner(const Model& model) {
   return edges > 0 ? Preconditioner::incompleteCholesky : Preconditioner::jacobi;
 }
 
-ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView& s, const ConstraintList& constraints,
-                                             ForceAccumulator& acc) {
+void ConstraintSolver::assemble(const Model& model, const StateView& s, const ConstraintList& constraints) {
   const int m = int(constraints.size());
-  ConstraintSolveStats stats;
-  stats.rows = m;
-  if (m == 0) return stats;
   if (columnOf_.size() != size_t(model.layout.numParticles)) columnOf_.assign(size_t(model.layout.numParticles), -1);
   touched_.clear();
-
   rows_.resize(size_t(m));
-  rhs_.resize(m);
   jwTriplets_.clear();
   jTriplets_.clear();
   diagTriplets_.clear();
-  std::vector<double> diag(size_t(m), 0.0);
+  diag_.assign(size_t(m), 0.0);
+  inert_.assign(size_t(m), 0);
   double diagSum = 0.0;
   for (int i = 0; i < m; ++i) {
-    const Constraint& c = *constraints[size_t(i)];
-    ConstraintRow& row = rows_[size_t(i)] = c.evaluate(s);
-    double jdotQdot = 0.0, jwq = 0.0;
+    ConstraintRow& row = rows_[size_t(i)] = constraints[size_t(i)]->evaluate(s);
     for (int k = 0; k < row.count; ++k) {
       const int p = row.particle[size_t(k)];
       const Vec2& jk = row.J[size_t(k)];
       const double w = model.invMass[p];
-      jdotQdot += row.Jdot[size_t(k)].dot(s.vel(p));
-      jwq += w * jk.dot(acc.forceOn(p));
-      diag[size_t(i)] += w * jk.squaredNorm();
+      diag_[size_t(i)] += w * jk.squaredNorm();
       int& column = columnOf_[size_t(p)];
       if (column < 0) {
         column = int(touched_.size());
@@ -76,27 +69,21 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
         if (w != 0.0) jwTriplets_.emplace_back(i, 2 * column + d, w * jk[d]);
       }
     }
-    rhs_[i] = -jdotQdot - jwq - c.feedback().ks * row.C - c.feedback().kd * row.Cdot;
-    diagSum += diag[size_t(i)];
+    diagSum += diag_[size_t(i)];
   }
 
   const double epsilon = options_.regularization * diagSum / m;
   for (int i = 0; i < m; ++i) {
-    if (diag[size_t(i)] == 0.0) {
+    if (diag_[size_t(i)] == 0.0) {
       // Only fixed particles: nothing can move, so no force is needed.
       diagTriplets_.emplace_back(i, i, 1.0);
-      rhs_[i] = 0.0;
+      inert_[size_t(i)] = 1;
     } else {
       diagTriplets_.emplace_back(i, i, epsilon);
     }
   }
 
-  Preconditioner preconditioner = options_.preconditioner;
-  if (preconditioner == Preconditioner::automatic) preconditioner = automaticPreconditioner(model);
-  stats.preconditioner = preconditioner;
-
   const int cols = 2 * int(touched_.size());
-  for (int p : touched_) columnOf_[size_t(p)] = -1;
   jw_.resize(m, cols);
   jw_.setFromTriplets(jwTriplets_.begin(), jwTriplets_.end());
   j_.resize(m, cols);
@@ -104,13 +91,45 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
   Eigen::SparseMatrix<double> regularizer(m, m);
   regularizer.setFromTriplets(diagTriplets_.begin(), diagTriplets_.end());
   a_ = Eigen::SparseMatrix<double>(jw_ * j_.transpose()) + regularizer;
+}
 
-  if (lambda_.size() != m) lambda_.setZero(m);
-  if (preconditioner == Preconditioner::incompleteCholesky) {
-    runCg<Eigen::IncompleteCholesky<double>>(stats);
-  } else {
-    runCg<Eigen::DiagonalPreconditioner<double>>(stats);
+void ConstraintSolver::solveAssembled(const Model& model, Eigen::VectorXd& x, ConstraintSolveStats& stats) {
+  // automaticPreconditioner reads the compact columns, which are cleared here for the next call.
+  Preconditioner preconditioner = options_.preconditioner;
+  if (preconditioner == Preconditioner::automatic) preconditioner = automaticPreconditioner(model);
+  for (int p : touched_) columnOf_[size_t(p)] = -1;
+  stats.preconditioner = preconditioner;
+  for (Eigen::Index i = 0; i < rhs_.size(); ++i) {
+    if (inert_[size_t(i)]) rhs_[i] = 0.0;
   }
+  if (x.size() != rhs_.size()) x.setZero(rhs_.size());
+  if (preconditioner == Preconditioner::incompleteCholesky) {
+    runCg<Eigen::IncompleteCholesky<double>>(x, stats);
+  } else {
+    runCg<Eigen::DiagonalPreconditioner<double>>(x, stats);
+  }
+}
+
+ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView& s, const ConstraintList& constraints,
+                                             ForceAccumulator& acc) {
+  const int m = int(constraints.size());
+  ConstraintSolveStats stats;
+  stats.rows = m;
+  if (m == 0) return stats;
+  assemble(model, s, constraints);
+  rhs_.resize(m);
+  for (int i = 0; i < m; ++i) {
+    const ConstraintRow& row = rows_[size_t(i)];
+    double jdotQdot = 0.0, jwq = 0.0;
+    for (int k = 0; k < row.count; ++k) {
+      const int p = row.particle[size_t(k)];
+      jdotQdot += row.Jdot[size_t(k)].dot(s.vel(p));
+      jwq += model.invMass[p] * row.J[size_t(k)].dot(acc.forceOn(p));
+    }
+    const ConstraintFeedback& feedback = constraints[size_t(i)]->feedback();
+    rhs_[i] = -jdotQdot - jwq - feedback.ks * row.C - feedback.kd * row.Cdot;
+  }
+  solveAssembled(model, lambda_, stats);
 
   // Q̂ = Jᵀ λ
   for (int i = 0; i < m; ++i) {
@@ -118,6 +137,50 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
     for (int k = 0; k < row.count; ++k) acc.addForce(row.particle[size_t(k)], lambda_[i] * row.J[size_t(k)]);
   }
   return stats;
+}
+
+void ConstraintSolver::moveAlongRows(const Model& model, Eigen::VectorXd& y, Eigen::Index offset) const {
+  for (size_t i = 0; i < rows_.size(); ++i) {
+    const ConstraintRow& row = rows_[i];
+    for (int k = 0; k < row.count; ++k) {
+      const int p = row.particle[size_t(k)];
+      const Vec2 dq = model.invMass[p] * mu_[Eigen::Index(i)] * row.J[size_t(k)];
+      y[offset + 2 * p] += dq.x();
+      y[offset + 2 * p + 1] += dq.y();
+    }
+  }
+}
+
+void ConstraintSolver::projectPositions(const Model& model, Eigen::VectorXd& y, const ConstraintList& constraints) {
+  const int m = int(constraints.size());
+  if (m == 0) return;
+  constexpr int kMaxNewtonSteps = 4;
+  constexpr double kPositionTolerance = 1e-12;  // m
+  ConstraintSolveStats stats;
+  for (int step = 0; step < kMaxNewtonSteps; ++step) {
+    const StateView s(model.layout, y);
+    double worst = 0.0;
+    for (const auto& c : constraints) worst = std::max(worst, c->violation(s));
+    if (worst <= kPositionTolerance) break;
+    assemble(model, s, constraints);
+    rhs_.resize(m);
+    for (int i = 0; i < m; ++i) rhs_[i] = -rows_[size_t(i)].C;
+    mu_.setZero(m);
+    solveAssembled(model, mu_, stats);
+    moveAlongRows(model, y, 0);
+  }
+}
+
+void ConstraintSolver::projectVelocities(const Model& model, Eigen::VectorXd& y, const ConstraintList& constraints) {
+  const int m = int(constraints.size());
+  if (m == 0) return;
+  ConstraintSolveStats stats;
+  assemble(model, StateView(model.layout, y), constraints);
+  rhs_.resize(m);
+  for (int i = 0; i < m; ++i) rhs_[i] = -rows_[size_t(i)].Cdot;
+  mu_.setZero(m);
+  solveAssembled(model, mu_, stats);
+  moveAlongRows(model, y, model.layout.velocityOffset());
 }
 
 }  // namespace particles

@@ -61,9 +61,29 @@ class ConstraintSolver {
                              ForceAccumulator& acc);
   const Eigen::VectorXd& lambda() const { return lambda_; }
 
+  // For integrators that keep constraints by projection rather than by the multipliers' forces
+  // (symplectic Euler, Verlet, backward Euler: docs/physics.md §3). Each moves y along W Jᵀ (the
+  // mass-weighted closest point; Cline & Pai 2003's post-stabilisation):
+  //   positions   (J W Jᵀ) μ = −C,   q ← q + W Jᵀ μ   Newton steps until every violation ≤ 1e-12 m (≤ 4)
+  //   velocities  (J W Jᵀ) μ = −J q̇, q̇ ← q̇ + W Jᵀ μ  once (Ċ = J q̇ is linear in q̇)
+  // projectVelocities uses J at y's positions as they are; project does positions, then velocities.
+  void projectPositions(const Model& model, Eigen::VectorXd& y, const ConstraintList& constraints);
+  void projectVelocities(const Model& model, Eigen::VectorXd& y, const ConstraintList& constraints);
+  void project(const Model& model, Eigen::VectorXd& y, const ConstraintList& constraints) {
+    projectPositions(model, y, constraints);
+    projectVelocities(model, y, constraints);
+  }
+
  private:
+  // Evaluates every row at s and assembles J W Jᵀ (plus ε on the diagonal, and 1 for rows that
+  // touch only fixed particles, whose inert_ flag is then set) into a_, J into j_, W J into jw_.
+  void assemble(const Model& model, const StateView& s, const ConstraintList& constraints);
+  // Solves a_ x = rhs_ by CG from the guess in x, with the preconditioner chosen as above.
   template <class Precond>
-  void runCg(ConstraintSolveStats& stats);
+  void runCg(Eigen::VectorXd& x, ConstraintSolveStats& stats);
+  void solveAssembled(const Model& model, Eigen::VectorXd& x, ConstraintSolveStats& stats);
+  // y[offset + 2p …] += W_p Jᵀ μ for every row's particles: the move of a projection.
+  void moveAlongRows(const Model& model, Eigen::VectorXd& y, Eigen::Index offset) const;
   // Incomplete Cholesky when rows join moving particles and no row closes a loop among them
   // (rows meeting only at fixed particles do not couple in J W Jᵀ), else Jacobi. Needs rows_
   // and the compact columns of the solve in progress.
@@ -77,8 +97,10 @@ class ConstraintSolver {
   std::vector<int> touched_;
   std::vector<int> parent_;  // union-find over compact columns, for automaticPreconditioner
   std::vector<Eigen::Triplet<double>> jwTriplets_, jTriplets_, diagTriplets_;
+  std::vector<double> diag_;
+  std::vector<char> inert_;  // per row: touches only fixed particles
   Eigen::SparseMatrix<double> jw_, j_, a_;
-  Eigen::VectorXd rhs_, lambda_;
+  Eigen::VectorXd rhs_, lambda_, mu_;
 };
 
 }  // namespace particles

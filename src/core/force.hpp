@@ -7,6 +7,7 @@
 
 #include "core/drawing.hpp"
 #include "core/force_accumulator.hpp"
+#include "core/force_jacobians.hpp"
 #include "core/kind.hpp"
 #include "core/model.hpp"
 
@@ -35,6 +36,9 @@ class Force {
   virtual bool isDissipative() const { return false; }
   // Adds what this force shows (springs, cursors) to the frame's drawing; nothing by default.
   virtual void draw(const StateView& s, double t, Drawing& out) const = 0;
+  // Adds ∂f/∂x and ∂f/∂v at (s, t) for the implicit integrator (core/force_jacobians.hpp: symmetric,
+  // negative semi-definite blocks). Nothing by default: the force is then taken explicitly.
+  virtual void addJacobians(const Model&, const StateView&, double, ForceJacobians&) const {}
   // Throws std::invalid_argument when the force refers to a particle or body the layout lacks.
   virtual void validate(const StateLayout&) const {}
 };

@@ -2,38 +2,92 @@
 
 #include <array>
 
+#include "core/integrators/backward_euler.hpp"
+#include "core/integrators/symplectic_euler.hpp"
+#include "core/integrators/verlet.hpp"
+#include "core/system.hpp"
+
 namespace particles {
 
 namespace {
-constexpr std::array<Integrator, 3> kAll{Integrator::Euler, Integrator::Midpoint, Integrator::Rk4};
+
+using StepFn = void (*)(System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
+
+DerivFn derivOf(System& system) {
+  return [&system](const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt) { system.derivEval(y, t, dydt); };
 }
 
-std::string_view integratorName(Integrator integrator) {
-  switch (integrator) {
-    case Integrator::Euler: return "euler";
-    case Integrator::Midpoint: return "midpoint";
-    case Integrator::Rk4: return "rk4";
+struct IntegratorEntry {
+  Integrator id;
+  std::string_view name;
+  int evalsPerStep;
+  bool projects;
+  std::string_view summary;
+  StepFn step;
+};
+
+// The registry: one row per integrator, in the order studies and help list them.
+const std::array<IntegratorEntry, 6> kIntegrators{{
+    {Integrator::Euler, "euler", 1, false, "explicit Euler, first order",
+     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
+       integrateEuler(derivOf(s), y, t, h, w);
+     }},
+    {Integrator::Midpoint, "midpoint", 2, false, "explicit midpoint, second order",
+     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
+       integrateMidpoint(derivOf(s), y, t, h, w);
+     }},
+    {Integrator::Rk4, "rk4", 4, false, "classic 4th-order Runge–Kutta",
+     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
+       integrateRk4(derivOf(s), y, t, h, w);
+     }},
+    {Integrator::SymplecticEuler, "symplectic_euler", 1, true, "semi-implicit Euler (v, then x), first order",
+     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
+       const DerivFn withoutConstraintForces = [&s](const Eigen::VectorXd& at, double time, Eigen::VectorXd& dydt) {
+         s.derivEval(at, time, dydt, System::ConstraintForces::skip);
+       };
+       VelocityProjection project;
+       if (!s.constraints().empty()) project = [&s](Eigen::VectorXd& at) { s.projectVelocitiesOntoConstraints(at); };
+       integrateSymplecticEuler(withoutConstraintForces, s.layout(), y, t, h, w, project);
+     }},
+    {Integrator::Verlet, "verlet", 1, true, "velocity Verlet, second order",
+     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
+       integrateVerlet(derivOf(s), s.layout(), y, t, h, w);
+     }},
+    {Integrator::BackwardEuler, "backward_euler", 1, true,
+     "implicit Euler, one Newton step (Baraff & Witkin 1998), first order",
+     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
+       integrateBackwardEuler(s, y, t, h, w);
+     }},
+}};
+
+const std::array<Integrator, kIntegrators.size()> kAll = [] {
+  std::array<Integrator, kIntegrators.size()> all{};
+  for (size_t i = 0; i < all.size(); ++i) all[i] = kIntegrators[i].id;
+  return all;
+}();
+
+const IntegratorEntry& entry(Integrator integrator) {
+  for (const IntegratorEntry& e : kIntegrators) {
+    if (e.id == integrator) return e;
   }
-  return "unknown";
+  return kIntegrators[0];  // unreachable: every enum value has a row (tested)
 }
+
+}  // namespace
+
+std::string_view integratorName(Integrator integrator) { return entry(integrator).name; }
 
 std::optional<Integrator> integratorFromName(std::string_view name) {
-  for (Integrator i : kAll) {
-    if (integratorName(i) == name) return i;
+  for (const IntegratorEntry& e : kIntegrators) {
+    if (e.name == name) return e.id;
   }
   return std::nullopt;
 }
 
 std::span<const Integrator> allIntegrators() { return kAll; }
-
-int derivEvalsPerStep(Integrator integrator) {
-  switch (integrator) {
-    case Integrator::Euler: return 1;
-    case Integrator::Midpoint: return 2;
-    case Integrator::Rk4: return 4;
-  }
-  return 0;
-}
+int derivEvalsPerStep(Integrator integrator) { return entry(integrator).evalsPerStep; }
+bool projectsConstraints(Integrator integrator) { return entry(integrator).projects; }
+std::string_view integratorSummary(Integrator integrator) { return entry(integrator).summary; }
 
 void integrateEuler(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
   f(y, t, w.k1);
@@ -59,13 +113,8 @@ void integrateRk4(const DerivFn& f, Eigen::VectorXd& y, double t, double h, Inte
   y += (h / 6.0) * (w.k1 + 2.0 * w.k2 + 2.0 * w.k3 + w.k4);
 }
 
-void integrate(Integrator integrator, const DerivFn& f, Eigen::VectorXd& y, double t, double h,
-               IntegratorScratch& w) {
-  switch (integrator) {
-    case Integrator::Euler: integrateEuler(f, y, t, h, w); return;
-    case Integrator::Midpoint: integrateMidpoint(f, y, t, h, w); return;
-    case Integrator::Rk4: integrateRk4(f, y, t, h, w); return;
-  }
+void integrate(Integrator integrator, System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
+  entry(integrator).step(system, y, t, h, w);
 }
 
 }  // namespace particles

@@ -1,10 +1,16 @@
 #pragma once
-// Explicit one-step integrators over a derivative function f(y, t) (docs/physics.md §3), h = dt:
+// The integrators (docs/physics.md §3) and their registry. One step advances the flat state y from
+// t to t + h; every integrator reaches the system only through derivEval (and, for the implicit
+// one, the force Jacobians). The report's three explicit methods, over a derivative f(y, t):
 //   Euler     y₁ = y₀ + h f(y₀, t₀)                                     global error O(h)
 //   Midpoint  y₁ = y₀ + h f(y₀ + h/2 f(y₀, t₀), t₀ + h/2)               global error O(h²)
 //   RK4       k1 = h f(y₀, t₀),         k2 = h f(y₀ + k1/2, t₀ + h/2),
 //             k3 = h f(y₀ + k2/2, t₀ + h/2), k4 = h f(y₀ + k3, t₀ + h),
 //             y₁ = y₀ + k1/6 + k2/3 + k3/3 + k4/6                       global error O(h⁴)
+// and, each in its own file pair under integrators/ with its formula at the top, the ones that
+// treat positions and velocities apart: symplectic Euler, velocity Verlet and backward Euler.
+//
+// A new integrator: its file pair, an enum value below, and one row in the table of integrators.cpp.
 
 #include <functional>
 #include <optional>
@@ -12,26 +18,58 @@
 #include <string_view>
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "core/force_jacobians.hpp"
 
 namespace particles {
 
-enum class Integrator { Euler, Midpoint, Rk4 };
+class System;
+
+enum class Integrator { Euler, Midpoint, Rk4, SymplecticEuler, Verlet, BackwardEuler };
 
 std::string_view integratorName(Integrator integrator);
-std::optional<Integrator> integratorFromName(std::string_view name);  // "euler", "midpoint", "rk4"
+// "euler", "midpoint", "rk4", "symplectic_euler", "verlet", "backward_euler"
+std::optional<Integrator> integratorFromName(std::string_view name);
 std::span<const Integrator> allIntegrators();
-int derivEvalsPerStep(Integrator integrator);  // 1, 2, 4
+// Derivative evaluations a step costs once under way: 1, 2, 4, 1, 1 (Verlet reuses the previous
+// step's last one), 1 (backward Euler, plus the Jacobians and a sparse solve).
+int derivEvalsPerStep(Integrator integrator);
+// True for the integrators after which the solver projects the state onto the constraints: their
+// steps do not follow the multipliers' drift feedback the way the explicit Runge–Kutta ones do.
+bool projectsConstraints(Integrator integrator);
+// One line on what the integrator is, for --help and the docs.
+std::string_view integratorSummary(Integrator integrator);
 
 using DerivFn = std::function<void(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt)>;
 
-// Scratch vectors reused between steps, so stepping does not allocate.
+// Scratch kept between steps, so stepping does not allocate, and what an integrator carries from
+// one step to the next (Verlet's last evaluation, backward Euler's last Δv as CG's first guess).
 struct IntegratorScratch {
   Eigen::VectorXd k1, k2, k3, k4, tmp;
+
+  // Verlet: f at (verletY, verletT), valid when verletValid.
+  Eigen::VectorXd verletF, verletY;
+  double verletT = 0.0;
+  bool verletValid = false;
+  // The solver moved y by a projection after the step (a drift-sized correction): the cached
+  // evaluation stays, so Verlet keeps to one evaluation per step on constrained systems.
+  void stateProjected(const Eigen::VectorXd& y) {
+    if (verletValid) verletY = y;
+  }
+
+  // Backward Euler.
+  ForceJacobians jacobians;
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::SparseMatrix<double> matrix;
+  Eigen::VectorXd rhs, dv;
+  int cgIterations = 0;  // of the last step, for benchmarks
 };
 
 void integrateEuler(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
 void integrateMidpoint(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
 void integrateRk4(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
-void integrate(Integrator integrator, const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
+// One step of the named integrator on the system's state y at time t.
+void integrate(Integrator integrator, System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
 
 }  // namespace particles

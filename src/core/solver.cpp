@@ -10,7 +10,11 @@ namespace {
 
 std::string explosionMessage(const std::string& reason, long step, double time, Integrator integrator, double dt) {
   std::string advice = fmt::format("try a smaller time step (e.g. --dt {:.3g})", dt / 4.0);
-  if (integrator != Integrator::Rk4) advice += " or a higher-order integrator (--integrator rk4)";
+  if (integrator != Integrator::Rk4 && integrator != Integrator::BackwardEuler) {
+    advice += " or a higher-order integrator (--integrator rk4)";
+  }
+  // Stiff springs bound every explicit method's step; the implicit one is stable at any h.
+  if (integrator != Integrator::BackwardEuler) advice += "; for stiff springs, --integrator backward_euler";
   return fmt::format("simulation exploded at step {} (t = {:.6g} s) with integrator {} and dt = {:.6g} s: {}; {}",
                      step, time, integratorName(integrator), dt, reason, advice);
 }
@@ -22,9 +26,6 @@ SimulationError::SimulationError(const std::string& reason, long step, double ti
       reason_(reason), step_(step), time_(time), integrator_(integrator), dt_(dt) {}
 
 void Solver::doStep(System& system, double dt) {
-  const DerivFn f = [&system](const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt) {
-    system.derivEval(y, t, dydt);
-  };
   previous_ = system.state();
   const double t0 = system.time();
   if (runSteps_ == 0 || dt != runDt_ || t0 != runStart_ + double(runSteps_) * runDt_) {
@@ -32,7 +33,11 @@ void Solver::doStep(System& system, double dt) {
     runDt_ = dt;
     runSteps_ = 0;
   }
-  integrate(integrator_, f, system.state(), t0, dt, scratch_);
+  integrate(integrator_, system, system.state(), t0, dt, scratch_);
+  if (projectsConstraints(integrator_) && !system.constraints().empty()) {
+    system.projectOntoConstraints(system.state());
+    scratch_.stateProjected(system.state());
+  }
   const long step = steps_ + 1;
   const double t1 = runStart_ + double(runSteps_ + 1) * dt;
 
@@ -49,6 +54,7 @@ void Solver::doStep(System& system, double dt) {
   }
   if (!reason.empty()) {
     system.state() = previous_;
+    scratch_.verletValid = false;
     throw SimulationError(reason, step, t1, integrator_, dt);
   }
   system.setTime(t1);

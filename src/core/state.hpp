@@ -6,6 +6,8 @@
 //   y = [ x (2P) | v (2P) | θ (B) | ω (B) ],   P = particles + bodies, B = bodies
 // and its derivative has the same layout: [ v | F/m | ω | τ/I ] (report eq. 1 and 7).
 
+#include <array>
+
 #include <Eigen/Core>
 
 namespace particles {
@@ -22,6 +24,17 @@ struct StateLayout {
   Eigen::Index angleOffset() const { return 4 * Eigen::Index(numPoints()); }
   Eigen::Index omegaOffset() const { return angleOffset() + numBodies; }
   int bodyPoint(int body) const { return numParticles + body; }
+
+  // The state as second-order pairs (position block, its velocity block), for the integrators
+  // that update them apart: x (2P) with v, θ (B) with ω. The derivative's entry at a velocity
+  // block's offset is that block's acceleration.
+  struct SecondOrderBlock {
+    Eigen::Index position, velocity, length;
+  };
+  std::array<SecondOrderBlock, 2> secondOrderBlocks() const {
+    return {SecondOrderBlock{0, velocityOffset(), 2 * Eigen::Index(numPoints())},
+            SecondOrderBlock{angleOffset(), omegaOffset(), numBodies}};
+  }
 };
 
 class StateView {

@@ -8,7 +8,7 @@
 
 namespace particles {
 
-void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt) {
+void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt, ConstraintForces constraintForces) {
   const StateLayout& layout = model_.layout;
   const StateView s(layout, y);
   // 1. clear accumulators
@@ -18,7 +18,7 @@ void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt
   // 3. collisions: before constraints, which must see every other force
   applyCollisions(model_, s, colliders_, acc_);
   // 4. constraint forces Q̂ = Jᵀλ
-  lastSolve_ = constraintSolver_.solve(model_, s, constraints_, acc_);
+  if (constraintForces == ConstraintForces::solve) lastSolve_ = constraintSolver_.solve(model_, s, constraints_, acc_);
   // 5. d/dt [x, v, θ, ω] = [v, F/m, ω, τ/I]
   const Eigen::Index p2 = 2 * Eigen::Index(layout.numPoints());
   const int b = layout.numBodies;
@@ -30,6 +30,13 @@ void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt
   }
   dydt.segment(layout.angleOffset(), b) = y.segment(layout.omegaOffset(), b);
   dydt.segment(layout.omegaOffset(), b) = acc_.torque.cwiseProduct(model_.invInertia);
+}
+
+void System::forceJacobians(const Eigen::VectorXd& y, double t, ForceJacobians& out) const {
+  const StateView s(model_.layout, y);
+  out.clear();
+  for (const auto& force : forces_) force->addJacobians(model_, s, t, out);
+  addCollisionJacobians(model_, s, colliders_, out);
 }
 
 double System::kineticEnergy(const Eigen::VectorXd& y) const {
@@ -174,6 +181,7 @@ System SystemBuilder::build() {
   sys.constraints_ = std::move(constraints_);
   sys.colliders_ = std::move(colliders_);
   sys.constraintSolver_ = ConstraintSolver(solverOptions_);
+  sys.projectionSolver_ = ConstraintSolver(solverOptions_);
   sys.acc_.resize(layout);
 
   const StateView s(layout, sys.y_);

@@ -60,7 +60,21 @@ class System {
 
   // dy/dt at (y, t): clear accumulators, apply forces, collisions, constraints, then write
   // [v, F/m, ω, τ/I] (docs/physics.md §2). Not const: it reuses scratch space and warm-starts λ.
-  void derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt);
+  // Without constraint forces for the integrators that keep constraints by projection instead.
+  enum class ConstraintForces { solve, skip };
+  void derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt,
+                 ConstraintForces constraintForces = ConstraintForces::solve);
+
+  // ∂f/∂x and ∂f/∂v at (y, t) of every force and collider that linearises itself (the implicit
+  // integrator's matrix, core/force_jacobians.hpp); constraint forces are not included.
+  void forceJacobians(const Eigen::VectorXd& y, double t, ForceJacobians& out) const;
+  // Moves y onto the constraints (positions, then velocities: ConstraintSolver::project); for the
+  // integrators whose steps do not keep them by themselves.
+  void projectOntoConstraints(Eigen::VectorXd& y) { projectionSolver_.project(model_, y, constraints_); }
+  // Only the velocities, with J at y's positions as they are (Ċ = 0).
+  void projectVelocitiesOntoConstraints(Eigen::VectorXd& y) {
+    projectionSolver_.projectVelocities(model_, y, constraints_);
+  }
 
   double kineticEnergy(const Eigen::VectorXd& y) const;
   EnergyReport energy(const Eigen::VectorXd& y, double t) const;
@@ -91,6 +105,7 @@ class System {
   ConstraintList constraints_;
   ColliderList colliders_;
   ConstraintSolver constraintSolver_;
+  ConstraintSolver projectionSolver_;  // its own, so the multipliers' warm start stays untouched
   ForceAccumulator acc_;
   ConstraintSolveStats lastSolve_;
   double energyScale_ = 0.0;

@@ -69,6 +69,22 @@ void DampedSpringForce::apply(const Model&, const StateView& s, double, ForceAcc
   }
 }
 
+void DampedSpringForce::addJacobians(const Model& model, const StateView& s, double, ForceJacobians& out) const {
+  const StateLayout& layout = model.layout;
+  for (size_t i = 0; i < a_.size(); ++i) {
+    const Vec2 l = endpointPosition(s, a_[i]) - endpointPosition(s, b_[i]);
+    const double len = l.norm();
+    if (len < kMinLength) continue;
+    const Vec2 u = l / len;
+    const Eigen::Matrix2d uu = u * u.transpose();
+    const double transverse = std::max(0.0, 1.0 - rest_[i] / len);
+    const Eigen::Matrix2d k = -ks_[i] * (uu + transverse * (Eigen::Matrix2d::Identity() - uu));
+    const int pa = a_[i].point(layout), pb = b_[i].point(layout);
+    ForceJacobians::addPair(out.dfdx, pa, pb, k);
+    if (kd_[i] != 0.0) ForceJacobians::addPair(out.dfdv, pa, pb, -kd_[i] * uu);
+  }
+}
+
 double DampedSpringForce::potentialEnergy(const Model&, const StateView& s, double) const {
   double u = 0.0;
   for (size_t i = 0; i < a_.size(); ++i) {

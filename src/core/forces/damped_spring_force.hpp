@@ -6,6 +6,13 @@
 // velocity, and the force also gives a torque, docs/physics.md §7).
 // Potential: U = ½ k_s (|l| − r)² per spring.
 // When |l| falls below 1e-12 m the direction is undefined and the spring exerts no force.
+// Jacobians for backward Euler (Baraff & Witkin 1998 §5.2), with l̂ = l/|l|:
+//   ∂f_a/∂x_a = −k_s [ l̂l̂ᵀ + max(0, 1 − r/|l|) (I − l̂l̂ᵀ) ],   ∂f_a/∂v_a = −k_d l̂l̂ᵀ
+// and [b −b; −b b] over the two ends. The exact transverse term (1 − r/|l|) turns positive
+// definite when the spring is compressed (|l| < r: buckling), which would break the SPD matrix CG
+// needs, so it is clamped at 0 (Choi & Ko 2002's fix); the damping's dependence on position is
+// dropped, as Baraff & Witkin do. An anchor on a body couples through the body's centre (its
+// translation); the rotation is explicit (docs/physics.md §3).
 
 #include <vector>
 
@@ -37,6 +44,7 @@ class DampedSpringForce final : public Force {
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
   double energyScale(const Model& model, const StateView& s) const override;
   void draw(const StateView& s, double t, Drawing& out) const override;
+  void addJacobians(const Model& model, const StateView& s, double t, ForceJacobians& out) const override;
   void validate(const StateLayout& layout) const override;
 
  private:

@@ -12,6 +12,11 @@ void DragForce::apply(const Model& model, const StateView& s, double, ForceAccum
   }
 }
 
+void DragForce::addJacobians(const Model& model, const StateView&, double, ForceJacobians& out) const {
+  if (kd_ == 0.0) return;
+  for (int i = 0; i < 2 * model.layout.numPoints(); ++i) out.dfdv.emplace_back(i, i, -kd_);
+}
+
 const KindSpec& dragKind() {
   static const KindSpec spec{
       .section = "forces",

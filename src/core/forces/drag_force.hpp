@@ -1,5 +1,6 @@
 #pragma once
 // Viscous drag: f_i −= k_d v_i on every point (docs/physics.md §4). Dissipative: no potential energy.
+// Jacobian for backward Euler: ∂f_i/∂v_i = −k_d I (the angular term is explicit).
 // An optional angular term τ_j −= k_ω ω_j damps rigid-body spin the same way.
 
 #include "core/force.hpp"
@@ -17,6 +18,7 @@ class DragForce final : public Force {
   double energyScale(const Model&, const StateView&) const override { return 0.0; }
   bool isDissipative() const override { return true; }
   void draw(const StateView&, double, Drawing&) const override {}  // nothing to show
+  void addJacobians(const Model& model, const StateView& s, double t, ForceJacobians& out) const override;
 
  private:
   double kd_;

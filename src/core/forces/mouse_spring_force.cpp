@@ -37,6 +37,12 @@ void MouseSpringForce::apply(const Model&, const StateView& s, double t, ForceAc
   applyForceAt(s, script_.grab, f, acc);
 }
 
+void MouseSpringForce::addJacobians(const Model& model, const StateView&, double t, ForceJacobians& out) const {
+  if (!activeAt(t)) return;
+  const int p = script_.grab.point(model.layout);
+  ForceJacobians::addBlock(out.dfdx, p, p, -script_.ks * Eigen::Matrix2d::Identity());
+}
+
 double MouseSpringForce::potentialEnergy(const Model&, const StateView& s, double t) const {
   if (!activeAt(t)) return 0.0;
   return 0.5 * script_.ks * (endpointPosition(s, script_.grab) - target(t)).squaredNorm();

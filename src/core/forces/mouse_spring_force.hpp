@@ -4,6 +4,8 @@
 // polyline at constant speed (arc length proportional to time):
 //   f = −k_s (x − m(t)),   U = ½ k_s |x − m(t)|²
 // No damping, as in the report. A one-point path holds the target still.
+// Jacobian for backward Euler while active: ∂f/∂x = −k_s I on the grabbed point (through a body's
+// centre for an anchor; the target's motion is taken at the step's start).
 
 #include <vector>
 
@@ -33,6 +35,7 @@ class MouseSpringForce final : public Force {
   void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
   double energyScale(const Model& model, const StateView& s) const override;
+  void addJacobians(const Model& model, const StateView& s, double t, ForceJacobians& out) const override;
   // The cursor and its line while the script holds its point.
   void draw(const StateView& s, double t, Drawing& out) const override;
   void validate(const StateLayout& layout) const override;

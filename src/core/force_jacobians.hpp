@@ -1,0 +1,46 @@
+#pragma once
+// The force Jacobians an implicit integrator linearises with (docs/physics.md §3; Baraff & Witkin,
+// "Large Steps in Cloth Simulation", SIGGRAPH 1998, §5): K = ∂f/∂x and D = ∂f/∂v over the points'
+// translational coordinates (2 per point, the force accumulator's layout), kept as sparse
+// triplets; entries at the same place add up.
+//
+// Every block a force adds is symmetric and negative semi-definite, so that M − h D − h² K stays
+// symmetric positive definite and conjugate gradients apply (the spring drops the part of its K
+// that would break this, damped_spring_force.hpp). A force that adds nothing is treated
+// explicitly by backward Euler: exact for gravity, whose Jacobians are zero.
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace particles {
+
+struct ForceJacobians {
+  using Triplets = std::vector<Eigen::Triplet<double>>;
+  Triplets dfdx;  // K, N/m
+  Triplets dfdv;  // D, N·s/m
+
+  void clear() {
+    dfdx.clear();
+    dfdv.clear();
+  }
+  // ∂f_row/∂(x or v)_col += b, for points row and col.
+  static void addBlock(Triplets& to, int rowPoint, int colPoint, const Eigen::Matrix2d& b) {
+    for (int r = 0; r < 2; ++r) {
+      for (int c = 0; c < 2; ++c) {
+        if (b(r, c) != 0.0) to.emplace_back(2 * rowPoint + r, 2 * colPoint + c, b(r, c));
+      }
+    }
+  }
+  // A force along a − b that depends only on x_a − x_b (or v_a − v_b), f_b = −f_a, with
+  // ∂f_a/∂x_a = b: the blocks are [b −b; −b b].
+  static void addPair(Triplets& to, int a, int bPoint, const Eigen::Matrix2d& b) {
+    addBlock(to, a, a, b);
+    addBlock(to, bPoint, bPoint, b);
+    addBlock(to, a, bPoint, -b);
+    addBlock(to, bPoint, a, -b);
+  }
+};
+
+}  // namespace particles
