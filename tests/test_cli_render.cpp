@@ -156,9 +156,13 @@ TEST_CASE("cli stability and plot: the table as CSV and figures") {
   REQUIRE_MESSAGE(r.code == 0, r.err);
   const auto rows = lines(slurp(s.dir / "table.csv"));
   REQUIRE(rows.size() == 3);
-  CHECK(rows[0] == "integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler");
+  CHECK(rows[0] == "integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler,"
+                   "wall_seconds_per_sim_second");
   CHECK(rows[1].rfind("midpoint,2,", 0) == 0);
   CHECK(rows[2].rfind("rk4,4,", 0) == 0);
+  for (size_t i = 1; i < rows.size(); ++i) {
+    CHECK(std::stod(rows[i].substr(rows[i].rfind(',') + 1)) > 0.0);  // measured wall time per simulated second
+  }
   CHECK(slurp(s.dir / "table.svg").find("<svg") != std::string::npos);
   CHECK(s.run("stability s.yaml --integrators leapfrog").code == 2);
 

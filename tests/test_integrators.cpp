@@ -4,7 +4,12 @@
 #include <cmath>
 #include <utility>
 
+#include <Eigen/LU>
+
+#include "core/constraints/horizontal_line_constraint.hpp"
+#include "core/constraints/rod_constraint.hpp"
 #include "core/forces/drag_force.hpp"
+#include "core/integrators/backward_euler.hpp"
 #include "core/integrators/symplectic_euler.hpp"
 #include "core/integrators/verlet.hpp"
 #include "support.hpp"
@@ -22,6 +27,22 @@ double oscillatorError(Integrator integrator, double h) {
   advance(sys, solver, h, steps);
   const double exact = 1.0 + 0.5 * std::cos(2.0 * 2.0);
   return std::abs(sys.view().pos(1).x() - exact);
+}
+
+// A vertical chain of `links` stiff springs (k = 2500 N/m, 2 g particles, 8 cm apart) whose top
+// particle is fixed, or slides on a horizontal rail.
+System hangingChain(bool rail, int links = 24) {
+  SystemBuilder b;
+  auto& springs = b.emplaceForce<DampedSpringForce>();
+  int previous = b.addParticle(particleAt(0.0, 0.0, 0.002, !rail));
+  if (rail) b.addConstraint(std::make_unique<HorizontalLineConstraint>(previous, 0.0));
+  for (int i = 1; i <= links; ++i) {
+    const int p = b.addParticle(particleAt(0.0, -0.08 * i, 0.002));
+    springs.add({Endpoint::ofParticle(previous), Endpoint::ofParticle(p), 0.08, 2500.0, 0.01});
+    previous = p;
+  }
+  b.emplaceForce<GravityForce>(Vec2(0.0, -9.81));
+  return b.build();
 }
 
 }  // namespace
@@ -305,6 +326,63 @@ TEST_CASE("backward Euler is stable on a stiff undamped oscillator at h ω = 100
     Solver s2(explicitOne);
     CHECK_THROWS_AS(advance(other, s2, 1.0, 100), SimulationError);
   }
+}
+
+TEST_CASE("backward Euler on a rail: a chain hung from a rail moves as one hung from a fixed point") {
+  // Hung straight, nothing pushes the rail particle sideways, so both chains are the same problem;
+  // at one step per 60 fps frame (h ω ≈ 19 for the stiffest mode) the constrained solve must find
+  // the same Δv as the one with the top removed from the unknowns. (A projected CG that lost
+  // J Δv = −J v₀ to rounding let this chain fall freely: potential energy 5.3 J instead of −0.47.)
+  System onRail = hangingChain(true), fixed = hangingChain(false);
+  Solver railSolver(Integrator::BackwardEuler), fixedSolver(Integrator::BackwardEuler);
+  const double h = 1.0 / 60.0;
+  for (int step = 0; step < 600; ++step) {
+    railSolver.doStep(onRail, h);
+    fixedSolver.doStep(fixed, h);
+  }
+  double worst = 0.0;
+  for (int i = 0; i < onRail.layout().numPoints(); ++i) worst = std::max(worst, (onRail.view().pos(i) - fixed.view().pos(i)).norm());
+  CHECK(worst < 1e-9);
+  CHECK(std::abs(onRail.view().pos(0).y()) < 1e-12);
+  CHECK(onRail.energy().total() == doctest::Approx(fixed.energy().total()).epsilon(1e-9));
+  // At rest under gravity: the bottom link stretched by m g / k, the top by 24 m g / k.
+  CHECK(onRail.view().pos(24).y() == doctest::Approx(-24 * 0.08 - 0.002 * 9.81 / 2500.0 * (24 * 25 / 2)).epsilon(1e-6));
+}
+
+TEST_CASE("backward Euler's constrained Δv solves the KKT system of the step") {
+  // [A Jᵀ; J 0] [Δv; λ] = [b; −J v₀] by a dense LU, against the projected CG: a chain on a rail
+  // with a rod in it, swinging, so that J has rows in every direction.
+  SystemBuilder b;
+  auto& springs = b.emplaceForce<DampedSpringForce>();
+  const int top = b.addParticle(particleAt(0.0, 0.0, 0.01));
+  const int mid = b.addParticle(particleAt(0.3, -0.2, 0.02));
+  const int low = b.addParticle(particleAt(0.5, -0.6, 0.03));
+  const int tip = b.addParticle(particleAt(0.9, -0.7, 0.01));
+  b.addConstraint(std::make_unique<HorizontalLineConstraint>(top, 0.0));
+  b.addConstraint(std::make_unique<RodConstraint>(mid, low, std::hypot(0.2, 0.4)));
+  springs.add({Endpoint::ofParticle(top), Endpoint::ofParticle(mid), 0.3, 800.0, 0.5});
+  springs.add({Endpoint::ofParticle(low), Endpoint::ofParticle(tip), 0.35, 300.0, 0.2});
+  springs.add({Endpoint::ofParticle(top), Endpoint::ofParticle(tip), 1.0, 50.0, 0.0});
+  b.emplaceForce<GravityForce>(Vec2(0.0, -9.81));
+  b.emplaceForce<DragForce>(0.01);
+  System sys = b.build();
+  Solver solver(Integrator::Rk4);
+  advance(sys, solver, 1e-3, 137);  // moving, with every velocity nonzero
+  Eigen::VectorXd y = sys.state();
+  IntegratorScratch w;
+  integrateBackwardEuler(sys, y, sys.time(), 0.05, w, {.tolerance = 1e-14});
+
+  const Eigen::Index n = w.rhs.size(), m = w.cg.j.rows();
+  REQUIRE(m == 2);
+  Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + m, n + m);
+  kkt.topLeftCorner(n, n) = Eigen::MatrixXd(w.matrix);
+  kkt.topRightCorner(n, m) = Eigen::MatrixXd(w.cg.j).transpose();
+  kkt.bottomLeftCorner(m, n) = Eigen::MatrixXd(w.cg.j);
+  Eigen::VectorXd rhs(n + m);
+  rhs << w.rhs, -Eigen::MatrixXd(w.cg.j) * sys.state().segment(sys.layout().velocityOffset(), n);
+  const Eigen::VectorXd direct = kkt.partialPivLu().solve(rhs);
+  CHECK((w.dv - direct.head(n)).norm() < 1e-9 * direct.head(n).norm());
+  CHECK(direct.tail(m).norm() > 1e-6);  // the constraints did push
 }
 
 TEST_CASE("backward Euler keeps fixed particles in place and treats body rotation explicitly") {

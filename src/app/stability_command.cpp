@@ -98,28 +98,32 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
   }
 
   if (!common.quiet) {
-    fmt::print("{:<10} {:>10} {:>15} {:>22} {:>20} {:>15}\n", "integrator", "evals/step", "max stable dt",
-               "max dt without shaking", "evals per sim second", "speed vs euler");
+    fmt::print("{:<16} {:>10} {:>15} {:>22} {:>20} {:>15} {:>22}\n", "integrator", "evals/step", "max stable dt",
+               "max dt without shaking", "evals per sim second", "speed vs euler", "wall s per sim second");
     for (const StabilityResult& r : results) {
-      fmt::print("{:<10} {:>10} {:>15} {:>22} {:>20.4g} {:>15}\n", integratorName(r.integrator), r.evalsPerStep,
+      fmt::print("{:<16} {:>10} {:>15} {:>22} {:>20.4g} {:>15} {:>22}\n", integratorName(r.integrator), r.evalsPerStep,
                  dtText(r.maxStableDt), dtText(r.maxSmoothDt), r.evalsPerSimSecond,
-                 r.speedVsEuler > 0 ? fmt::format("{:.2f}×", r.speedVsEuler) : std::string("–"));
+                 r.speedVsEuler > 0 ? fmt::format("{:.2f}×", r.speedVsEuler) : std::string("–"),
+                 r.wallPerSimSecond > 0 ? fmt::format("{:.3g}", r.wallPerSimSecond) : std::string("–"));
     }
     fmt::print("\nreference: rk4 at dt = {:.3g} s, longest spring {:.3g}× its rest length → bound {:.3g}×\n",
                study.referenceDt, found.reference.maxStretch, found.maxStretch);
     fmt::print("why the next larger steps failed:\n");
     for (const StabilityResult& r : results) {
-      fmt::print("  {:<9} unstable: {}; not smooth: {}  ({} runs)\n", integratorName(r.integrator),
+      fmt::print("  {:<16} unstable: {}; not smooth: {}  ({} runs)\n", integratorName(r.integrator),
                  describe(r.firstUnstable), describe(r.firstShaking), r.runs);
     }
   }
 
   if (!options.csv.empty()) {
     output::OutputFile csv(options.csv);
-    csv.write("integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler\n");
-    for (const auto& r : rows) {
-      csv.write(fmt::format("{},{},{},{},{},{}\n", r.integrator, r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
-                            r.evalsPerSimSecond, r.speedVsEuler));
+    csv.write(
+        "integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler,"
+        "wall_seconds_per_sim_second\n");
+    for (size_t k = 0; k < rows.size(); ++k) {
+      const auto& r = rows[k];
+      csv.write(fmt::format("{},{},{},{},{},{},{}\n", r.integrator, r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
+                            r.evalsPerSimSecond, r.speedVsEuler, results[k].wallPerSimSecond));
     }
     csv.commit();
   }

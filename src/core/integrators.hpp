@@ -20,6 +20,9 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <Eigen/SparseCholesky>
+
+#include "core/constraint.hpp"
 #include "core/force_jacobians.hpp"
 
 namespace particles {
@@ -43,6 +46,14 @@ std::string_view integratorSummary(Integrator integrator);
 
 using DerivFn = std::function<void(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt)>;
 
+// Backward Euler's projected CG (integrators/backward_euler.cpp).
+struct ProjectedCgScratch {
+  Eigen::VectorXd dinv, c, r, g, p, ap;
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::SparseMatrix<double> j, s;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+};
+
 // Scratch kept between steps, so stepping does not allocate, and what an integrator carries from
 // one step to the next (Verlet's last evaluation, backward Euler's last Δv as CG's first guess).
 struct IntegratorScratch {
@@ -60,6 +71,8 @@ struct IntegratorScratch {
 
   // Backward Euler.
   ForceJacobians jacobians;
+  std::vector<ConstraintRow> constraintRows;
+  ProjectedCgScratch cg;
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::SparseMatrix<double> matrix;
   Eigen::VectorXd rhs, dv;

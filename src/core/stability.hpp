@@ -66,6 +66,7 @@ struct StabilityOptions {
   double maxDt = 10.0;            // above this the search stops growing: stable beyond measure
   double relativePrecision = 0.005;  // bisection stops when (hi − lo) ≤ this × lo: 2 significant digits
   int threads = 0;                // 0: one per integrator, up to the hardware's cores
+  double timingBudget = 0.5;      // s of timed runs per integrator (at least one run); 0: no timing
 };
 
 struct StabilityResult {
@@ -75,6 +76,11 @@ struct StabilityResult {
   double maxSmoothDt = 0;
   double evalsPerSimSecond = 0;  // evalsPerStep / maxSmoothDt: the cost at the largest usable step
   double speedVsEuler = 0;       // Euler's evals per simulated second / this one's
+  // Wall-clock seconds per simulated second at maxSmoothDt, measured (the fastest of a few timed
+  // runs, one integrator at a time): an implicit step costs Jacobians and a sparse solve besides
+  // its one evaluation, so evaluations alone no longer compare integrators fairly. 0 when
+  // nothing was smooth or the study was asked not to time.
+  double wallPerSimSecond = 0;
   int runs = 0;                  // simulations the search needed
   RunAssessment firstUnstable;   // the run just above maxStableDt (why it failed)
   RunAssessment firstShaking;    // the run just above maxSmoothDt

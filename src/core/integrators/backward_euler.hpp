@@ -17,10 +17,13 @@
 // through the centre); their rotation is explicit, symplectic Euler on (θ, ω) with the torque at
 // the step's start: ω₁ = ω₀ + h τ₀/I, θ₁ = θ₀ + h ω₁.
 //
-// Constraints are kept by projection, as for symplectic Euler: v₁ is projected onto J(x₀) v = 0
-// before x moves, and the solver projects (x₁, v₁) after the step (ConstraintSolver). The
-// multipliers' forces taken explicitly would add energy (their centripetal part depends on v),
-// against the method's point; the projection only removes it.
+// Constraints are part of the solve: CG runs projected onto J Δv = −J v₀ (J at x₀), so v₁ keeps
+// Ċ = 0 and the stiff springs feel the rail holding the cloth within the same step (projected
+// CG, the general form of Baraff & Witkin's §5.3 filter). The solver then projects (x₁, v₁) onto
+// the constraints after the step (ConstraintSolver), removing the O(h²) drift of moving along the
+// tangent. Taken outside the solve instead — the multipliers' forces at the step's start, or a
+// projection of v₁ afterwards — the constraints lag the implicit springs: the stiff cloth sagged
+// off its rail by a spring's length per second at h = 1/60 s and gained energy without bound.
 
 #include <Eigen/Core>
 
