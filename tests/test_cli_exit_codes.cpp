@@ -49,7 +49,7 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   s.write("boom.yaml", exploding("10000"));
-  s.write("boom2.yaml", exploding("10000000"));
+  s.write("boom2.yaml", exploding("1e12"));  // ω = 10⁶ rad/s: RK4 explodes at dt / 256 too
   s.write("bad.yaml", "name: x\nsimulation:\n  dt: -1\n");
   s.write("bad.csv", "t,kinetic\n0,1\n");
   s.write("blocker", "a file where a directory should be");
@@ -69,7 +69,7 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
       {"render boom.yaml -o boom.mp4", 1,
        "boom.yaml: error: " + explosion + " (at frame 5 of 100; no output written)\n"},
       {"stability boom2.yaml --integrators rk4 --quiet", 1,
-       "boom2.yaml: error: the reference run (rk4, dt = 0.025 s) is itself unstable (exploded); give the scenario a "
+       "boom2.yaml: error: the reference run (rk4, dt = 0.000391 s) is itself unstable (exploded); give the scenario a "
        "smaller dt\n"},
       // 2: bad input or usage. The scenario loader's messages carry their own position.
       {"check bad.yaml", 2, "bad.yaml:3:7: error: simulation.dt: expected a number > 0, got -1\n"},

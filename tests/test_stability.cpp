@@ -106,6 +106,14 @@ TEST_CASE("the stretch bound comes from a reference run, and an unstable referen
   const StabilityStudy study = findStabilityLimits(make, 5.0, {Integrator::Rk4}, options);
   CHECK(study.reference.maxStretch == doctest::Approx(1.05).epsilon(1e-3));
   CHECK(study.maxStretch == doctest::Approx(1.5 * 1.05).epsilon(1e-3));
+  CHECK(study.referenceDt == 0.001);
   options.referenceDt = 0.5;  // ωh = 5: RK4 blows up
+  CHECK_THROWS_AS(findStabilityLimits(make, 5.0, {Integrator::Rk4}, options), std::runtime_error);
+  // Allowed to halve: 0.25 (ωh = 2.5) is inside RK4's limit ωh = 2√2, and is what is used.
+  options.minReferenceDt = 0.2;
+  const StabilityStudy halved = findStabilityLimits(make, 5.0, {Integrator::Rk4}, options);
+  CHECK(halved.referenceDt == 0.25);
+  CHECK(halved.reference.stable());
+  options.minReferenceDt = 0.3;  // no room to halve
   CHECK_THROWS_AS(findStabilityLimits(make, 5.0, {Integrator::Rk4}, options), std::runtime_error);
 }

@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
   stabilityCmd
       ->add_option("--stretch-factor", stability.stretchFactor,
                    "Unstable when a spring stretches beyond this multiple of the largest stretch of a "
-                   "reference run (rk4 at a quarter of the scenario's dt)")
+                   "reference run (rk4 at a quarter of the scenario's dt, halved up to six times until stable)")
       ->capture_default_str();
   stabilityCmd
       ->add_option("--shake-threshold", stability.shakeThreshold,

@@ -74,6 +74,7 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
   study.criteria.shakeThreshold = options.shakeThreshold;
   study.startDt = s.simulation.dt;
   study.referenceDt = s.simulation.dt / 4.0;
+  study.minReferenceDt = std::max(minDt, study.referenceDt / 64.0);
   study.minDt = minDt;
   study.maxDt = options.maxDt;
   study.threads = options.threads;
@@ -107,7 +108,7 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
                  r.wallPerSimSecond > 0 ? fmt::format("{:.3g}", r.wallPerSimSecond) : std::string("–"));
     }
     fmt::print("\nreference: rk4 at dt = {:.3g} s, longest spring {:.3g}× its rest length → bound {:.3g}×\n",
-               study.referenceDt, found.reference.maxStretch, found.maxStretch);
+               found.referenceDt, found.reference.maxStretch, found.maxStretch);
     fmt::print("why the next larger steps failed:\n");
     for (const StabilityResult& r : results) {
       fmt::print("  {:<16} unstable: {}; not smooth: {}  ({} runs)\n", integratorName(r.integrator),

@@ -12,6 +12,7 @@
 //
 // A new integrator: its file pair, an enum value below, and one row in the table of integrators.cpp.
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <span>
@@ -48,10 +49,20 @@ using DerivFn = std::function<void(const Eigen::VectorXd& y, double t, Eigen::Ve
 
 // Backward Euler's projected CG (integrators/backward_euler.cpp).
 struct ProjectedCgScratch {
-  Eigen::VectorXd dinv, c, r, g, p, ap;
+  Eigen::VectorXd dinv, c, r, g, p, ap, jz, lambda;
+  // J row by row: up to four (column, value) pairs (two particles × x, y); column −1 is unused.
+  std::vector<std::array<int, 4>> rowColumns;
+  std::vector<std::array<double, 4>> rowValues;
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::SparseMatrix<double> j, s;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+};
+
+// Backward Euler's matrix pattern: the Jacobians' (row, column) keys it was built from, and
+// where each triplet's value goes in the compressed matrix (−1: left out, a fixed coordinate).
+struct AssemblyPattern {
+  bool valid = false;
+  std::vector<int> dfdvKeys, dfdxKeys, dfdvSlots, dfdxSlots, diagonalSlots;
 };
 
 // Scratch kept between steps, so stepping does not allocate, and what an integrator carries from
@@ -73,6 +84,7 @@ struct IntegratorScratch {
   ForceJacobians jacobians;
   std::vector<ConstraintRow> constraintRows;
   ProjectedCgScratch cg;
+  AssemblyPattern pattern;
   std::vector<Eigen::Triplet<double>> triplets;
   Eigen::SparseMatrix<double> matrix;
   Eigen::VectorXd rhs, dv;

@@ -41,6 +41,8 @@ class Solver {
   explicit Solver(Integrator integrator, ExplosionGuard guard = {}) : integrator_(integrator), guard_(guard) {}
   Integrator integrator() const { return integrator_; }
   long steps() const { return steps_; }
+  // Conjugate-gradient iterations of the last backward Euler step (0 for the others): benchmarks.
+  int lastCgIterations() const { return scratch_.cgIterations; }
 
   // Advances the system's state and time by dt. Throws SimulationError (and leaves the system at
   // the last good state) when the step blows up.

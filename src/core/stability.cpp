@@ -156,11 +156,16 @@ StabilityStudy findStabilityLimits(const SystemFactory& make, double duration, c
   StabilityStudy out;
   StabilityCriteria unbounded = given.criteria;
   unbounded.maxStretch = 1e300;
-  out.reference = assessRun(make, Integrator::Rk4, given.referenceDt, duration, unbounded);
+  out.referenceDt = given.referenceDt;
+  out.reference = assessRun(make, Integrator::Rk4, out.referenceDt, duration, unbounded);
+  while (!out.reference.stable() && 0.5 * out.referenceDt >= given.minReferenceDt && given.minReferenceDt > 0.0) {
+    out.referenceDt *= 0.5;
+    out.reference = assessRun(make, Integrator::Rk4, out.referenceDt, duration, unbounded);
+  }
   if (!out.reference.stable()) {
     throw std::runtime_error(fmt::format(
         "the reference run (rk4, dt = {:.3g} s) is itself unstable ({}); give the scenario a smaller dt",
-        given.referenceDt, verdictName(out.reference.verdict)));
+        out.referenceDt, verdictName(out.reference.verdict)));
   }
   out.maxStretch = given.stretchFactor * out.reference.maxStretch;
   StabilityOptions options = given;

@@ -61,6 +61,10 @@ struct StabilityOptions {
   StabilityCriteria criteria;      // maxStretch is replaced by stretchFactor × the reference's
   double stretchFactor = 1.5;      // × the reference run's largest stretch
   double referenceDt = 0.0025;     // RK4 step of the reference run (e.g. the scenario's dt / 4)
+  // An unstable reference is retried at half the step, down to this; 0: no retry. A stiff scene
+  // whose dt suits an implicit integrator (cloth_stiff: one backward Euler step per frame) needs
+  // an RK4 reference several times finer than dt / 4.
+  double minReferenceDt = 0.0;
   double startDt = 0.01;          // where bracketing starts (e.g. the scenario's dt)
   double minDt = 1e-6;            // below this the search gives up: nothing is stable
   double maxDt = 10.0;            // above this the search stops growing: stable beyond measure
@@ -87,7 +91,8 @@ struct StabilityResult {
 };
 
 struct StabilityStudy {
-  RunAssessment reference;  // the RK4 run at referenceDt the stretch bound comes from
+  RunAssessment reference;  // the RK4 run the stretch bound comes from
+  double referenceDt = 0;   // its step: options.referenceDt, halved while it was unstable
   double maxStretch = 0;    // the bound used: stretchFactor × reference.maxStretch
   std::vector<StabilityResult> results;
 };

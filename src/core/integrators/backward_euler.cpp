@@ -33,15 +33,22 @@ ProjectedCgStats solveProjectedCg(const Model& model, const Eigen::SparseMatrix<
   for (Eigen::Index i = 0; i < n; ++i) w.dinv[i] = model.invMass[i / 2] == 0.0 ? 0.0 : 1.0 / a.coeff(i, i);
 
   // J (m × n) and c = −J v₀; a row on fixed particles only cannot be met by any Δv and is dropped.
+  // J is kept twice: sparse, to form S once, and row by row, for the products in the loop (each
+  // touches at most four coordinates, so projecting costs O(m), not O(n)).
   w.triplets.clear();
   w.c.setZero(m);
+  w.rowColumns.assign(size_t(m), {-1, -1, -1, -1});
+  w.rowValues.assign(size_t(m), {0.0, 0.0, 0.0, 0.0});
   for (int r = 0; r < m; ++r) {
     const ConstraintRow& row = rows[size_t(r)];
     for (int k = 0; k < row.count; ++k) {
       const int p = row.particle[size_t(k)];
       for (int d = 0; d < 2; ++d) {
-        w.triplets.emplace_back(r, 2 * p + d, row.J[size_t(k)][d]);
-        w.c[r] -= row.J[size_t(k)][d] * v0[2 * p + d];
+        const double value = row.J[size_t(k)][d];
+        w.triplets.emplace_back(r, 2 * p + d, value);
+        w.rowColumns[size_t(r)][size_t(2 * k + d)] = 2 * p + d;
+        w.rowValues[size_t(r)][size_t(2 * k + d)] = value;
+        w.c[r] -= value * v0[2 * p + d];
       }
     }
   }
@@ -63,18 +70,48 @@ ProjectedCgStats solveProjectedCg(const Model& model, const Eigen::SparseMatrix<
     }
     w.ldlt.compute(w.s);
   }
+  auto multiplyJ = [&](const Eigen::VectorXd& z, Eigen::VectorXd& out) {
+    out.resize(m);
+    for (int r = 0; r < m; ++r) {
+      double sum = 0.0;
+      for (int k = 0; k < 4; ++k) {
+        const int col = w.rowColumns[size_t(r)][size_t(k)];
+        if (col >= 0) sum += w.rowValues[size_t(r)][size_t(k)] * z[col];
+      }
+      out[r] = sum;
+    }
+  };
+  // z −= scale ⊙ Jᵀ λ, on the coordinates J touches only; scale is 1 or D⁻¹.
+  auto subtractJt = [&](const Eigen::VectorXd& lambda, Eigen::VectorXd& z, bool scaleByDinv) {
+    for (int r = 0; r < m; ++r) {
+      for (int k = 0; k < 4; ++k) {
+        const int col = w.rowColumns[size_t(r)][size_t(k)];
+        if (col >= 0) z[col] -= (scaleByDinv ? w.dinv[col] : 1.0) * w.rowValues[size_t(r)][size_t(k)] * lambda[r];
+      }
+    }
+  };
   // r ← r − Jᵀ S⁻¹ J D⁻¹ r, twice; then g = D⁻¹ r = P r with r kept small (see above).
   auto project = [&](Eigen::VectorXd& r, Eigen::VectorXd& g) {
-    for (int pass = 0; m > 0 && pass < 2; ++pass) {
-      g = w.dinv.cwiseProduct(r);
-      r -= w.j.transpose() * w.ldlt.solve(Eigen::VectorXd(w.j * g));
-    }
     g = w.dinv.cwiseProduct(r);
+    for (int pass = 0; m > 0 && pass < 2; ++pass) {
+      multiplyJ(g, w.jz);
+      w.lambda = w.ldlt.solve(w.jz);
+      subtractJt(w.lambda, r, false);
+      for (int row = 0; row < m; ++row) {
+        for (int k = 0; k < 4; ++k) {
+          const int col = w.rowColumns[size_t(row)][size_t(k)];
+          if (col >= 0) g[col] = w.dinv[col] * r[col];
+        }
+      }
+    }
   };
-  // D⁻¹ Jᵀ S⁻¹ (J z − c): what moves z onto J z = c.
+  // z ← z − D⁻¹ Jᵀ S⁻¹ (J z − c), twice: onto J z = c.
   auto feasible = [&](Eigen::VectorXd& z) {
     for (int pass = 0; m > 0 && pass < 2; ++pass) {
-      z -= w.dinv.asDiagonal() * (w.j.transpose() * w.ldlt.solve(Eigen::VectorXd(w.j * z - w.c)));
+      multiplyJ(z, w.jz);
+      w.jz -= w.c;
+      w.lambda = w.ldlt.solve(w.jz);
+      subtractJt(w.lambda, z, true);
     }
   };
 
@@ -121,18 +158,66 @@ void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double
   auto fixedDof = [&](Eigen::Index i) { return model.invMass[i / 2] == 0.0; };
 
   // A = M − h D − h² K over the free coordinates; a fixed one's row and column are the identity.
-  w.triplets.clear();
-  w.triplets.reserve(size_t(n) + w.jacobians.dfdv.size() + w.jacobians.dfdx.size());
-  for (Eigen::Index i = 0; i < n; ++i) w.triplets.emplace_back(i, i, fixedDof(i) ? 1.0 : model.mass[i / 2]);
-  auto addScaled = [&](const ForceJacobians::Triplets& from, double scale) {
-    for (const auto& e : from) {
-      if (!fixedDof(e.row()) && !fixedDof(e.col())) w.triplets.emplace_back(e.row(), e.col(), scale * e.value());
+  // The Jacobians' pattern only changes when a contact or a mouse spring starts or ends, so A's
+  // pattern is built once and its values are scattered into it while the triplets' (row, column)
+  // sequence is the one it was built from (a full setFromTriplets costs several times more).
+  const ForceJacobians& jac = w.jacobians;
+  AssemblyPattern& pattern = w.pattern;
+  auto samePattern = [&](const ForceJacobians::Triplets& from, const std::vector<int>& keys) {
+    if (2 * from.size() != keys.size()) return false;
+    for (size_t k = 0; k < from.size(); ++k) {
+      if (from[k].row() != keys[2 * k] || from[k].col() != keys[2 * k + 1]) return false;
+    }
+    return true;
+  };
+  if (!pattern.valid || w.matrix.rows() != n || !samePattern(jac.dfdv, pattern.dfdvKeys) ||
+      !samePattern(jac.dfdx, pattern.dfdxKeys)) {
+    w.triplets.clear();
+    w.triplets.reserve(size_t(n) + jac.dfdv.size() + jac.dfdx.size());
+    for (Eigen::Index i = 0; i < n; ++i) w.triplets.emplace_back(i, i, 1.0);
+    auto keysOf = [&](const ForceJacobians::Triplets& from, std::vector<int>& keys) {
+      keys.clear();
+      for (const auto& e : from) {
+        keys.push_back(e.row());
+        keys.push_back(e.col());
+        if (!fixedDof(e.row()) && !fixedDof(e.col())) w.triplets.emplace_back(e.row(), e.col(), 1.0);
+      }
+    };
+    keysOf(jac.dfdv, pattern.dfdvKeys);
+    keysOf(jac.dfdx, pattern.dfdxKeys);
+    w.matrix.resize(n, n);
+    w.matrix.setFromTriplets(w.triplets.begin(), w.triplets.end());
+    w.matrix.makeCompressed();
+    // Each entry's slot in A's value array (−1: a fixed coordinate's, left out).
+    auto slotOf = [&](Eigen::Index row, Eigen::Index col) -> int {
+      if (fixedDof(row) || fixedDof(col)) return -1;
+      const int* inner = w.matrix.innerIndexPtr();
+      const int* begin = inner + w.matrix.outerIndexPtr()[col];
+      const int* end = inner + w.matrix.outerIndexPtr()[col + 1];
+      return int(std::lower_bound(begin, end, int(row)) - inner);
+    };
+    auto slotsOf = [&](const ForceJacobians::Triplets& from, std::vector<int>& slots) {
+      slots.clear();
+      for (const auto& e : from) slots.push_back(slotOf(e.row(), e.col()));
+    };
+    slotsOf(jac.dfdv, pattern.dfdvSlots);
+    slotsOf(jac.dfdx, pattern.dfdxSlots);
+    pattern.diagonalSlots.clear();
+    for (Eigen::Index i = 0; i < n; ++i) pattern.diagonalSlots.push_back(int(std::lower_bound(
+        w.matrix.innerIndexPtr() + w.matrix.outerIndexPtr()[i], w.matrix.innerIndexPtr() + w.matrix.outerIndexPtr()[i + 1],
+        int(i)) - w.matrix.innerIndexPtr()));
+    pattern.valid = true;
+  }
+  double* values = w.matrix.valuePtr();
+  std::fill(values, values + w.matrix.nonZeros(), 0.0);
+  for (Eigen::Index i = 0; i < n; ++i) values[pattern.diagonalSlots[size_t(i)]] = fixedDof(i) ? 1.0 : model.mass[i / 2];
+  auto scatter = [&](const ForceJacobians::Triplets& from, const std::vector<int>& slots, double scale) {
+    for (size_t k = 0; k < from.size(); ++k) {
+      if (slots[k] >= 0) values[slots[k]] += scale * from[k].value();
     }
   };
-  addScaled(w.jacobians.dfdv, -h);
-  addScaled(w.jacobians.dfdx, -h * h);
-  w.matrix.resize(n, n);
-  w.matrix.setFromTriplets(w.triplets.begin(), w.triplets.end());
+  scatter(jac.dfdv, pattern.dfdvSlots, -h);
+  scatter(jac.dfdx, pattern.dfdxSlots, -h * h);
 
   // b = h (f₀ + h K v₀); K v₀ straight from K's triplets.
   w.rhs.resize(n);

@@ -34,7 +34,7 @@ namespace particles {
 class System;
 
 struct BackwardEulerOptions {
-  double tolerance = 1e-10;  // CG's relative residual
+  double tolerance = 1e-6;  // CG's relative residual
 };
 
 void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w,
