@@ -156,7 +156,7 @@ TEST_CASE("cli stability and plot: the table as CSV and figures") {
   REQUIRE_MESSAGE(r.code == 0, r.err);
   const auto rows = lines(slurp(s.dir / "table.csv"));
   REQUIRE(rows.size() == 3);
-  CHECK(rows[0] == "integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler,"
+  CHECK(rows[0] == "integrator,evals_per_step,max_stable_dt,max_smooth_dt,cost_dt,evals_per_sim_second,speed_vs_euler,"
                    "wall_seconds_per_sim_second");
   CHECK(rows[1].rfind("midpoint,2,", 0) == 0);
   CHECK(rows[2].rfind("rk4,4,", 0) == 0);

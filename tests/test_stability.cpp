@@ -98,6 +98,32 @@ TEST_CASE("a run that explodes, overstretches or shakes is classified as such") 
   CHECK(assessRun(make, Integrator::Rk4, 0.001, 5.0, strict).verdict == RunVerdict::Overstretched);
 }
 
+TEST_CASE("an integrator that never fails is reported at the ceiling, and costed at the cap") {
+  // An overdamped oscillator (k = 100, c = 100: rates 1 and 99 s⁻¹, no oscillation): backward
+  // Euler is stable and smooth at any step, so the search stops at maxDt, the result says so, and
+  // the costs are given at costDtCap; RK4 is limited by the fast rate (h < 2.78 / 99).
+  const SystemFactory make = [] { return linearOscillator(100.0, 100.0); };
+  StabilityOptions options;
+  options.referenceDt = 0.001;
+  options.startDt = 0.01;
+  options.maxDt = 0.5;
+  options.costDtCap = 0.04;
+  options.timingBudget = 0.0;
+  const StabilityStudy study = findStabilityLimits(make, 5.0, {Integrator::BackwardEuler, Integrator::Rk4}, options);
+  const StabilityResult& be = study.results[0];
+  CHECK(be.stableAtMaxDt);
+  CHECK(be.smoothAtMaxDt);
+  CHECK(be.maxStableDt == 0.5);
+  CHECK(be.maxSmoothDt == 0.5);
+  CHECK(be.costDt == 0.04);
+  CHECK(be.evalsPerSimSecond == doctest::Approx(25.0));
+  const StabilityResult& rk4 = study.results[1];  // limited below the ceiling: costed at its own step
+  CHECK_FALSE(rk4.stableAtMaxDt);
+  CHECK(rk4.maxStableDt < 0.5);
+  CHECK(rk4.costDt == rk4.maxSmoothDt);
+  CHECK(rk4.wallPerSimSecond == 0.0);  // not timed
+}
+
 TEST_CASE("the stretch bound comes from a reference run, and an unstable reference is an error") {
   const SystemFactory make = [] { return linearOscillator(100.0, 0.0); };
   StabilityOptions options;

@@ -157,7 +157,7 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->capture_default_str();
   stabilityCmd->add_option("--csv", stability.csv,
-                           "Write integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,"
+                           "Write integrator,evals_per_step,max_stable_dt,max_smooth_dt,cost_dt,evals_per_sim_second,"
                            "speed_vs_euler,wall_seconds_per_sim_second to this CSV");
   stabilityCmd->add_option("--plot", stability.plot, "Write the table as a bar chart (log axis): .svg or .png");
   stabilityCmd

@@ -41,7 +41,10 @@ std::string describe(const RunAssessment& a) {
   return "";
 }
 
-std::string dtText(double dt) { return dt > 0.0 ? fmt::format("{:.2g} s", dt) : std::string("none ≥ min"); }
+std::string dtText(double dt, bool atMax) {
+  if (atMax) return fmt::format("≥ {:.2g} s", dt);
+  return dt > 0.0 ? fmt::format("{:.2g} s", dt) : std::string("none ≥ min");
+}
 
 }  // namespace
 
@@ -77,6 +80,7 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
   study.minReferenceDt = std::max(minDt, study.referenceDt / 64.0);
   study.minDt = minDt;
   study.maxDt = options.maxDt;
+  study.costDtCap = 1.0 / s.render.fps;
   study.threads = options.threads;
 
   if (!common.quiet) {
@@ -103,28 +107,39 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
                "max dt without shaking", "evals per sim second", "speed vs euler", "wall s per sim second");
     for (const StabilityResult& r : results) {
       fmt::print("{:<16} {:>10} {:>15} {:>22} {:>20.4g} {:>15} {:>22}\n", integratorName(r.integrator), r.evalsPerStep,
-                 dtText(r.maxStableDt), dtText(r.maxSmoothDt), r.evalsPerSimSecond,
+                 dtText(r.maxStableDt, r.stableAtMaxDt), dtText(r.maxSmoothDt, r.smoothAtMaxDt), r.evalsPerSimSecond,
                  r.speedVsEuler > 0 ? fmt::format("{:.2f}×", r.speedVsEuler) : std::string("–"),
                  r.wallPerSimSecond > 0 ? fmt::format("{:.3g}", r.wallPerSimSecond) : std::string("–"));
     }
     fmt::print("\nreference: rk4 at dt = {:.3g} s, longest spring {:.3g}× its rest length → bound {:.3g}×\n",
                found.referenceDt, found.reference.maxStretch, found.maxStretch);
     fmt::print("why the next larger steps failed:\n");
+    bool anyAtMax = false;
     for (const StabilityResult& r : results) {
+      anyAtMax = anyAtMax || r.stableAtMaxDt;
       fmt::print("  {:<16} unstable: {}; not smooth: {}  ({} runs)\n", integratorName(r.integrator),
-                 describe(r.firstUnstable), describe(r.firstShaking), r.runs);
+                 r.stableAtMaxDt ? fmt::format("none up to --max-dt {:.3g} s", study.maxDt) : describe(r.firstUnstable),
+                 r.smoothAtMaxDt ? fmt::format("none up to --max-dt {:.3g} s", study.maxDt) : describe(r.firstShaking),
+                 r.runs);
+    }
+    if (anyAtMax) {
+      fmt::print(
+          "≥: no limit below --max-dt. An implicit integrator damps a step that is too long instead of blowing\n"
+          "up, so its step is bounded by accuracy, not stability: for an animation take at most one step per\n"
+          "frame (1/fps = {:.3g} s here), which is the step its costs per simulated second are given at.\n",
+          1.0 / s.render.fps);
     }
   }
 
   if (!options.csv.empty()) {
     output::OutputFile csv(options.csv);
     csv.write(
-        "integrator,evals_per_step,max_stable_dt,max_smooth_dt,evals_per_sim_second,speed_vs_euler,"
+        "integrator,evals_per_step,max_stable_dt,max_smooth_dt,cost_dt,evals_per_sim_second,speed_vs_euler,"
         "wall_seconds_per_sim_second\n");
     for (size_t k = 0; k < rows.size(); ++k) {
       const auto& r = rows[k];
-      csv.write(fmt::format("{},{},{},{},{},{},{}\n", r.integrator, r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
-                            r.evalsPerSimSecond, r.speedVsEuler, results[k].wallPerSimSecond));
+      csv.write(fmt::format("{},{},{},{},{},{},{},{}\n", r.integrator, r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
+                            results[k].costDt, r.evalsPerSimSecond, r.speedVsEuler, results[k].wallPerSimSecond));
     }
     csv.commit();
   }

@@ -178,15 +178,23 @@ StabilityStudy findStabilityLimits(const SystemFactory& make, double duration, c
     r.integrator = integrators[k];
     r.evalsPerStep = derivEvalsPerStep(r.integrator);
     auto run = [&](double dt) { return assessRun(make, r.integrator, dt, duration, options.criteria); };
-    r.maxStableDt = roundDownTwoDigits(
-        findLargestDt(run, [](const RunAssessment& a) { return a.stable(); }, options, r.runs, r.firstUnstable));
+    // A limit found by bisection is rounded down to two digits; one at the ceiling is the ceiling.
+    auto limit = [&](double found, bool& atMax) {
+      atMax = found >= options.maxDt;
+      return atMax ? options.maxDt : roundDownTwoDigits(found);
+    };
+    r.maxStableDt = limit(
+        findLargestDt(run, [](const RunAssessment& a) { return a.stable(); }, options, r.runs, r.firstUnstable),
+        r.stableAtMaxDt);
     // Smooth implies stable, so the smooth limit lies at or below the stable one.
     StabilityOptions smoothOptions = options;
     smoothOptions.startDt = r.maxStableDt > 0.0 ? r.maxStableDt : options.startDt;
-    r.maxSmoothDt = roundDownTwoDigits(findLargestDt(
-        run, [](const RunAssessment& a) { return a.smooth(); }, smoothOptions, r.runs, r.firstShaking));
+    r.maxSmoothDt = limit(findLargestDt(run, [](const RunAssessment& a) { return a.smooth(); }, smoothOptions, r.runs,
+                                        r.firstShaking),
+                          r.smoothAtMaxDt);
     r.maxSmoothDt = std::min(r.maxSmoothDt, r.maxStableDt);
-    r.evalsPerSimSecond = r.maxSmoothDt > 0.0 ? r.evalsPerStep / r.maxSmoothDt : 0.0;
+    r.costDt = (r.smoothAtMaxDt && options.costDtCap > 0.0) ? std::min(r.maxSmoothDt, options.costDtCap) : r.maxSmoothDt;
+    r.evalsPerSimSecond = r.costDt > 0.0 ? r.evalsPerStep / r.costDt : 0.0;
   };
 
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
@@ -205,11 +213,11 @@ StabilityStudy findStabilityLimits(const SystemFactory& make, double duration, c
   if (options.timingBudget > 0.0) {
     using Clock = std::chrono::steady_clock;
     for (StabilityResult& r : results) {
-      if (r.maxSmoothDt <= 0.0) continue;
+      if (r.costDt <= 0.0) continue;
       double best = 1e300, spent = 0.0;
       for (int k = 0; k < 5 && (k == 0 || spent < options.timingBudget); ++k) {
         const auto start = Clock::now();
-        assessRun(make, r.integrator, r.maxSmoothDt, duration, options.criteria);
+        assessRun(make, r.integrator, r.costDt, duration, options.criteria);
         const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
         best = std::min(best, seconds);
         spent += seconds;

@@ -71,6 +71,9 @@ struct StabilityOptions {
   double relativePrecision = 0.005;  // bisection stops when (hi − lo) ≤ this × lo: 2 significant digits
   int threads = 0;                // 0: one per integrator, up to the hardware's cores
   double timingBudget = 0.5;      // s of timed runs per integrator (at least one run); 0: no timing
+  // Costs of an integrator still smooth at maxDt are given at this step instead (the frame
+  // interval, 1/fps: an animation takes at least one step per frame); 0: at maxDt.
+  double costDtCap = 0.0;
 };
 
 struct StabilityResult {
@@ -78,13 +81,17 @@ struct StabilityResult {
   int evalsPerStep = 0;
   double maxStableDt = 0;    // 0 when nothing down to minDt was stable
   double maxSmoothDt = 0;
-  double evalsPerSimSecond = 0;  // evalsPerStep / maxSmoothDt: the cost at the largest usable step
+  double costDt = 0;             // the step the costs are given at: maxSmoothDt, or costDtCap when smoothAtMaxDt
+  double evalsPerSimSecond = 0;  // evalsPerStep / costDt: the cost at the largest usable step
   double speedVsEuler = 0;       // Euler's evals per simulated second / this one's
-  // Wall-clock seconds per simulated second at maxSmoothDt, measured (the fastest of a few timed
+  // Wall-clock seconds per simulated second at costDt, measured (the fastest of a few timed
   // runs, one integrator at a time): an implicit step costs Jacobians and a sparse solve besides
   // its one evaluation, so evaluations alone no longer compare integrators fairly. 0 when
   // nothing was smooth or the study was asked not to time.
   double wallPerSimSecond = 0;
+  // The search reached options.maxDt with the verdict still good: the limit lies beyond what was
+  // tried (backward Euler's, which damps instead of blowing up), and the dt shown is maxDt itself.
+  bool stableAtMaxDt = false, smoothAtMaxDt = false;
   int runs = 0;                  // simulations the search needed
   RunAssessment firstUnstable;   // the run just above maxStableDt (why it failed)
   RunAssessment firstShaking;    // the run just above maxSmoothDt

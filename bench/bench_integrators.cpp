@@ -1,0 +1,102 @@
+// Cost of one Solver::doStep per integrator, and per simulated second at the step each can use:
+//   - the demo cloth (scenarios/cloth.yaml: 25 × 25, structural springs 25 → 1 N/m, 2 g particles,
+//     rail, mouse) at 25² and at 316² (99,856 particles, 199,080 springs over the same 1.92 m
+//     square, as in bench_render.cpp's large cloth), each integrator at the largest step without
+//     shaking that `particles stability scenarios/cloth.yaml` found (docs/stability.md), backward
+//     Euler at one step per 60 fps frame;
+//   - the stiff cloth (scenarios/cloth_stiff.yaml: the same springs × 100) at 25², the explicit
+//     integrators at their limits there, backward Euler at one step per frame.
+// The 316² cloth has the same springs and particle masses, so the same fastest modes; the 25²
+// limits are taken for it (a run that blows up there is reported as an error, not timed).
+//
+// The scene is advanced to t = 1 s first (RK4 at 0.01 s; backward Euler at 1/60 s for the stiff
+// cloth), outside the clock; each iteration is then one step from where the last one ended, so
+// the benchmark walks through the scene's motion. Counters:
+//   sim_s_cost      CPU seconds per simulated second: time per step / dt
+//   per_particle    CPU time per step divided by the particle count
+//   cg_iterations   backward Euler's conjugate-gradient iterations per step (mean)
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "core/solver.hpp"
+#include "core/system.hpp"
+#include "scenario/scenario.hpp"
+
+namespace {
+
+using namespace particles;
+
+scenario::Scenario loadCloth(const std::string& file, int n) {
+  std::vector<scenario::Override> overrides;
+  if (n != 25) {
+    overrides = {scenario::parseOverride(fmt::format("grids.0.size=[{0}, {0}]", n)),
+                 scenario::parseOverride(fmt::format("grids.0.spacing=[{0}, {0}]", 1.92 / double(n - 1))),
+                 scenario::parseOverride(fmt::format("mouse.0.grab=cloth[{}][{}]", n - 1, n / 2))};
+  }
+  return scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/" + file, overrides);
+}
+
+void BM_IntegratorStep(benchmark::State& state, const std::string& file, int n, Integrator integrator, double dt) {
+  scenario::Scenario s = loadCloth(file, n);
+  const bool stiff = file == "cloth_stiff.yaml";
+  Stepper(s.system, stiff ? Integrator::BackwardEuler : Integrator::Rk4, stiff ? 1.0 / 60.0 : 0.01).advanceTo(1.0);
+  Solver solver(integrator);
+  state.SetLabel(fmt::format("{} dt={:.2g}", integratorName(integrator), dt));
+  long cgIterations = 0;
+  for (auto _ : state) {
+    try {
+      solver.doStep(s.system, dt);
+    } catch (const SimulationError& e) {
+      state.SkipWithError(e.what());
+      break;
+    }
+    cgIterations += solver.lastCgIterations();
+  }
+  const double particles = double(s.system.layout().numPoints());
+  state.counters["sim_s_cost"] = benchmark::Counter(dt, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["per_particle"] =
+      benchmark::Counter(particles, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  if (integrator == Integrator::BackwardEuler && state.iterations() > 0) {
+    state.counters["cg_iterations"] = double(cgIterations) / double(state.iterations());
+  }
+}
+
+// The largest steps without shaking on the 25² cloths (docs/stability.md); backward Euler: a frame.
+constexpr double kFrame = 1.0 / 60.0;
+
+struct Case {
+  const char* scene;
+  int n;
+  Integrator integrator;
+  double dt;
+};
+
+const Case kCases[] = {
+    {"cloth.yaml", 25, Integrator::Euler, 0.00054},       {"cloth.yaml", 25, Integrator::Midpoint, 0.0034},
+    {"cloth.yaml", 25, Integrator::Rk4, 0.012},           {"cloth.yaml", 25, Integrator::SymplecticEuler, 0.0081},
+    {"cloth.yaml", 25, Integrator::Verlet, 0.0077},       {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame},
+    {"cloth.yaml", 316, Integrator::Euler, 0.00054},      {"cloth.yaml", 316, Integrator::Midpoint, 0.0034},
+    {"cloth.yaml", 316, Integrator::Rk4, 0.012},          {"cloth.yaml", 316, Integrator::SymplecticEuler, 0.0081},
+    {"cloth.yaml", 316, Integrator::Verlet, 0.0077},      {"cloth.yaml", 316, Integrator::BackwardEuler, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::Midpoint, 0.00016}, {"cloth_stiff.yaml", 25, Integrator::Rk4, 0.0012},
+    {"cloth_stiff.yaml", 25, Integrator::SymplecticEuler, 0.00089},
+    {"cloth_stiff.yaml", 25, Integrator::Verlet, 0.00088}, {"cloth_stiff.yaml", 25, Integrator::BackwardEuler, kFrame},
+};
+
+// Names read BM_IntegratorStep/cloth_stiff/25/rk4.
+const bool kRegistered = [] {
+  for (const Case& c : kCases) {
+    const std::string scene = std::string(c.scene).substr(0, std::string(c.scene).find('.'));
+    const std::string name = fmt::format("BM_IntegratorStep/{}/{}/{}", scene, c.n, integratorName(c.integrator));
+    benchmark::RegisterBenchmark(name.c_str(), [c](benchmark::State& state) {
+      BM_IntegratorStep(state, c.scene, c.n, c.integrator, c.dt);
+    })->Unit(c.n > 100 ? benchmark::kMillisecond : benchmark::kMicrosecond);
+  }
+  return true;
+}();
+
+}  // namespace
