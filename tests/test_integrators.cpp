@@ -293,6 +293,17 @@ TEST_CASE("backward Euler: the energy of a passive system falls every step") {
   const double e0 = sys.energy().total(), h = 0.05;
   solver.doStep(sys, h);
   CHECK(sys.energy().total() == doctest::Approx(e0 / (1.0 + h * h * 4.0)).epsilon(1e-9));
+  // From a moving state: on a linear spring one Newton step is the implicit step, whose closed
+  // form is v₁ = (v₀ − h ω² u₀) / (1 + h² ω²), x₁ = x₀ + h v₁ (u: displacement from rest). The
+  // h ∂f/∂x v₀ term of the right-hand side is what makes it so: without it v₁ = v₀ − h ω² u₀ /
+  // (1 + h² ω²), off by h² ω² v₀ / (1 + h² ω²), an O(h²) error per step that no order test sees.
+  System moving = harmonicOscillator(4.0, 0.3);
+  moving.state()[moving.layout().velocityOffset() + 2] = 0.7;
+  Solver s1(Integrator::BackwardEuler);
+  s1.doStep(moving, h);
+  const double v1 = (0.7 - h * 4.0 * 0.3) / (1.0 + h * h * 4.0);
+  CHECK(moving.view().vel(1).x() == doctest::Approx(v1).epsilon(1e-12));
+  CHECK(moving.view().pos(1).x() == doctest::Approx(1.3 + h * v1).epsilon(1e-12));
   // A damped, driven system with gravity: energy is not conserved there, but the damped pair's
   // mechanical energy still only falls.
   System pair = dampedPair();

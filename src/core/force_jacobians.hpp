@@ -25,12 +25,12 @@ struct ForceJacobians {
     dfdx.clear();
     dfdv.clear();
   }
-  // ∂f_row/∂(x or v)_col += b, for points row and col.
+  // ∂f_row/∂(x or v)_col += b, for points row and col. All four entries, zeros too: the pattern
+  // then depends on which forces act, not on their values (an axis-aligned spring's off-diagonal
+  // zeros would otherwise come and go), so backward Euler can keep its matrix's pattern.
   static void addBlock(Triplets& to, int rowPoint, int colPoint, const Eigen::Matrix2d& b) {
     for (int r = 0; r < 2; ++r) {
-      for (int c = 0; c < 2; ++c) {
-        if (b(r, c) != 0.0) to.emplace_back(2 * rowPoint + r, 2 * colPoint + c, b(r, c));
-      }
+      for (int c = 0; c < 2; ++c) to.emplace_back(2 * rowPoint + r, 2 * colPoint + c, b(r, c));
     }
   }
   // A force along a − b that depends only on x_a − x_b (or v_a − v_b), f_b = −f_a, with
