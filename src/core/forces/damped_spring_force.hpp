@@ -10,9 +10,9 @@
 //   ∂f_a/∂x_a = −k_s [ l̂l̂ᵀ + max(0, 1 − r/|l|) (I − l̂l̂ᵀ) ],   ∂f_a/∂v_a = −k_d l̂l̂ᵀ
 // and [b −b; −b b] over the two ends. The exact transverse term (1 − r/|l|) turns positive
 // definite when the spring is compressed (|l| < r: buckling), which would break the SPD matrix CG
-// needs, so it is clamped at 0 (Choi & Ko 2002's fix); the damping's dependence on position is
-// dropped, as Baraff & Witkin do. An anchor on a body couples through the body's centre (its
-// translation); the rotation is explicit (docs/physics.md §3).
+// needs, so it is clamped at 0 (in the Jacobian only; the force keeps it); the damping's
+// dependence on position is dropped, as Baraff & Witkin do. An anchor on a body couples through
+// the body's centre (its translation); the rotation is explicit (docs/physics.md §3).
 
 #include <vector>
 
