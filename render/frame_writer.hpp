@@ -85,6 +85,11 @@ struct FrameWriterOptions {
   // Frames waiting for the encoder. Two to four are enough to keep renderer and encoder busy;
   // more only costs memory (3.7 MB per 1280×720 frame).
   size_t queueFrames = 4;
+  // A PNG sequence: the index in the whole render of the first frame written (its file name), and
+  // whether this is the whole render, whose finish() removes frame files of an earlier, longer run.
+  // A range (RenderJob::frames) writes its own frames only.
+  long firstIndex = 0;
+  bool wholeSequence = true;
 };
 
 enum class OutputKind { mp4, png, pngSequence };

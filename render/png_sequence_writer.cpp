@@ -52,6 +52,9 @@ PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWrite
   }
   const fs::path staging = staging_->path();
   const PngOptions png = options.png;
+  const long firstIndex = options.firstIndex;
+  firstIndex_ = firstIndex;
+  wholeSequence_ = options.wholeSequence;
   slots_.resize(FramePipeline::slotCount(options.queueFrames));
   Image* slots = slots_.data();
   pipeline_ = std::make_unique<FramePipeline>(
@@ -62,8 +65,8 @@ PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWrite
         slots[slot].height = image.height;
         slots[slot].rgba.assign(image.rgba.begin(), image.rgba.end());
       },
-      [slots, staging, png](size_t slot, long index) {
-        writePngDirect(staging / sequenceFrameName(index), slots[slot], png);
+      [slots, staging, png, firstIndex](size_t slot, long index) {
+        writePngDirect(staging / sequenceFrameName(firstIndex + index), slots[slot], png);
       });
 }
 
@@ -77,12 +80,13 @@ void PngSequenceWriter::finish() {
     pipeline_->close();
     std::error_code ec;
     for (long i = 0; i < frames_; ++i) {
-      const std::string name = sequenceFrameName(i);
+      const std::string name = sequenceFrameName(firstIndex_ + i);
       fs::rename(staging_->path() / name, directory_ / name, ec);
       if (ec) throw OutputError("cannot move " + name + " into " + directory_.string() + ": " + ec.message());
     }
-    // Frames beyond this run's last, left by an earlier run.
+    // Frames beyond this run's last, left by an earlier run (a range leaves the others' frames).
     for (const fs::directory_entry& entry : fs::directory_iterator(directory_, ec)) {
+      if (!wholeSequence_) break;
       const std::optional<long> index = sequenceFrameIndex(entry.path().filename().string());
       if (index && *index >= frames_) fs::remove(entry.path(), ec);
     }

@@ -3,10 +3,11 @@
 //
 // Frames are written into a staging subdirectory "<dir>/frames.partial-<pid>-<n>"
 // (output::StagingDirectory) and moved into <dir> by finish(); frame_NNNNNN.png files there from
-// an earlier, longer run are removed then, so the directory holds exactly this run. Other files in
-// <dir> are never touched, except staging directories that killed runs left there. The directory
-// is created if missing (its parent must exist) and removed again on abort if it was created here
-// and is empty.
+// an earlier, longer run are removed then, so the directory holds exactly this run (a range of the
+// frames, FrameWriterOptions::firstIndex, is named by its indices in the whole render and leaves
+// every other frame file alone). Other files in <dir> are never touched, except staging
+// directories that killed runs left there. The directory is created if missing (its parent must
+// exist) and removed again on abort if it was created here and is empty.
 
 #include <optional>
 #include <string>
@@ -36,6 +37,8 @@ class PngSequenceWriter final : public PipelinedFrameWriter {
 
  private:
   std::filesystem::path directory_;
+  long firstIndex_ = 0;        // the first frame's index in the whole render (its file name)
+  bool wholeSequence_ = true;  // finish() removes frames of an earlier, longer run
   bool createdDirectory_ = false;
   std::optional<output::StagingDirectory> staging_;
   // The pipeline's frames (FramePipeline::slotCount). The destructor stops the pipeline before

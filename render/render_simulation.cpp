@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <stdexcept>
+#include <string>
 
 #include "core/solver.hpp"
 #include "render/renderer.hpp"
@@ -49,6 +50,18 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
     throw std::invalid_argument("a time to draw (at) is for one frame to a file.png, not '" + job.output.string() +
                                 "'");
   }
+  const long total = kind == OutputKind::png ? 1 : frameCount(job.duration, job.fps);
+  const long first = job.frames ? job.frames->first : 0;
+  const long end = job.frames ? job.frames->second : total;
+  if (job.frames && kind == OutputKind::png) {
+    throw std::invalid_argument("a frame range is for a video or a sequence, not the single frame '" +
+                                job.output.string() + "'");
+  }
+  if (!(0 <= first && first < end && end <= total)) {
+    throw std::invalid_argument("frames " + std::to_string(first) + ":" + std::to_string(end) +
+                                " are not a range of the video's " + std::to_string(total) + " frames (0:" +
+                                std::to_string(total) + ")");
+  }
 
   FramePainter painter(job, hooks);
   Stepper stepper(system, integrator, dt);
@@ -75,7 +88,9 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
   out.video = job.video;
   out.video.fps = job.fps;
   out.png = job.png;
-  const long frames = frameCount(job.duration, job.fps);
+  out.firstIndex = first;
+  out.wholeSequence = !job.frames;
+  const long frames = end - first;
   // Removes everything it wrote if an exception leaves this function before finish().
   const std::unique_ptr<FrameWriter> writer = openFrameWriter(job.output, out);
   for (long i = 0; i < frames; ++i) {
@@ -85,7 +100,9 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
       summary.stopped = true;
       break;
     }
-    reached(double(i) / job.fps);
+    // The same stepper reaches frame k's time by the same steps whether or not the frames before
+    // it were drawn: the state is the whole render's.
+    reached(double(first + i) / job.fps);
     writer->write(painter.paint(system));
     if (hooks.progress) hooks.progress(i + 1, frames, system);
   }

@@ -4,6 +4,7 @@
 //   file.mp4   H.264 video, frames i = 0 … frameCount(duration, fps) − 1 at t = i / fps
 //   dir/       the same frames as frame_000000.png …
 //   file.png   one frame at `at` seconds
+// or a range of the frames of a video or sequence (RenderJob::frames).
 // A frame shows the state after the last time step at or before its time (to rounding), so with
 // a dt that divides 1/fps every frame is exact.
 //
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <utility>
 
 #include "core/integrators.hpp"
 #include "core/system.hpp"
@@ -31,6 +33,13 @@ struct RenderJob {
                                  // not after the system's (or NaN) draws its current state
   double duration = 0.0;         // s of simulated time a video or sequence covers, > 0
   int fps = 60;                  // frames per simulated second, ≥ 1
+  // Only frames first … end − 1 of the video or sequence (a split render): the simulation still
+  // starts from the system's state and steps through the earlier frames' times without drawing
+  // them, so each frame is the same as in the whole render. A sequence names the frames by their
+  // index in the whole (frame_000060.png …) and leaves other frames in the directory alone; an
+  // MP4 holds end − first frames from t = 0 and starts with a keyframe (particles concat joins
+  // segments). Nothing: every frame. 0 ≤ first < end ≤ frameCount(duration, fps).
+  std::optional<std::pair<long, long>> frames;
   Camera camera;
   RenderOptions look;
   GlRequest gl;        // which GL backend draws (render/gl_backend.hpp)
@@ -65,7 +74,8 @@ struct RenderSummary {
 // RenderError when the GL context cannot be made (before any output is opened) or draw,
 // OutputError when the output cannot be written, std::invalid_argument for options out of range
 // (render/render_options.hpp, render/gl_backend.hpp's validate, a video of odd size, an unknown
-// preset, a file.png without `at` or `at` for anything else), and whatever a hook throws.
+// preset, a file.png without `at` or `at` for anything else, a frame range outside the video or
+// with a file.png), and whatever a hook throws.
 RenderSummary renderSimulation(System& system, Integrator integrator, double dt, const RenderJob& job,
                                const RenderHooks& hooks = {});
 

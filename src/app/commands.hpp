@@ -52,6 +52,7 @@ struct StabilityOptionsCli {
 struct RenderCommandOptions {
   std::string output;                  // -o: file.mp4, dir/ or file.png (with --at)
   std::optional<double> at;            // --at T, s
+  std::string frames;                  // --frames A:B, frames A … B−1 only; empty: all
   std::string size;                    // --size WxH; empty: the scenario's render.size
   std::optional<double> fps;           // --fps; none: the scenario's render.fps
   int msaa = 4;                        // anti-aliasing samples per pixel: 1 (off), 2, 4, 8, 16

@@ -7,6 +7,7 @@
 
 #include "app/commands.hpp"
 #include "app/compare_command.hpp"
+#include "app/concat_command.hpp"
 #include "app/exit_codes.hpp"
 #include "app/gl_options.hpp"
 #include "render/frame_writer.hpp"
@@ -98,6 +99,9 @@ int main(int argc, char** argv) {
       ->add_option("-o,--output", render.output, "file.mp4 (H.264), dir/ (frame_000000.png …) or file.png (with --at)")
       ->required();
   renderCmd->add_option("--at", render.at, "Draw the one frame at this simulated time, s (with -o file.png)");
+  renderCmd->add_option("--frames", render.frames,
+                        "Render frames A … B−1 only (A:B; A: to the end), each the same as in the whole render: "
+                        "a segment of the video, or those frames of the sequence (join MP4 segments with concat)");
   renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
   renderCmd->add_option("--fps", render.fps, "Frames per simulated second (default: the scenario's render.fps)");
   renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: 1 (off), 2, 4, 8 or 16")
@@ -187,6 +191,9 @@ int main(int argc, char** argv) {
   particles::app::CompareOptions compare;
   CLI::App* compareCmd = particles::app::addCompareCommand(app, compare);
 
+  particles::app::ConcatOptions concat;
+  CLI::App* concatCmd = particles::app::addConcatCommand(app, concat);
+
   particles::app::PlotOptions plotOptions;
   CLI::App* plotCmd =
       app.add_subcommand("plot", "Draw the figure of a --stats CSV: energy and constraint error over time");
@@ -226,6 +233,7 @@ int main(int argc, char** argv) {
     if (stabilityCmd->parsed()) return particles::app::stabilityCommand(common, stability);
     if (plotCmd->parsed()) return particles::app::plotCommand(plotOptions);
     if (compareCmd->parsed()) return particles::app::compareCommand(compare);
+    if (concatCmd->parsed()) return particles::app::concatCommand(concat);
     if (renderCmd->parsed()) return particles::app::renderCommand(common, render);
     return particles::app::runCommand(common, run);
   });

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <csignal>
 #include <optional>
+#include <string>
+#include <utility>
 
 #include "app/cli_support.hpp"
 #include "app/csv_recorder.hpp"
@@ -124,6 +126,25 @@ auto refusedOptionsAreInputErrors(F&& f) {
   }
 }
 
+// --frames A:B (or A: for A to the end) against the video's `total` frames. Throws InputError.
+std::pair<long, long> parseFrameRange(const std::string& text, long total) {
+  const size_t colon = text.find(':');
+  auto number = [&](const std::string& part) -> std::optional<long> {
+    if (part.empty() || part.size() > 12 || part.find_first_not_of("0123456789") != std::string::npos) return {};
+    return std::stol(part);
+  };
+  const auto first = colon == std::string::npos ? std::nullopt : number(text.substr(0, colon));
+  const std::string rest = colon == std::string::npos ? "" : text.substr(colon + 1);
+  const auto end = rest.empty() ? std::optional<long>(total) : number(rest);
+  if (!first || !end) {
+    throw InputError(fmt::format("--frames: expected A:B (frames A … B−1) or A: (A to the end), not '{}'", text));
+  }
+  if (!(*first < *end && *end <= total)) {
+    throw InputError(fmt::format("--frames {}: not a range of the video's {} frames (0:{})", text, total, total));
+  }
+  return {*first, *end};
+}
+
 }  // namespace
 
 int renderCommand(const CommonOptions& common, const RenderCommandOptions& options) {
@@ -161,6 +182,14 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   if (options.at && (*options.at < 0 || *options.at > s.simulation.duration + 1e-9)) {
     throw InputError(fmt::format("--at {}: outside the simulation, 0 … {} s", *options.at, s.simulation.duration));
   }
+  const long totalFrames = render::frameCount(s.simulation.duration, fps);
+  std::optional<std::pair<long, long>> frameRange;
+  if (!options.frames.empty()) {
+    if (kind == render::OutputKind::png) {
+      throw InputError("--frames is for a video or a sequence: give -o FILE.mp4 or DIR/");
+    }
+    frameRange = parseFrameRange(options.frames, totalFrames);
+  }
   if (options.pngLevel < 0 || options.pngLevel > 9) {
     throw InputError(fmt::format("--png-level: 0 (fastest) to 9 (smallest), not {}", options.pngLevel));
   }
@@ -174,6 +203,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   job.at = options.at;
   job.duration = s.simulation.duration;
   job.fps = fps;
+  job.frames = frameRange;
   job.camera = {s.render.viewCenter, s.render.viewHeight};
   job.look = look;
   job.gl = gl;
@@ -213,7 +243,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
     return kOk;
   }
 
-  const long frames = render::frameCount(s.simulation.duration, fps);
+  const long frames = frameRange ? frameRange->second - frameRange->first : totalFrames;
   Progress progress(!common.quiet, "frames");
   hooks.progress = [&](long done, long total, const System& system) {
     progress.update(done, total, fmt::format("t = {:.2f} s", system.time()));

@@ -1,0 +1,28 @@
+#pragma once
+// Joins MP4 segments (`particles render --frames A:B -o part.mp4`) into one video by stream copy:
+// libavformat reads each segment's H.264 packets and writes them into one MP4, their timestamps
+// moved on by the durations of the segments before, with no decoding or re-encoding. Every
+// segment starts with a keyframe (an encoder's first frame is one), so the joined stream decodes
+// from any segment's start.
+//
+// The segments must be alike, or the copy would be a broken stream: one video stream each, of the
+// same codec, size, pixel format, frame rate and time base, and the same codec header (SPS/PPS,
+// which the same encoder settings give). The output appears only when complete, as every output
+// here does (output/pending_output.hpp).
+
+#include <filesystem>
+#include <vector>
+
+namespace particles::render {
+
+struct ConcatSummary {
+  long frames = 0;         // video packets copied: one per frame
+  double seconds = 0.0;    // the joined video's duration
+};
+
+// Throws std::invalid_argument for bad input: no segment, a segment that cannot be read as a video,
+// or segments that differ (the message names the offending file and what differs); OutputError
+// when the output cannot be written.
+ConcatSummary concatMp4(const std::vector<std::filesystem::path>& segments, const std::filesystem::path& output);
+
+}  // namespace particles::render

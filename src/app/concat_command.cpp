@@ -1,0 +1,50 @@
+// `particles concat`: see concat_command.hpp.
+#include "app/concat_command.hpp"
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <stdexcept>
+
+#include "app/exit_codes.hpp"
+#include "render/frame_writer.hpp"
+#include "render/mp4_concat.hpp"
+
+namespace particles::app {
+
+CLI::App* addConcatCommand(CLI::App& app, ConcatOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "concat", "Join MP4 segments of a split render (render --frames A:B) into one video, without re-encoding");
+  cmd->add_option("segments", o.segments, "The segments, in order (MP4 files of the same size, rate and settings)")
+      ->required();
+  cmd->add_option("-o,--output", o.output, "The joined video (.mp4)")->required();
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
+  cmd->footer(
+      "Exit codes: 0 joined, 2 bad input (a segment unreadable, or unlike the first), 3 the output failed.\n"
+      "Examples:\n"
+      "  particles render scenarios/cloth.yaml -o part0.mp4 --frames 0:300\n"
+      "  particles render scenarios/cloth.yaml -o part1.mp4 --frames 300:\n"
+      "  particles concat part0.mp4 part1.mp4 -o cloth.mp4\n");
+  return cmd;
+}
+
+int concatCommand(const ConcatOptions& o) {
+  if (std::filesystem::path(o.output).extension() != ".mp4") {
+    throw InputError(fmt::format("-o {}: the joined video must be a .mp4 file", o.output));
+  }
+  render::setLibavVerbose(false);  // the muxer's notes at "info" are not ours to print
+  std::vector<std::filesystem::path> segments(o.segments.begin(), o.segments.end());
+  render::ConcatSummary summary;
+  try {
+    summary = render::concatMp4(segments, o.output);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  if (!o.quiet) {
+    fmt::print("{} segments, {} frames, {:.6g} s → {}\n", segments.size(), summary.frames, summary.seconds, o.output);
+  }
+  return kOk;
+}
+
+}  // namespace particles::app

@@ -1,0 +1,30 @@
+#pragma once
+// `particles concat A.mp4 B.mp4 … -o ALL.mp4`: joins the segments of a split render
+// (`particles render --frames A:B`) by stream copy (render/mp4_concat.hpp).
+//
+// Exit codes: 0 joined; 2 bad input (a segment that cannot be read, or segments that differ in
+// size, frame rate, codec or codec header: the message names the file); 3 the output could not
+// be written.
+
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace particles::app {
+
+struct ConcatOptions {
+  std::vector<std::string> segments;
+  std::string output;
+  bool quiet = false;
+};
+
+// Registers the `concat` subcommand on `app`, parsing into `options` (which must outlive the
+// parse). Dispatch with `if (cmd->parsed()) return concatCommand(options);`.
+CLI::App* addConcatCommand(CLI::App& app, ConcatOptions& options);
+
+int concatCommand(const ConcatOptions& options);
+
+}  // namespace particles::app
