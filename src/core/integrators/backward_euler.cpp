@@ -188,24 +188,22 @@ void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double
     w.matrix.resize(n, n);
     w.matrix.setFromTriplets(w.triplets.begin(), w.triplets.end());
     w.matrix.makeCompressed();
-    // Each entry's slot in A's value array (−1: a fixed coordinate's, left out).
+    // Where entry (row, col) sits in A's value array (columns are sorted: compressed storage).
     auto slotOf = [&](Eigen::Index row, Eigen::Index col) -> int {
-      if (fixedDof(row) || fixedDof(col)) return -1;
       const int* inner = w.matrix.innerIndexPtr();
       const int* begin = inner + w.matrix.outerIndexPtr()[col];
       const int* end = inner + w.matrix.outerIndexPtr()[col + 1];
       return int(std::lower_bound(begin, end, int(row)) - inner);
     };
+    // Each Jacobian entry's slot (−1: a fixed coordinate's, left out).
     auto slotsOf = [&](const ForceJacobians::Triplets& from, std::vector<int>& slots) {
       slots.clear();
-      for (const auto& e : from) slots.push_back(slotOf(e.row(), e.col()));
+      for (const auto& e : from) slots.push_back(fixedDof(e.row()) || fixedDof(e.col()) ? -1 : slotOf(e.row(), e.col()));
     };
     slotsOf(jac.dfdv, pattern.dfdvSlots);
     slotsOf(jac.dfdx, pattern.dfdxSlots);
     pattern.diagonalSlots.clear();
-    for (Eigen::Index i = 0; i < n; ++i) pattern.diagonalSlots.push_back(int(std::lower_bound(
-        w.matrix.innerIndexPtr() + w.matrix.outerIndexPtr()[i], w.matrix.innerIndexPtr() + w.matrix.outerIndexPtr()[i + 1],
-        int(i)) - w.matrix.innerIndexPtr()));
+    for (Eigen::Index i = 0; i < n; ++i) pattern.diagonalSlots.push_back(slotOf(i, i));
     pattern.valid = true;
   }
   double* values = w.matrix.valuePtr();
