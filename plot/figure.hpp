@@ -29,6 +29,7 @@ enum class AxisScale {
 struct Series {
   std::string name;  // in the legend; an empty name leaves the series out of the legend
   std::vector<double> x, y;
+  bool markers = false;  // a dot at every point, for a few measured points rather than a time series
 };
 
 struct Panel {
@@ -41,6 +42,7 @@ struct Panel {
 struct LineChart {
   std::string xLabel;  // e.g. "t [s]"
   std::vector<Panel> panels;
+  AxisScale xScale = AxisScale::Linear;  // Log: points with x ≤ 0 are left out, as on a log y axis
 };
 
 // One bar per category in each group; the groups are told apart by colour and the legend.

@@ -18,6 +18,7 @@ constexpr double kPanelGapPx = 28;
 constexpr double kRightMarginPx = 32;
 constexpr double kLineWidthPx = 2;
 constexpr double kDotRadiusPx = 2.5;  // an isolated point, with no neighbour to draw a line to
+constexpr double kMarkerRadiusPx = 3.5;  // each point of a series with markers
 constexpr double kLegendInsetPx = 10;
 constexpr double kLegendRowPx = 20;
 constexpr double kLegendSwatchPx = 26;
@@ -36,13 +37,20 @@ struct Range {
   bool empty() const { return lo > hi; }
 };
 
-bool drawable(double x, double y, AxisScale scale) {
-  return std::isfinite(x) && std::isfinite(y) && (scale != AxisScale::Log || y > 0);
+bool drawable(double x, double y, AxisScale scale, AxisScale xScale) {
+  return std::isfinite(x) && std::isfinite(y) && (scale != AxisScale::Log || y > 0) &&
+         (xScale != AxisScale::Log || x > 0);
 }
 
 struct XAxis {
   AxisTicks ticks;
-  double toPixel(double v, const Rect& plot) const { return plot.x + axisFraction(v, ticks) * plot.w; }
+  AxisScale scale = AxisScale::Linear;
+  double toPixel(double v, const Rect& plot) const {
+    if (scale == AxisScale::Log) {
+      return plot.x + (std::log10(v) - std::log10(ticks.lo)) / (std::log10(ticks.hi) - std::log10(ticks.lo)) * plot.w;
+    }
+    return plot.x + axisFraction(v, ticks) * plot.w;
+  }
 };
 
 // Runs of consecutive drawable points, in pixels. A point that cannot be drawn ends a run.
@@ -50,7 +58,7 @@ std::vector<std::vector<Point>> pixelRuns(const Series& s, const XAxis& xAxis, c
   std::vector<std::vector<Point>> runs;
   bool inRun = false;
   for (std::size_t i = 0; i < s.x.size(); ++i) {
-    if (!drawable(s.x[i], s.y[i], yAxis.scale)) {
+    if (!drawable(s.x[i], s.y[i], yAxis.scale, xAxis.scale)) {
       inRun = false;
       continue;
     }
@@ -139,7 +147,7 @@ void drawLegend(const Canvas& canvas, const Panel& panel, const Rect& plot, cons
   }
 }
 
-void drawSeries(const Canvas& canvas, std::size_t index, const std::vector<std::vector<Point>>& runs) {
+void drawSeries(const Canvas& canvas, std::size_t index, const std::vector<std::vector<Point>>& runs, bool markers) {
   cairo_t* cr = canvas.cr();
   const Rgb c = seriesColour(index);
   cairo_set_source_rgb(cr, c.r, c.g, c.b);
@@ -158,9 +166,11 @@ void drawSeries(const Canvas& canvas, std::size_t index, const std::vector<std::
   }
   bool anyDot = false;
   for (const auto& run : runs) {
-    if (run.size() != 1) continue;
-    cairo_new_sub_path(cr);
-    cairo_arc(cr, run[0].x, run[0].y, kDotRadiusPx, 0, 2 * std::numbers::pi);
+    if (run.size() != 1 && !markers) continue;
+    for (const Point& p : run) {
+      cairo_new_sub_path(cr);
+      cairo_arc(cr, p.x, p.y, markers ? kMarkerRadiusPx : kDotRadiusPx, 0, 2 * std::numbers::pi);
+    }
     anyDot = true;
   }
   if (anyDot) cairo_fill(cr);
@@ -184,7 +194,7 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
   for (const Panel& p : panels) {
     for (const Series& s : p.series) {
       for (std::size_t i = 0; i < s.x.size(); ++i) {
-        if (drawable(s.x[i], s.y[i], p.yScale)) xRange.add(s.x[i]);
+        if (drawable(s.x[i], s.y[i], p.yScale, chart.xScale)) xRange.add(s.x[i]);
       }
     }
   }
@@ -194,7 +204,7 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
     Range yRange;
     for (const Series& s : p.series) {
       for (std::size_t i = 0; i < s.x.size(); ++i) {
-        if (drawable(s.x[i], s.y[i], p.yScale)) yRange.add(s.y[i]);
+        if (drawable(s.x[i], s.y[i], p.yScale, chart.xScale)) yRange.add(s.y[i]);
       }
     }
     YAxis axis{p.yScale, {}};
@@ -214,8 +224,13 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
                                  kTickLabelGapPx + kTickLengthPx);
   const double plotWidth = std::max(40.0, figure.widthPx - left - kRightMarginPx);
   const int xTarget = std::clamp(int(plotWidth / 110), 3, 12);
-  const XAxis xAxis{xRange.empty() ? linearTicks(0, 1, xTarget, false)
-                                   : linearTicks(xRange.lo, xRange.hi, xTarget, false)};
+  XAxis xAxis;
+  xAxis.scale = chart.xScale;
+  if (chart.xScale == AxisScale::Log) {
+    xAxis.ticks = xRange.empty() ? logTicks(1, 10, 2) : logTicks(xRange.lo, xRange.hi, xTarget);
+  } else {
+    xAxis.ticks = xRange.empty() ? linearTicks(0, 1, xTarget, false) : linearTicks(xRange.lo, xRange.hi, xTarget, false);
+  }
 
   Rect plot{left, 0, std::round(plotWidth), std::round(panelHeight)};
   for (std::size_t k = 0; k < panels.size(); ++k) {
@@ -238,7 +253,7 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
     cairo_save(canvas.cr());
     cairo_rectangle(canvas.cr(), plot.x, plot.y, plot.w, plot.h);
     cairo_clip(canvas.cr());
-    for (std::size_t i = 0; i < runs.size(); ++i) drawSeries(canvas, i, runs[i]);
+    for (std::size_t i = 0; i < runs.size(); ++i) drawSeries(canvas, i, runs[i], panel.series[i].markers);
     cairo_restore(canvas.cr());
     if (!anyPoint) {
       canvas.text({"no data", ""}, plot.x + plot.w / 2, plot.y + plot.h / 2, kAxisLabelSizePx, HAlign::Center,

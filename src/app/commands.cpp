@@ -4,6 +4,7 @@
 
 #include "app/cli_support.hpp"
 #include "app/csv_recorder.hpp"
+#include "app/job_record.hpp"
 #include "scenario/runner.hpp"
 #include "scenario/scenario.hpp"
 
@@ -34,6 +35,12 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
   const scenario::RunSummary summary = scenario::runScenario(s, observer);
   progress.finish();
   recorder->commit();
+  reportHeadline("final_energy", summary.finalEnergy.total());
+  reportHeadline("initial_energy", summary.initialEnergy.total());
+  reportHeadline("worst_constraint_error", summary.worstConstraintError);
+  reportHeadline("worst_penetration", summary.worstPenetration);
+  reportHeadline("steps", double(summary.steps));
+  reportHeadline("wall_seconds", summary.wallSeconds);
 
   if (!common.quiet) {
     const auto& sim = s.simulation;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "app/exit_codes.hpp"
+#include "app/job_record.hpp"
 #include "render/frame_writer.hpp"
 #include "render/mp4_concat.hpp"
 
@@ -41,6 +42,8 @@ int concatCommand(const ConcatOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
+  reportHeadline("frames", double(summary.frames));
+  reportHeadline("video_seconds", summary.seconds);
   if (!o.quiet) {
     fmt::print("{} segments, {} frames, {:.6g} s → {}\n", segments.size(), summary.frames, summary.seconds, o.output);
   }

@@ -14,8 +14,9 @@
 namespace particles::app {
 
 int runReportingErrors(const ErrorContext& context, const std::function<int()>& command) {
-  auto report = [](ExitCode code, const std::string& message) {
+  auto report = [&](ExitCode code, const std::string& message) {
     fmt::print(stderr, "{}\n", message);
+    if (context.printed) *context.printed = message;
     return code;
   };
   auto failed = [&](const std::exception& e) { return fmt::format("{}: error: {}", context.scenario, e.what()); };

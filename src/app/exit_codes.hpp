@@ -36,6 +36,7 @@ class SimulationFailure : public std::runtime_error {
 // What the messages name.
 struct ErrorContext {
   std::string scenario;  // the scenario file as given; empty for commands without one
+  std::string* printed = nullptr;  // when set, receives the error message printed (a job record keeps it)
 };
 
 // Runs the command and returns its exit code; an exception from it is printed on stderr and

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "app/cli_support.hpp"
+#include "app/job_record.hpp"
 #include "app/csv_recorder.hpp"
 #include "app/gl_options.hpp"
 #include "core/solver.hpp"
@@ -264,6 +265,8 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   }
   recorder->commit();
   progress.finish();
+  reportHeadline("frames", double(frames));
+  reportHeadline("wall_seconds", summary.wallSeconds);
   if (!common.quiet) {
     const double wall = summary.wallSeconds;
     fmt::print("{}: {} frames ({}×{}, {} fps, {:.6g} s) in {:.2f} s, {:.1f} frames/s, {} steps of {} s ({}) → {}\n",

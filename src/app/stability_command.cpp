@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "app/cli_support.hpp"
+#include "app/job_record.hpp"
 #include "core/stability.hpp"
 #include "output/output_file.hpp"
 #include "plot/stability_figure.hpp"
@@ -98,6 +99,9 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
 
   std::vector<plot::StabilityRow> rows;
   for (const StabilityResult& r : results) {
+    // A limit found at --max-dt is a lower bound; the headline gives the value found.
+    reportHeadline(fmt::format("max_stable_dt.{}", integratorName(r.integrator)), r.maxStableDt);
+    reportHeadline(fmt::format("max_smooth_dt.{}", integratorName(r.integrator)), r.maxSmoothDt);
     rows.push_back({std::string(integratorName(r.integrator)), r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
                     r.evalsPerSimSecond, r.speedVsEuler});
   }

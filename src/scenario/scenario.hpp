@@ -118,6 +118,11 @@ std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t m
 Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides = {},
                           const SceneLimits& limits = {});
 
+// The value at key path `path` (as --set writes it) of a scenario's text with every number in it
+// multiplied by `factor`, as YAML flow text: a sweep's `scale` parameter. Throws ScenarioError
+// naming the scenario file when the path is not in the file or holds anything but numbers.
+std::string scaledValueAt(std::string_view text, const std::string& file, const std::string& path, double factor);
+
 // How a reference spells point `point` of the system (docs/physics.md §12 --trace): the particle's or
 // body's name, `cloth[3][4]` for a grid particle, `#index` for an unnamed particle and `body#j`
 // for an unnamed rigid body.

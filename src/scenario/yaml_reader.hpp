@@ -34,6 +34,8 @@ class Value {
   bool isMap() const { return node_.IsMap(); }
   bool isSequence() const { return node_.IsSequence(); }
   bool isScalar() const { return node_.IsScalar(); }
+  // Where the value is written: its node's mark, else its key's (null values have no mark).
+  YAML::Mark mark() const { return isNull() || node_.Mark().is_null() ? fallback_ : node_.Mark(); }
 
   // Throws ScenarioError at this value's position and key path.
   [[noreturn]] void fail(const std::string& message) const;

@@ -1,0 +1,79 @@
+#include "app/csv_table.hpp"
+
+#include <fmt/format.h>
+
+#include "app/exit_codes.hpp"
+
+namespace particles::app {
+
+std::string csvField(std::string_view field) {
+  if (field.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(field);
+  std::string out = "\"";
+  for (char c : field) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string csvRow(const std::vector<std::string>& fields) {
+  std::string out;
+  for (size_t i = 0; i < fields.size(); ++i) {
+    if (i > 0) out += ',';
+    out += csvField(fields[i]);
+  }
+  return out + "\n";
+}
+
+std::vector<std::vector<std::string>> parseCsv(std::string_view text, const std::string& file) {
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::string> row;
+  std::string field;
+  bool quoted = false, fieldStarted = false;
+  int line = 1, rowLine = 1;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c == '"') {
+        if (i + 1 < text.size() && text[i + 1] == '"') {
+          field += '"';
+          ++i;
+        } else {
+          quoted = false;
+        }
+      } else {
+        if (c == '\n') ++line;
+        field += c;
+      }
+      continue;
+    }
+    if (c == '"') {
+      if (fieldStarted) throw InputError(fmt::format("{}:{}: a quote inside an unquoted field", file, line));
+      quoted = true;
+      fieldStarted = true;
+    } else if (c == ',') {
+      row.push_back(std::move(field));
+      field.clear();
+      fieldStarted = false;
+    } else if (c == '\n' || c == '\r') {
+      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+      row.push_back(std::move(field));
+      field.clear();
+      fieldStarted = false;
+      rows.push_back(std::move(row));
+      row.clear();
+      rowLine = ++line;
+    } else {
+      field += c;
+      fieldStarted = true;
+    }
+  }
+  if (quoted) throw InputError(fmt::format("{}:{}: a quoted field is not closed", file, rowLine));
+  if (fieldStarted || !row.empty()) {
+    row.push_back(std::move(field));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+}  // namespace particles::app

@@ -1,0 +1,17 @@
+#pragma once
+// A table as CSV (RFC 4180: fields with commas, quotes or line breaks are quoted, quotes doubled),
+// for the sweep's jobs.csv and results.csv.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace particles::app {
+
+std::string csvField(std::string_view field);
+std::string csvRow(const std::vector<std::string>& fields);  // ends with '\n'
+
+// The rows of a CSV text; throws InputError naming `file` and the line on a malformed row.
+std::vector<std::vector<std::string>> parseCsv(std::string_view text, const std::string& file);
+
+}  // namespace particles::app

@@ -1,0 +1,247 @@
+// `particles gather OUTDIR`: one row per job of a sweep (jobs.csv) with its parameters, its outcome
+// from its record and the headline numbers the job reported; and, when one parameter varies, a
+// figure of those numbers against it (one panel per quantity, one line per integrator or
+// scenario).
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "app/csv_table.hpp"
+#include "app/exit_codes.hpp"
+#include "app/job_record.hpp"
+#include "app/sweep_command.hpp"
+#include "input/text_file.hpp"
+#include "output/output_file.hpp"
+#include "plot/figure.hpp"
+
+namespace particles::app {
+
+namespace {
+
+struct GatheredRow {
+  std::vector<std::string> job;        // the jobs.csv row
+  std::optional<JobRecord> record;
+};
+
+// Headline numbers that describe the job rather than its result: left out of the figure.
+bool inFigure(const std::string& key) {
+  return key != "steps" && key != "initial_energy" && key != "frames" && key != "video_seconds";
+}
+
+std::optional<double> numberOf(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  size_t used = 0;
+  try {
+    const double x = std::stod(text, &used);
+    if (used == text.size() && std::isfinite(x)) return x;
+  } catch (const std::exception&) {
+  }
+  return std::nullopt;
+}
+
+plot::AxisScale scaleFor(const std::vector<double>& values) {
+  double lo = INFINITY, hi = 0;
+  for (double v : values) {
+    if (!(v > 0)) return plot::AxisScale::Linear;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  return !values.empty() && hi / lo >= 20 ? plot::AxisScale::Log : plot::AxisScale::Linear;
+}
+
+}  // namespace
+
+CLI::App* addGatherCommand(CLI::App& app, GatherOptions& o) {
+  CLI::App* cmd = app.add_subcommand("gather", "Collect a sweep's results: one CSV row per job, and a figure");
+  cmd->add_option("outdir", o.outDir, "A sweep's output folder (with jobs.csv)")->required();
+  cmd->add_option("-o,--output", o.output, "The CSV (default OUTDIR/results.csv)");
+  cmd->add_option("--plot", o.plot,
+                  "The figure, .svg or .png (default OUTDIR/results.svg when one parameter varies; none: no figure)");
+  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
+  cmd->footer(
+      "Columns: index, stage, scenario, the parameters, segment, status (ok, failed or not run), exit,\n"
+      "seconds, then the numbers the jobs report (run: final_energy, worst_constraint_error,\n"
+      "worst_penetration, wall_seconds, …; stability: max_stable_dt.INTEGRATOR, max_smooth_dt.…; render:\n"
+      "frames, wall_seconds), then message.\n"
+      "Example:\n"
+      "  particles gather cloth-sweep --plot cloth-sweep.png\n");
+  return cmd;
+}
+
+int gatherCommand(const GatherOptions& o) {
+  const std::filesystem::path dir = o.outDir;
+  const std::filesystem::path jobsFile = dir / "jobs.csv";
+  std::string text;
+  try {
+    text = input::readTextFile(jobsFile, 256);
+  } catch (const input::ReadError& e) {
+    throw InputError(fmt::format("{} (is {} the output folder of a sweep?)", e.what(), o.outDir));
+  }
+  const auto table = parseCsv(text, jobsFile.string());
+  if (table.empty()) throw InputError(fmt::format("{}: empty; expected a sweep's job table", jobsFile.string()));
+  const std::vector<std::string>& header = table.front();
+  const auto column = [&](const std::string& name) -> size_t {
+    const auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end()) {
+      throw InputError(fmt::format("{}:1: no column '{}'; expected a sweep's job table", jobsFile.string(), name));
+    }
+    return size_t(it - header.begin());
+  };
+  const size_t stageCol = column("stage"), scenarioCol = column("scenario"), segmentCol = column("segment"),
+               dirCol = column("dir");
+  if (column("index") != 0 || scenarioCol > segmentCol) {
+    throw InputError(fmt::format("{}:1: expected index, stage, scenario, parameters…, segment, dir, command",
+                                 jobsFile.string()));
+  }
+  const std::vector<std::string> parameters(header.begin() + long(scenarioCol) + 1, header.begin() + long(segmentCol));
+
+  std::vector<GatheredRow> rows;
+  std::vector<std::string> keys;  // headline keys in order of first appearance
+  for (size_t r = 1; r < table.size(); ++r) {
+    if (table[r].size() != header.size()) {
+      throw InputError(fmt::format("{}:{}: {} fields, the header has {}", jobsFile.string(), r + 1, table[r].size(),
+                                   header.size()));
+    }
+    GatheredRow row{table[r], readJobRecord(dir / table[r][dirCol] / "record.txt")};
+    if (row.record) {
+      for (const auto& [k, v] : row.record->headline) {
+        if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+      }
+    }
+    rows.push_back(std::move(row));
+  }
+
+  // results.csv
+  size_t ok = 0, failed = 0, notRun = 0;
+  const std::filesystem::path csvPath = o.output.empty() ? dir / "results.csv" : std::filesystem::path(o.output);
+  {
+    output::OutputFile csv(csvPath);
+    std::vector<std::string> head = {"index", "stage", "scenario"};
+    head.insert(head.end(), parameters.begin(), parameters.end());
+    head.insert(head.end(), {"segment", "status", "exit", "seconds"});
+    head.insert(head.end(), keys.begin(), keys.end());
+    head.push_back("message");
+    csv.write(csvRow(head));
+    for (const GatheredRow& row : rows) {
+      std::vector<std::string> fields(row.job.begin(), row.job.begin() + long(segmentCol) + 1);
+      if (!row.record) {
+        ++notRun;
+        fields.insert(fields.end(), {"not run", "", ""});
+        fields.resize(fields.size() + keys.size());
+        fields.push_back("");
+      } else {
+        const JobRecord& rec = *row.record;
+        (rec.exitCode == 0 ? ok : failed)++;
+        fields.insert(fields.end(), {rec.exitCode == 0 ? "ok" : "failed", std::to_string(rec.exitCode),
+                                     fmt::format("{:.3f}", rec.seconds)});
+        for (const std::string& k : keys) {
+          const auto it = std::find_if(rec.headline.begin(), rec.headline.end(),
+                                       [&](const auto& kv) { return kv.first == k; });
+          fields.push_back(it == rec.headline.end() ? std::string() : fmt::format("{}", it->second));
+        }
+        fields.push_back(rec.message);
+      }
+      csv.write(csvRow(fields));
+    }
+    csv.commit();
+  }
+
+  // The figure: the final stage's rows that succeeded, against the one parameter that varies.
+  std::vector<const GatheredRow*> results;
+  for (const GatheredRow& row : rows) {
+    if (row.job[stageCol] != "segment" && row.record && row.record->exitCode == 0) results.push_back(&row);
+  }
+  std::vector<size_t> varying;
+  for (size_t p = 0; p < parameters.size(); ++p) {
+    std::set<std::string> seen;
+    for (const GatheredRow* row : results) seen.insert(row->job[scenarioCol + 1 + p]);
+    if (seen.size() > 1) varying.push_back(p);
+  }
+  std::string figureNote;
+  std::filesystem::path figurePath;
+  if (o.plot == "none") {
+    figureNote = "no figure (--plot none)";
+  } else if (varying.size() != 1) {
+    figureNote = varying.empty() ? "no figure: no parameter varies"
+                                 : fmt::format("no figure: {} parameters vary (a figure needs one)", varying.size());
+  } else {
+    const size_t xCol = scenarioCol + 1 + varying.front();
+    bool numeric = true;
+    for (const GatheredRow* row : results) numeric = numeric && numberOf(row->job[xCol]).has_value();
+    if (!numeric) {
+      figureNote = fmt::format("no figure: {} is not a number", parameters[varying.front()]);
+    } else {
+      std::set<std::string> scenarios;
+      for (const GatheredRow* row : results) scenarios.insert(row->job[scenarioCol]);
+      // Panels: one per quantity (the key up to its first '.'), series per integrator and scenario.
+      std::vector<std::string> panelNames;
+      std::map<std::string, std::map<std::string, plot::Series>> series;  // panel → series name → series
+      std::map<std::string, std::vector<std::string>> seriesOrder;
+      std::vector<double> xs;
+      for (const GatheredRow* row : results) {
+        const double x = *numberOf(row->job[xCol]);
+        xs.push_back(x);
+        for (const auto& [key, value] : row->record->headline) {
+          if (!inFigure(key)) continue;
+          const size_t dot = key.find('.');
+          const std::string panel = key.substr(0, dot);
+          std::string name = dot == std::string::npos ? std::string() : key.substr(dot + 1);
+          if (scenarios.size() > 1) name = name.empty() ? row->job[scenarioCol] : row->job[scenarioCol] + ": " + name;
+          if (std::find(panelNames.begin(), panelNames.end(), panel) == panelNames.end()) panelNames.push_back(panel);
+          auto& s = series[panel][name];
+          if (s.x.empty()) {
+            s.name = name;
+            s.markers = true;
+            seriesOrder[panel].push_back(name);
+          }
+          s.x.push_back(x);
+          s.y.push_back(value);
+        }
+      }
+      if (panelNames.size() > 4) panelNames.resize(4);
+      plot::LineChart chart;
+      chart.xLabel = parameters[varying.front()];
+      chart.xScale = scaleFor(xs);
+      for (const std::string& name : panelNames) {
+        plot::Panel panel;
+        panel.yLabel = name;
+        std::vector<double> ys;
+        for (const std::string& s : seriesOrder[name]) {
+          plot::Series line = series[name][s];
+          // Points in order of x, so the line goes left to right whatever the job order.
+          std::vector<size_t> order(line.x.size());
+          for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+          std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return line.x[a] < line.x[b]; });
+          plot::Series sorted{line.name, {}, {}, true};
+          for (size_t i : order) {
+            sorted.x.push_back(line.x[i]);
+            sorted.y.push_back(line.y[i]);
+          }
+          ys.insert(ys.end(), sorted.y.begin(), sorted.y.end());
+          panel.series.push_back(std::move(sorted));
+        }
+        panel.yScale = scaleFor(ys);
+        chart.panels.push_back(std::move(panel));
+      }
+      plot::Figure figure;
+      figure.title = fmt::format("{} against {}", std::filesystem::absolute(dir).lexically_normal().filename().string(),
+                                 parameters[varying.front()]);
+      figure.heightPx = int(std::max<size_t>(1, chart.panels.size())) * 300 + 140;
+      figure.chart = std::move(chart);
+      figurePath = o.plot.empty() ? dir / "results.svg" : std::filesystem::path(o.plot);
+      plot::writeFigure(figure, figurePath);
+    }
+  }
+  if (!o.quiet) {
+    fmt::print("{}: {} jobs: {} ok, {} failed, {} not run → {}\n", o.outDir, rows.size(), ok, failed, notRun,
+               csvPath.string());
+    fmt::print("{}\n", figurePath.empty() ? figureNote : "figure: " + figurePath.string());
+  }
+  return kOk;
+}
+
+}  // namespace particles::app

@@ -1,0 +1,186 @@
+// Job records: see job_record.hpp.
+#include "app/job_record.hpp"
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+
+#include "output/output_error.hpp"
+#include "output/output_file.hpp"
+
+namespace particles::app {
+
+namespace {
+
+// The headline of this process's command; one process runs one command.
+std::vector<std::pair<std::string, double>>& headline() {
+  static std::vector<std::pair<std::string, double>> values;
+  return values;
+}
+
+std::string oneLine(std::string text) {
+  std::replace(text.begin(), text.end(), '\n', ' ');
+  std::replace(text.begin(), text.end(), '\r', ' ');
+  return text;
+}
+
+constexpr std::string_view kHeader =
+    "# particles job record: a rerun of this command by this version skips it while exit is 0 and its\n"
+    "# outputs exist (--force reruns it); `particles gather` reads the values.\n";
+
+}  // namespace
+
+void addJobOptions(CLI::App& command, JobOptions& o) {
+  command.add_option("--record", o.record,
+                     "A sweep job's record: skip when it shows this command done by this version with its outputs "
+                     "present; write it after running (exit code, message, headline numbers)");
+  command.add_flag("--force", o.force, "With --record: run even when the record says the job is done");
+}
+
+void reportHeadline(const std::string& key, double value) {
+  auto& values = headline();
+  for (auto& [k, v] : values) {
+    if (k == key) {
+      v = value;
+      return;
+    }
+  }
+  values.emplace_back(key, value);
+}
+
+std::string shellQuote(const std::string& arg) {
+  const bool plain = !arg.empty() && std::all_of(arg.begin(), arg.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("_./=:,+-@%^").find(c) != std::string_view::npos;
+  });
+  if (plain) return arg;
+  std::string out = "'";
+  for (char c : arg) {
+    if (c == '\'')
+      out += "'\\''";
+    else
+      out += c;
+  }
+  return out + "'";
+}
+
+std::string commandText(const std::vector<std::string>& args) {
+  std::string out;
+  for (const std::string& a : args) {
+    if (a == "--force") continue;
+    if (!out.empty()) out += ' ';
+    out += shellQuote(a);
+  }
+  return out;
+}
+
+std::string programVersion() {
+  return PARTICLES_VERSION;
+}
+
+std::optional<JobRecord> readJobRecord(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) return std::nullopt;
+  JobRecord r;
+  bool sawVersion = false, sawExit = false;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    const size_t colon = line.find(": ");
+    const std::string key = line.substr(0, colon);
+    const std::string value = colon == std::string::npos ? std::string() : line.substr(colon + 2);
+    auto number = [&](double& x) {
+      const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), x);
+      return ec == std::errc() && end == value.data() + value.size();
+    };
+    if (key == "version") {
+      r.version = value;
+      sawVersion = true;
+    } else if (key == "command") {
+      r.command = value;
+    } else if (key == "exit") {
+      double x = 0;
+      if (!number(x)) return std::nullopt;
+      r.exitCode = int(x);
+      sawExit = true;
+    } else if (key == "message") {
+      r.message = value;
+    } else if (key == "seconds") {
+      if (!number(r.seconds)) return std::nullopt;
+    } else if (key == "output") {
+      r.outputs.push_back(value);
+    } else if (key.rfind("value.", 0) == 0) {
+      double x = 0;
+      if (!number(x)) return std::nullopt;
+      r.headline.emplace_back(key.substr(6), x);
+    }
+  }
+  if (!sawVersion || !sawExit) return std::nullopt;
+  return r;
+}
+
+void writeJobRecord(const std::filesystem::path& file, const JobRecord& r) {
+  output::OutputFile out(file);
+  std::string text(kHeader);
+  text += fmt::format("version: {}\ncommand: {}\nexit: {}\nseconds: {:.3f}\n", r.version, oneLine(r.command),
+                      r.exitCode, r.seconds);
+  if (!r.message.empty()) text += fmt::format("message: {}\n", oneLine(r.message));
+  for (const std::string& o : r.outputs) text += fmt::format("output: {}\n", oneLine(o));
+  for (const auto& [k, v] : r.headline) text += fmt::format("value.{}: {}\n", k, v);
+  out.write(text);
+  out.commit();
+}
+
+bool jobDone(const std::optional<JobRecord>& r, const std::string& command, std::string* why) {
+  auto no = [&](std::string reason) {
+    if (why) *why = std::move(reason);
+    return false;
+  };
+  if (!r) return no("no record");
+  if (r->exitCode != 0) return no(fmt::format("it failed (exit {})", r->exitCode));
+  if (r->version != programVersion()) return no(fmt::format("it ran with version {}", r->version));
+  if (r->command != command) return no("its command was different");
+  for (const std::string& o : r->outputs) {
+    std::error_code ec;
+    if (!std::filesystem::exists(o, ec)) return no(fmt::format("its output {} is gone", o));
+  }
+  return true;
+}
+
+int runRecordedJob(const JobOptions& options, const std::vector<std::string>& args,
+                   const std::vector<std::string>& outputs, const ErrorContext& context,
+                   const std::function<int()>& command) {
+  const std::string text = commandText(args);
+  if (!options.force && jobDone(readJobRecord(options.record), text)) {
+    fmt::print(stderr, "{}: done before by this command and version; skipped (--force runs it again)\n",
+               options.record);
+    return kOk;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  std::string message;
+  ErrorContext withMessage = context;
+  withMessage.printed = &message;
+  const int code = runReportingErrors(withMessage, command);
+
+  JobRecord r;
+  r.version = programVersion();
+  r.command = text;
+  r.exitCode = code;
+  r.message = message;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.outputs = outputs;
+  if (code == kOk) r.headline = headline();
+  try {
+    writeJobRecord(options.record, r);
+  } catch (const output::OutputError& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return code == kOk ? kOutputFailed : code;
+  }
+  return code;
+}
+
+}  // namespace particles::app

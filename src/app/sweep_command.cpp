@@ -1,0 +1,274 @@
+// `particles sweep`: see sweep_command.hpp. Running here is a bounded pool of child processes, each
+// one job's command line with its stdout and stderr in its folder's log.txt; every job is the same
+// command line GNU parallel or Slurm would run, records and all.
+#include "app/sweep_command.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <thread>
+
+#include "app/cli_support.hpp"
+#include "app/exit_codes.hpp"
+#include "app/job_record.hpp"
+#include "app/sweep_plan.hpp"
+#include "output/output_error.hpp"
+#include "scenario/sweep_spec.hpp"
+
+namespace particles::app {
+
+namespace {
+
+volatile std::sig_atomic_t stopSignal = 0;
+extern "C" void onSweepStopSignal(int signal) {
+  stopSignal = signal;
+}
+
+// SIGINT and SIGTERM end the sweep: running jobs are stopped and nothing new starts. Installed
+// without SA_RESTART, so that waiting for a child returns at once.
+class SweepSignals {
+ public:
+  SweepSignals() {
+    struct sigaction action {};
+    action.sa_handler = onSweepStopSignal;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &oldInt_);
+    sigaction(SIGTERM, &action, &oldTerm_);
+  }
+  ~SweepSignals() {
+    sigaction(SIGINT, &oldInt_, nullptr);
+    sigaction(SIGTERM, &oldTerm_, nullptr);
+  }
+  SweepSignals(const SweepSignals&) = delete;
+  SweepSignals& operator=(const SweepSignals&) = delete;
+
+ private:
+  struct sigaction oldInt_ {}, oldTerm_ {};
+};
+
+std::string thisProgram() {
+  std::error_code ec;
+  const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) throw InputError("cannot find this program's path (/proc/self/exe): give --program");
+  return self.string();
+}
+
+// Starts `program args…` with its output in `log`; the child gets SIGTERM if the sweep dies.
+pid_t startJob(const std::string& program, const std::vector<std::string>& args, const std::filesystem::path& log,
+               bool force) {
+  std::vector<std::string> all = {program};
+  all.insert(all.end(), args.begin(), args.end());
+  if (force) all.push_back("--force");
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string logPath = log.string();
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) throw output::OutputError(fmt::format("cannot start a job: fork: {}", std::strerror(errno)));
+  if (pid == 0) {
+    // Only async-signal-safe calls from here to exec.
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) _exit(128 + SIGTERM);
+    const int in = open("/dev/null", O_RDONLY);
+    const int out = open(logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (in < 0 || out < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(out, 2) < 0) _exit(127);
+    close(in);
+    close(out);
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+// The error a failed job printed: its record's message, else the last line of its log.
+std::string failureMessage(const SweepJob& job, const std::filesystem::path& outDir, int code) {
+  if (auto r = readJobRecord(job.record); r && !r->message.empty()) return r->message;
+  std::ifstream log(outDir / job.dir / "log.txt");
+  std::string line, last;
+  while (std::getline(log, line)) {
+    if (!line.empty()) last = line;
+  }
+  if (code == 127 && last.empty()) return "could not start the program";
+  return last.empty() ? fmt::format("exit {}", code) : last;
+}
+
+std::string describeJob(const SweepPlan& plan, const SweepJob& job) {
+  std::string text = fmt::format("job {} ({}", job.index, job.scenario);
+  for (size_t k = 0; k < plan.columns.size(); ++k) text += fmt::format(", {} = {}", plan.columns[k], job.values[k]);
+  if (!job.segment.empty()) text += fmt::format(", segment {}", job.segment);
+  if (job.stage == "concat") text += ", joined";
+  return text + ")";
+}
+
+struct RunTally {
+  size_t ran = 0, ok = 0, skipped = 0;
+  std::vector<std::string> failures;
+};
+
+// Runs jobs [from, to) with at most `parallel` at once. Returns false when interrupted.
+bool runJobs(const SweepPlan& plan, size_t from, size_t to, int parallel, const SweepOptions& o, RunTally& tally,
+             std::vector<bool>& succeeded, Progress& progress, size_t& done) {
+  std::map<pid_t, size_t> running;
+  size_t next = from;
+  const size_t total = plan.jobs.size();
+  auto stopAll = [&] {
+    for (const auto& [pid, index] : running) kill(pid, SIGTERM);
+    while (!running.empty()) {
+      int status = 0;
+      const pid_t pid = waitpid(-1, &status, 0);
+      if (pid > 0) running.erase(pid);
+      if (pid < 0 && errno == ECHILD) break;
+    }
+  };
+  while (next < to || !running.empty()) {
+    while (next < to && int(running.size()) < parallel && !stopSignal) {
+      const SweepJob& job = plan.jobs[next++];
+      bool ready = true;
+      for (size_t k : job.after) ready = ready && succeeded[k];
+      if (!ready) {
+        tally.failures.push_back(fmt::format("{}: not run: a segment it joins failed", describeJob(plan, job)));
+        ++done;
+        continue;
+      }
+      if (!o.force && jobDone(readJobRecord(job.record), commandText(job.args))) {
+        succeeded[job.index] = true;
+        ++tally.skipped;
+        ++done;
+        continue;
+      }
+      running[startJob(plan.program, job.args, plan.outDir / job.dir / "log.txt", o.force)] = job.index;
+      ++tally.ran;
+    }
+    progress.update(long(done), long(total), fmt::format("{} running", running.size()));
+    if (stopSignal) {
+      stopAll();
+      return false;
+    }
+    if (running.empty()) continue;
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0) continue;  // EINTR: a stop signal, handled above
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const SweepJob& job = plan.jobs[it->second];
+    running.erase(it);
+    ++done;
+    const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (code == 0) {
+      succeeded[job.index] = true;
+      ++tally.ok;
+    } else {
+      const std::string failure =
+          fmt::format("{}: exit {}: {}", describeJob(plan, job), code, failureMessage(job, plan.outDir, code));
+      progress.finish();
+      if (!o.quiet) fmt::print(stderr, "failed: {}\n", failure);
+      tally.failures.push_back(failure);
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "sweep", "Run one command over scenarios × parameters (here, or as job lists for GNU parallel and Slurm)");
+  cmd->add_option("spec", o.spec, "The sweep file (YAML, see docs/sweeps.md)")->required();
+  cmd->add_option("-o,--out", o.out, "The output folder: jobs.csv, a folder per job, results.csv (default ./sweep-NAME)");
+  cmd->add_option("-j,--jobs", o.jobs, "Jobs at once here (0: one per core)")->check(CLI::Range(0, 4096));
+  cmd->add_option("--emit", o.emit,
+                  "Write the jobs for another engine and run nothing: parallel (jobs.txt for GNU parallel) or slurm "
+                  "(sweep.sbatch, a job array)")
+      ->check(CLI::IsMember({"parallel", "slurm"}));
+  cmd->add_option("--program", o.program, "The particles program the jobs run (default: this one, by its full path)");
+  cmd->add_flag("--force", o.force, "Run every job again, even those whose records say they are done");
+  cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary; failures are still printed");
+  cmd->add_option("--max-input", o.maxInputMiB, "Refuse a sweep or scenario file larger than this, MiB")
+      ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))
+      ->capture_default_str();
+  cmd->footer(
+      "Every job is a plain 'particles …' command line with its outputs in OUT/jobs/NNNNNN/ and a record\n"
+      "there: a rerun skips what is done, so an interrupted sweep resumes. After running, the results\n"
+      "are gathered into OUT/results.csv (and OUT/results.svg when one parameter varies).\n"
+      "Exit codes: 0 all jobs succeeded, 1 some failed (listed), 2 a bad sweep file, 3 an output failed.\n"
+      "Examples:\n"
+      "  particles sweep scenarios/sweeps/cloth_stiffness.yaml -o cloth-sweep --jobs 2\n"
+      "  particles sweep my.yaml -o out --emit parallel && parallel --joblog out/joblog.txt < out/jobs.txt\n"
+      "  particles sweep my.yaml -o out --emit slurm && sbatch out/sweep.sbatch\n"
+      "  particles gather out\n");
+  return cmd;
+}
+
+int sweepCommand(const SweepOptions& o) {
+  const scenario::SweepSpec spec = scenario::loadSweepFile(o.spec, o.maxInputMiB);
+  const std::string program =
+      o.program.empty() ? thisProgram() : std::filesystem::absolute(o.program).lexically_normal().string();
+  const std::filesystem::path out = o.out.empty() ? std::filesystem::path("sweep-" + spec.name) : std::filesystem::path(o.out);
+  const SweepPlan plan = planSweep(spec, out, program, o.maxInputMiB);
+  writeJobTable(plan);
+
+  if (!o.emit.empty()) {
+    const std::string how = o.emit == "parallel" ? emitParallel(plan) : emitSlurm(plan);
+    if (!o.quiet) {
+      fmt::print("{}: {} → {}/jobs.csv\nrun them with:\n  {}\nthen: particles gather {}\n", o.spec,
+                 plural(plan.jobs.size(), "job", "jobs"), plan.outDir.string(), how, shellQuote(plan.outDir.string()));
+    }
+    return kOk;
+  }
+
+  const int parallel = o.jobs > 0 ? o.jobs : int(std::max(1u, std::thread::hardware_concurrency()));
+  if (!o.quiet) {
+    fmt::print(stderr, "{}: {} ({}), {} at once → {}\n", o.spec, plural(plan.jobs.size(), "job", "jobs"), spec.command,
+               parallel, plan.outDir.string());
+  }
+  const auto start = std::chrono::steady_clock::now();
+  SweepSignals signals;
+  stopSignal = 0;
+  RunTally tally;
+  std::vector<bool> succeeded(plan.jobs.size(), false);
+  size_t done = 0;
+  bool finished;
+  {
+    Progress progress(!o.quiet, "jobs");
+    finished = runJobs(plan, 0, plan.firstStageCount, parallel, o, tally, succeeded, progress, done) &&
+               runJobs(plan, plan.firstStageCount, plan.jobs.size(), parallel, o, tally, succeeded, progress, done);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!finished) {
+    fmt::print(stderr, "{}: interrupted after {} of {} jobs; run the same command again to resume\n", o.spec, done,
+               plan.jobs.size());
+    return 128 + int(stopSignal);
+  }
+
+  GatherOptions gather;
+  gather.outDir = plan.outDir.string();
+  gather.quiet = true;
+  gatherCommand(gather);
+
+  if (!o.quiet) {
+    fmt::print("{}: {} in {:.1f} s: {} ran ({} ok, {} failed), {} done before → {}\n", o.spec,
+               plural(plan.jobs.size(), "job", "jobs"), seconds, tally.ran, tally.ok, tally.failures.size(),
+               tally.skipped, (plan.outDir / "results.csv").string());
+  }
+  if (!tally.failures.empty()) {
+    fmt::print(stderr, "{} failed:\n", plural(tally.failures.size(), "job", "jobs"));
+    for (const std::string& f : tally.failures) fmt::print(stderr, "  {}\n", f);
+    return kSimulationFailed;
+  }
+  return kOk;
+}
+
+}  // namespace particles::app
