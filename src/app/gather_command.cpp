@@ -43,6 +43,17 @@ std::optional<double> numberOf(const std::string& text) {
   return std::nullopt;
 }
 
+// The quantity's unit, from how the jobs name it.
+std::string axisLabel(const std::string& key) {
+  auto endsWith = [&](std::string_view tail) {
+    return key.size() >= tail.size() && key.compare(key.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  if (endsWith("_dt") || endsWith("seconds")) return key + " [s]";
+  if (endsWith("energy")) return key + " [J]";
+  if (endsWith("error") || endsWith("penetration")) return key + " [m]";
+  return key;
+}
+
 plot::AxisScale scaleFor(const std::vector<double>& values) {
   double lo = INFINITY, hi = 0;
   for (double v : values) {
@@ -208,7 +219,7 @@ int gatherCommand(const GatherOptions& o) {
       chart.xScale = scaleFor(xs);
       for (const std::string& name : panelNames) {
         plot::Panel panel;
-        panel.yLabel = name;
+        panel.yLabel = axisLabel(name);
         std::vector<double> ys;
         for (const std::string& s : seriesOrder[name]) {
           plot::Series line = series[name][s];
