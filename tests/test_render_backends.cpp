@@ -291,7 +291,7 @@ TEST_CASE("cli --version: the program's version, then the GL backend and rendere
   REQUIRE(r.code == 0);
   std::vector<std::string> out = lines(r.out);
   REQUIRE_MESSAGE(out.size() == 2, r.out);
-  CHECK_MESSAGE(std::regex_match(out[0], std::regex(R"(particles \d+\.\d+\.\d+)")), out[0]);
+  CHECK_MESSAGE(std::regex_match(out[0], std::regex(R"(particles \d+\.\d+\.\d+ build [0-9a-f]{16})")), out[0]);
   const std::string autoName = glBackendBuilt(GlBackend::egl) ? "egl" : "osmesa";
   CHECK_MESSAGE(out[1].starts_with("GL: " + autoName + ", "), out[1]);
   CHECK_MESSAGE(std::regex_search(out[1], std::regex(R"(: llvmpipe \(LLVM .*\), OpenGL \d+\.\d+)")), out[1]);

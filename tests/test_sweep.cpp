@@ -308,3 +308,39 @@ TEST_CASE("sweep: a render split into segments, joined by concat into one video"
   CHECK(joined.find("concat " + (s.dir / "out/jobs/000000/segment.mp4").string() + " " +
                     (s.dir / "out/jobs/000001/segment.mp4").string()) != std::string::npos);
 }
+
+TEST_CASE("job record: done by this very binary counts; by another build, or with a lost output, it runs again") {
+  Scratch s;
+  const std::string job = "run " + kSource + "/scenarios/springs.yaml --duration 0.2 --stats s.csv --record r.txt";
+  auto r = s.run(job);
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  // The record names the binary by its build ID (16 hex digits), beside the release number.
+  std::string text = slurp(s.dir / "r.txt");
+  const auto at = text.find("version: 0.");
+  REQUIRE(at != std::string::npos);
+  const std::string versionLine = text.substr(at, text.find('\n', at) - at);
+  const auto build = versionLine.find(" build ");
+  REQUIRE_MESSAGE(build != std::string::npos, versionLine);
+  const std::string id = versionLine.substr(build + 7);
+  CHECK(id.size() == 16);
+  CHECK(id.find_first_not_of("0123456789abcdef") == std::string::npos);
+  CHECK(s.run("--version").out.find(versionLine.substr(9)) != std::string::npos);
+
+  r = s.run(job);
+  CHECK(r.code == 0);
+  CHECK_MESSAGE(r.err.find("done before") != std::string::npos, r.err);
+
+  // The same record written by another build: the job runs again and records this one.
+  const std::string other = "0.1.0 build 0123456789abcdef";
+  s.write("r.txt", text.replace(at + 9, versionLine.size() - 9, other));
+  r = s.run(job);
+  CHECK(r.code == 0);
+  CHECK_MESSAGE(r.err.find("done before") == std::string::npos, r.err);
+  CHECK(slurp(s.dir / "r.txt").find(other) == std::string::npos);
+
+  // An output gone: it runs again.
+  fs::remove(s.dir / "s.csv");
+  r = s.run(job);
+  CHECK(r.err.find("done before") == std::string::npos);
+  CHECK(fs::exists(s.dir / "s.csv"));
+}

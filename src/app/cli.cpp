@@ -7,6 +7,7 @@
 
 #include "app/exit_codes.hpp"
 #include "app/gl_options.hpp"
+#include "app/job_record.hpp"
 #include "render/frame_writer.hpp"
 #include "render/gl_backend.hpp"
 #include "render/renderer.hpp"
@@ -40,7 +41,7 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
 Cli::Cli() {
   // The version, and on a second line the GL backend and renderer `render` would use.
   app.set_version_flag("--version",
-                       [] { return "particles " PARTICLES_VERSION "\n" + glVersionLine(); });
+                       [] { return "particles " + programVersion() + "\n" + glVersionLine(); });
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 1 simulation failure (explosion; for compare: the frames differ),\n"

@@ -1,7 +1,9 @@
 // Job records: see job_record.hpp.
 #include "app/job_record.hpp"
 
+#include <elf.h>
 #include <fmt/format.h>
+#include <link.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
@@ -78,8 +80,50 @@ std::string commandText(const std::vector<std::string>& args) {
   return out;
 }
 
+namespace {
+
+// The GNU build ID of the running executable (the linker's SHA-1 of its contents, `-Wl,--build-id`),
+// as hex; empty if it has none. The first object dl_iterate_phdr reports is the executable itself.
+std::string executableBuildId() {
+  std::string id;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* out) -> int {
+        for (int i = 0; i < info->dlpi_phnum; ++i) {
+          const ElfW(Phdr)& ph = info->dlpi_phdr[i];
+          if (ph.p_type != PT_NOTE) continue;
+          const auto* p = reinterpret_cast<const unsigned char*>(info->dlpi_addr + ph.p_vaddr);
+          const unsigned char* end = p + ph.p_memsz;
+          // Notes: header, name and descriptor, the latter two padded to 4 bytes.
+          while (p + sizeof(ElfW(Nhdr)) <= end) {
+            const auto* note = reinterpret_cast<const ElfW(Nhdr)*>(p);
+            const unsigned char* name = p + sizeof(ElfW(Nhdr));
+            const unsigned char* desc = name + ((note->n_namesz + 3) & ~3u);
+            if (desc + note->n_descsz > end) break;
+            if (note->n_type == NT_GNU_BUILD_ID && note->n_namesz == 4 && std::equal(name, name + 4, "GNU")) {
+              auto* text = static_cast<std::string*>(out);
+              for (unsigned k = 0; k < note->n_descsz; ++k) *text += fmt::format("{:02x}", desc[k]);
+              return 1;
+            }
+            p = desc + ((note->n_descsz + 3) & ~3u);
+          }
+        }
+        return 1;  // only the executable
+      },
+      &id);
+  return id;
+}
+
+}  // namespace
+
 std::string programVersion() {
-  return PARTICLES_VERSION;
+  // The release number alone would let a rebuilt binary of changed code take old records as its
+  // own; the build ID names this very binary, so any rebuild reruns the jobs.
+  static const std::string version = [] {
+    const std::string id = executableBuildId();
+    return id.empty() ? std::string(PARTICLES_VERSION)
+                      : fmt::format("{} build {}", PARTICLES_VERSION, id.substr(0, 16));
+  }();
+  return version;
 }
 
 std::optional<JobRecord> readJobRecord(const std::filesystem::path& file) {

@@ -34,7 +34,7 @@ void addJobOptions(CLI::App& command, JobOptions& options);
 void reportHeadline(const std::string& key, double value);
 
 struct JobRecord {
-  std::string version;  // PARTICLES_VERSION of the binary that ran it
+  std::string version;  // programVersion() of the binary that ran it
   std::string command;  // commandText of its arguments
   int exitCode = -1;
   std::string message;  // the error printed, on one line; empty on success
