@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "plot/charts.hpp"
 
@@ -53,6 +55,49 @@ double drawTitle(const Canvas& canvas, const Figure& figure) {
   const double top = kOuterPadPx;
   canvas.text({figure.title, ""}, figure.widthPx / 2.0, top, kTitleSizePx, HAlign::Center, VAlign::Top, kInk);
   return top + Canvas::capHeight(kTitleSizePx) + 24;  // room below for descenders and air
+}
+
+namespace {
+
+// The caption's lines, each paragraph broken between words to fit the width.
+std::vector<std::string> captionLines(const Canvas& canvas, const Figure& figure) {
+  const double width = figure.widthPx - 2 * kOuterPadPx;
+  std::vector<std::string> lines;
+  for (const std::string& paragraph : figure.caption) {
+    std::string line;
+    std::size_t pos = 0;
+    while (pos < paragraph.size()) {
+      std::size_t end = paragraph.find(' ', pos);
+      if (end == std::string::npos) end = paragraph.size();
+      const std::string word = paragraph.substr(pos, end - pos);
+      pos = end + 1;
+      const std::string longer = line.empty() ? word : line + " " + word;
+      if (!line.empty() && canvas.textWidth({longer, ""}, kCaptionSizePx) > width) {
+        lines.push_back(line);
+        line = word;
+      } else {
+        line = longer;
+      }
+    }
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+}  // namespace
+
+double captionHeight(const Canvas& canvas, const Figure& figure) {
+  if (figure.caption.empty()) return 0;
+  return captionLines(canvas, figure).size() * kCaptionLinePx + 10;
+}
+
+void drawCaption(const Canvas& canvas, const Figure& figure) {
+  const std::vector<std::string> lines = captionLines(canvas, figure);
+  double y = figure.heightPx - kOuterPadPx - (lines.size() - 1) * kCaptionLinePx;
+  for (const std::string& line : lines) {
+    canvas.text({line, ""}, kOuterPadPx, y, kCaptionSizePx, HAlign::Left, VAlign::Baseline, kMutedInk);
+    y += kCaptionLinePx;
+  }
 }
 
 }  // namespace particles::plot

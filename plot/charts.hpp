@@ -8,10 +8,14 @@
 namespace particles::plot {
 
 void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& chart);
-void drawBarChart(const Canvas& canvas, const Figure& figure, const BarChart& chart);
+void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& chart);
 
 // Shared by both: the title centred above the chart, and the height it takes from the top.
 double drawTitle(const Canvas& canvas, const Figure& figure);
+// The caption under the chart, wrapped to the figure's width: its height (0 without a caption),
+// for the bottom margin, and drawing it against the bottom edge.
+double captionHeight(const Canvas& canvas, const Figure& figure);
+void drawCaption(const Canvas& canvas, const Figure& figure);
 
 // The y axis of one panel: ticks on the left edge of `plot`, their labels, and the rotated axis
 // label at `labelX` (its left edge). Grid lines at the major ticks go across the plot.
@@ -32,5 +36,7 @@ inline constexpr double kTickLengthPx = 6;
 inline constexpr double kMinorTickLengthPx = 3;
 inline constexpr double kTickLabelGapPx = 6;   // tick end to its label
 inline constexpr double kAxisLabelGapPx = 12;  // tick labels to the axis label
+inline constexpr double kCaptionSizePx = 13;
+inline constexpr double kCaptionLinePx = 18;
 
 }  // namespace particles::plot

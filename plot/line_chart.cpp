@@ -1,5 +1,6 @@
 // Stacked line panels sharing one x axis. Layout, top to bottom: title, panels separated by a gap,
-// x tick labels and the x label under the bottom panel. The left margin fits the widest y tick
+// x tick labels and the x label under the bottom panel, then the caption. Bands (intervals of x)
+// are shaded under the grid of every panel and labelled inside the top one. The left margin fits the widest y tick
 // label of any panel, so all panels line up.
 
 #include <algorithm>
@@ -7,6 +8,8 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
+#include <utility>
 
 #include "plot/charts.hpp"
 
@@ -176,6 +179,30 @@ void drawSeries(const Canvas& canvas, std::size_t index, const std::vector<std::
   if (anyDot) cairo_fill(cr);
 }
 
+// Where a band lies inside `plot`, in pixels: {x0, x1}, or nothing when it is outside the axis.
+std::optional<std::pair<double, double>> bandPixels(const Band& band, const XAxis& xAxis, const Rect& plot) {
+  if (!(band.to > band.from) || (xAxis.scale == AxisScale::Log && band.to <= 0)) return std::nullopt;
+  const double from = xAxis.scale == AxisScale::Log ? std::max(band.from, xAxis.ticks.lo) : band.from;
+  const double x0 = std::clamp(xAxis.toPixel(from, plot), plot.x, plot.right());
+  const double x1 = std::clamp(xAxis.toPixel(band.to, plot), plot.x, plot.right());
+  if (x1 - x0 < 0.5) return std::nullopt;
+  return std::pair{x0, x1};
+}
+
+// The bands' shading (under the grid and the data) and their labels (over them, top panel only).
+void shadeBands(const Canvas& canvas, const std::vector<Band>& bands, const XAxis& xAxis, const Rect& plot) {
+  for (const Band& band : bands) {
+    if (const auto x = bandPixels(band, xAxis, plot)) canvas.fillRect({x->first, plot.y, x->second - x->first, plot.h}, kBand);
+  }
+}
+void labelBands(const Canvas& canvas, const std::vector<Band>& bands, const XAxis& xAxis, const Rect& plot) {
+  for (const Band& band : bands) {
+    const auto x = bandPixels(band, xAxis, plot);
+    if (!x || band.label.empty()) continue;
+    canvas.text({band.label, ""}, x->first + 5, plot.y + 6, kTickLabelSizePx, HAlign::Left, VAlign::Top, kBandInk);
+  }
+}
+
 }  // namespace
 
 void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& chart) {
@@ -184,7 +211,8 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
   const std::vector<Panel>& panels = chart.panels.empty() ? oneEmptyPanel : chart.panels;
   const double top = drawTitle(canvas, figure);
   const double tickLabelsBottom = kTickLengthPx + kTickLabelGapPx + Canvas::capHeight(kTickLabelSizePx);
-  const double bottomMargin = tickLabelsBottom + (chart.xLabel.empty() ? 0 : 14 + kAxisLabelSizePx) + 4 + kOuterPadPx;
+  const double bottomMargin = tickLabelsBottom + (chart.xLabel.empty() ? 0 : 14 + kAxisLabelSizePx) + 4 + kOuterPadPx +
+                              captionHeight(canvas, figure);
   const std::size_t panelCount = std::max<std::size_t>(1, panels.size());
   const double panelHeight =
       std::max(40.0, (figure.heightPx - top - bottomMargin - kPanelGapPx * (panelCount - 1)) / panelCount);
@@ -238,6 +266,7 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
     const YAxis& yAxis = yAxes[k];
     plot.y = std::round(top + k * (panelHeight + kPanelGapPx));
 
+    shadeBands(canvas, chart.bands, xAxis, plot);
     drawYGrid(canvas, yAxis, plot);
     for (const Tick& t : xAxis.ticks.major) {
       const double x = xAxis.toPixel(t.value, plot);
@@ -260,6 +289,7 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
                   VAlign::Middle, kMutedInk);
     }
 
+    if (k == 0) labelBands(canvas, chart.bands, xAxis, plot);
     canvas.frame(plot, kInk);
     drawYAxis(canvas, yAxis, plot, panel.yLabel, yLabelX);
     for (const Tick& t : xAxis.ticks.major) {
@@ -279,6 +309,7 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
     canvas.text({chart.xLabel, ""}, plot.x + plot.w / 2, labelsTop + Canvas::capHeight(kTickLabelSizePx) + 14,
                 kAxisLabelSizePx, HAlign::Center, VAlign::Top, kInk);
   }
+  drawCaption(canvas, figure);
 }
 
 }  // namespace particles::plot

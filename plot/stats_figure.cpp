@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -119,22 +121,57 @@ StatsTable readStatsCsv(const std::filesystem::path& file, std::uintmax_t maxInp
   return parseStatsCsv(text, file);
 }
 
-Figure statsFigure(const StatsTable& table) {
+namespace {
+
+bool allZero(const std::vector<double>& column) {
+  return std::all_of(column.begin(), column.end(), [](double v) { return v == 0; });
+}
+
+std::string title(const StatsFigureContext& c) {
+  std::vector<std::string> parts;
+  if (!c.scenario.empty()) parts.push_back(c.scenario);
+  if (!c.integrator.empty()) parts.push_back(c.integrator);
+  if (c.dt > 0) parts.push_back(fmt::format("dt = {} s", c.dt));
+  if (parts.empty() && !c.source.empty()) parts.push_back(c.source);
+  if (parts.empty()) return "Energy and constraint error";
+  return fmt::format("Energy and constraint error: {}", fmt::join(parts, ", "));
+}
+
+}  // namespace
+
+Figure statsFigure(const StatsTable& table, const StatsFigureContext& context) {
   const std::size_t n = table.t.size();
   for (const auto* column :
        {&table.kinetic, &table.potential, &table.total, &table.constraintError, &table.penetration}) {
     if (column->size() != n) throw FigureError("stats table: columns of different lengths");
   }
-  Panel energy{
-      "energy [J]",
-      AxisScale::Linear,
-      {{"kinetic", table.t, table.kinetic}, {"potential", table.t, table.potential}, {"total", table.t, table.total}}};
-  Panel error{"error [m]",
-              spansDecades({&table.constraintError, &table.penetration}) ? AxisScale::Log : AxisScale::Linear,
-              {{"constraint error", table.t, table.constraintError}, {"penetration", table.t, table.penetration}}};
+  LineChart chart{"t [s]", {}};
+  chart.panels.push_back(
+      {"energy [J]",
+       AxisScale::Linear,
+       {{"kinetic", table.t, table.kinetic}, {"potential", table.t, table.potential}, {"total", table.t, table.total}}});
   Figure figure;
-  figure.title = "Energy and constraint error";
-  figure.chart = LineChart{"t [s]", {std::move(energy), std::move(error)}};
+  // An empty table has nothing to report as zero: its panels say "no data".
+  if (n > 0 && allZero(table.constraintError)) {
+    figure.caption.push_back("Constraint error: 0 throughout.");
+  } else {
+    chart.panels.push_back({"constraint error [m]", AxisScale::Log, {{"", table.t, table.constraintError}}});
+  }
+  if (n > 0 && allZero(table.penetration)) {
+    figure.caption.push_back("Penetration: 0 throughout (no contact).");
+  } else {
+    chart.panels.push_back({"penetration [m]",
+                            spansDecades({&table.penetration}) ? AxisScale::Log : AxisScale::Linear,
+                            {{"", table.t, table.penetration}}});
+  }
+  if (!context.mouse.empty()) {
+    chart.bands = context.mouse;
+    figure.caption.insert(figure.caption.begin(),
+                          "Shaded: a scripted mouse holds a point. Its spring's energy is part of the total, which "
+                          "jumps where it grabs and lets go.");
+  }
+  figure.title = title(context);
+  figure.chart = std::move(chart);
   return figure;
 }
 

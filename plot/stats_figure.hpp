@@ -1,10 +1,11 @@
 #pragma once
 // The figure of a `--stats` CSV (docs/physics.md §12): energy over time above, constraint error and
-// penetration over time below.
+// penetration over time below, the scripted mouse's intervals shaded.
 
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -29,10 +30,22 @@ StatsTable readStatsCsv(const std::filesystem::path& file, std::uintmax_t maxInp
 // The same rules on text in memory; `file` only labels messages.
 StatsTable parseStatsCsv(std::string_view text, const std::filesystem::path& file);
 
-// Top panel "energy [J]": kinetic, potential, total against t [s]. Bottom panel "error [m]":
-// constraint error and penetration, on a log axis when their positive values span at least two
-// decades (zeros, for "no contact", are then left out of the line), else linear.
-// Throws FigureError if the columns differ in length.
-Figure statsFigure(const StatsTable& table);
+// What the CSV does not say, for the figure's title and its shaded intervals (from the scenario).
+struct StatsFigureContext {
+  std::string scenario;    // its name; empty: unknown
+  std::string integrator;  // empty: unknown
+  double dt = 0;           // s; 0: unknown
+  std::string source;      // the CSV's name, for the title when the scenario is unknown
+  // When a scripted mouse holds a point: its spring's energy is part of the total, which jumps
+  // where it grabs and lets go. Labelled with the point, e.g. "mouse: torso[2][1]".
+  std::vector<Band> mouse;
+};
+
+// Panel "energy [J]": kinetic, potential, total against t [s], the mouse's intervals shaded.
+// Then "constraint error [m]" on a log axis, and "penetration [m]" (log when its positive values
+// span at least two decades, else linear), each on its own panel; a column that is 0 throughout
+// gets no panel but a line in the caption saying so. The title names the scenario, integrator and
+// dt when known. Throws FigureError if the columns differ in length.
+Figure statsFigure(const StatsTable& table, const StatsFigureContext& context = {});
 
 }  // namespace particles::plot

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace particles::plot {
 
@@ -161,6 +163,59 @@ AxisTicks logTicks(double dataLo, double dataHi, int maxMajor) {
     }
     if (k == 1 && e < eHi) {
       for (int m = 2; m <= 9; ++m) axis.minor.push_back(m * decade);
+    }
+  }
+  return axis;
+}
+
+AxisTicks logTicksWithin(double lo, double hi, int maxMajor) {
+  if (!(lo > 0) || !(hi > lo) || !std::isfinite(hi)) return logTicks(lo, hi, maxMajor);
+  const int eLo = decimalExponent(lo) - 1, eHi = decimalExponent(hi) + 1;
+  // Every m × 10^k inside [lo, hi] (a hair of tolerance so that an end on a tick keeps it).
+  std::vector<std::pair<double, int>> candidates;  // value, mantissa
+  for (int e = eLo; e <= eHi; ++e) {
+    for (int m = 1; m <= 9; ++m) {
+      const double v = m * std::pow(10.0, e);
+      if (v >= lo * (1 - 1e-12) && v <= hi * (1 + 1e-12)) candidates.push_back({v, m});
+    }
+  }
+  const std::vector<std::vector<int>> mantissaSets = {{1, 2, 3, 4, 5, 6, 7, 8, 9}, {1, 2, 5}, {1}};
+  std::vector<int> chosen;
+  std::size_t best = 0;
+  for (const auto& set : mantissaSets) {  // densest first: the first that fits wins
+    const auto count = static_cast<std::size_t>(std::count_if(candidates.begin(), candidates.end(), [&](const auto& c) {
+      return std::find(set.begin(), set.end(), c.second) != set.end();
+    }));
+    if (count >= 2 && count <= static_cast<std::size_t>(std::max(2, maxMajor))) {
+      chosen = set;
+      best = count;
+      break;
+    }
+  }
+  AxisTicks axis;
+  axis.lo = lo;
+  axis.hi = hi;
+  if (best == 0) {
+    // Too narrow for two m × 10^k (or too wide for maxMajor decades): linear steps, or decades.
+    const AxisTicks linear = linearTicks(lo, hi, std::max(2, maxMajor), false);
+    if (hi / lo < 100) {
+      for (const Tick& t : linear.major) {
+        if (t.value >= lo && t.value <= hi) axis.major.push_back(t);
+      }
+      return axis;
+    }
+    AxisTicks decades = logTicks(lo, hi, maxMajor);
+    decades.lo = lo;
+    decades.hi = hi;
+    std::erase_if(decades.major, [&](const Tick& t) { return t.value < lo || t.value > hi; });
+    std::erase_if(decades.minor, [&](double v) { return v < lo || v > hi; });
+    return decades;
+  }
+  for (const auto& [v, m] : candidates) {
+    if (std::find(chosen.begin(), chosen.end(), m) != chosen.end()) {
+      axis.major.push_back({v, formatValue(v, 1)});
+    } else {
+      axis.minor.push_back(v);
     }
   }
   return axis;

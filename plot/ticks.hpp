@@ -45,6 +45,12 @@ AxisTicks linearTicks(double dataLo, double dataHi, int targetCount, bool widenT
 // back to [1, 10].
 AxisTicks logTicks(double dataLo, double dataHi, int maxMajor);
 
+// Ticks for a log axis over exactly [lo, hi] (0 < lo < hi), not widened: the densest of
+// 10^k, {1, 2, 5} × 10^k and {1 … 9} × 10^k that gives 2 … maxMajor labelled ticks inside the
+// range (labelled as plain numbers, e.g. 0.002), the other m × 10^k as minor ticks; a range too
+// narrow for two such ticks gets linear "nice" ones. For an axis fitted to the data.
+AxisTicks logTicksWithin(double lo, double hi, int maxMajor);
+
 // A value with `significantDigits` significant digits, trailing zeros dropped: plain for
 // 10⁻⁴ ≤ |v| < 10⁵ ("0.00052", "340"), otherwise in scientific form ({"3.2×10", "−5"}).
 Label formatValue(double v, int significantDigits);

@@ -1,6 +1,7 @@
-// From a Figure to bytes (a cairo SVG or image surface) and from bytes to a file (a temporary name
+// From a Figure to bytes (a cairo SVG, PDF or image surface) and from bytes to a file (a temporary name
 // beside the destination, renamed when complete).
 
+#include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <cairo.h>
 #include <unistd.h>
@@ -61,12 +62,20 @@ void validate(const Figure& figure) {
       }
     }
   }
-  if (const auto* bars = std::get_if<BarChart>(&figure.chart)) {
-    for (const BarGroup& g : bars->groups) {
-      if (g.values.size() != bars->categories.size()) {
-        throw FigureError("bar group '" + g.name + "' has " + std::to_string(g.values.size()) + " values for " +
-                          std::to_string(bars->categories.size()) + " categories");
+  if (const auto* dots = std::get_if<DotChart>(&figure.chart)) {
+    for (const DotGroup& g : dots->groups) {
+      if (g.values.size() != dots->categories.size()) {
+        throw FigureError("dot group '" + g.name + "' has " + std::to_string(g.values.size()) + " values for " +
+                          std::to_string(dots->categories.size()) + " categories");
       }
+      if (!g.lowerBounds.empty() && g.lowerBounds.size() != g.values.size()) {
+        throw FigureError("dot group '" + g.name + "' has " + std::to_string(g.lowerBounds.size()) +
+                          " lower-bound flags for " + std::to_string(g.values.size()) + " values");
+      }
+    }
+    if (!dots->references.empty() && dots->references.size() != dots->categories.size()) {
+      throw FigureError("dot chart has " + std::to_string(dots->references.size()) + " references for " +
+                        std::to_string(dots->categories.size()) + " categories");
     }
   }
 }
@@ -80,7 +89,7 @@ void draw(cairo_t* cr, const FontFace& font, const Figure& figure) {
         if constexpr (std::is_same_v<std::decay_t<decltype(chart)>, LineChart>) {
           drawLineChart(canvas, figure, chart);
         } else {
-          drawBarChart(canvas, figure, chart);
+          drawDotChart(canvas, figure, chart);
         }
       },
       figure.chart);
@@ -160,8 +169,9 @@ ImageFormat formatForPath(const std::filesystem::path& out) {
   const std::string ext = lowerExtension(out);
   if (ext == ".svg") return ImageFormat::Svg;
   if (ext == ".png") return ImageFormat::Png;
+  if (ext == ".pdf") return ImageFormat::Pdf;
   throw FigureError("cannot write figure " + out.string() + ": unknown format '" + out.extension().string() +
-                    "' (use .svg or .png)");
+                    "' (use .svg, .png or .pdf)");
 }
 
 std::vector<std::uint8_t> renderFigure(const Figure& figure, ImageFormat format) {
@@ -180,6 +190,29 @@ std::vector<std::uint8_t> renderFigure(const Figure& figure, ImageFormat format)
     cairo_surface_finish(surface.get());  // writes the document
     check(cairo_surface_status(surface.get()), "cairo_surface_finish (SVG)");
     return normaliseSvg(bytes, figure.title);
+  }
+  if (format == ImageFormat::Pdf) {
+    // The page is the figure at 96 px per inch (72 pt per inch), as browsers size the SVG: a
+    // 1200 × 800 px figure is a 900 × 600 pt page, which LaTeX scales to the column.
+    constexpr double kPointsPerPx = 72.0 / 96.0;
+    SurfacePtr surface(cairo_pdf_surface_create_for_stream(appendBytes, &bytes, figure.widthPx * kPointsPerPx,
+                                                           figure.heightPx * kPointsPerPx));
+    check(cairo_surface_status(surface.get()), "cairo_pdf_surface_create_for_stream");
+    // cairo stamps the current time as the creation date: a fixed one keeps the same figure the
+    // same bytes (as for SVG and PNG), and the title and creator go in the document information.
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
+    cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "particles");
+    if (!figure.title.empty()) {
+      cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_TITLE, figure.title.c_str());
+    }
+    {
+      ContextPtr cr(cairo_create(surface.get()));
+      cairo_scale(cr.get(), kPointsPerPx, kPointsPerPx);
+      draw(cr.get(), font, figure);
+    }
+    cairo_surface_finish(surface.get());
+    check(cairo_surface_status(surface.get()), "cairo_surface_finish (PDF)");
+    return bytes;
   }
   // RGB24: the figure is opaque, and a PNG without alpha is smaller and shows the same everywhere.
   SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, figure.widthPx, figure.heightPx));

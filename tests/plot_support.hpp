@@ -157,6 +157,51 @@ inline PathShape pathShape(const XmlElement& path) {
   return shape;
 }
 
+// The bounding box of an SVG path's points (every coordinate pair of its "d", Bézier control points
+// included: for a circle the box is symmetric about its centre).
+struct PathBounds {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  double centreX() const { return (x0 + x1) / 2; }
+  double centreY() const { return (y0 + y1) / 2; }
+};
+inline PathBounds pathBounds(const XmlElement& path) {
+  PathBounds b;
+  const auto it = path.attributes.find("d");
+  if (it == path.attributes.end()) return b;
+  const std::string& d = it->second;
+  std::vector<double> numbers;
+  for (std::size_t i = 0; i < d.size();) {
+    const char c = d[i];
+    if (c == '-' || c == '.' || (c >= '0' && c <= '9')) {
+      std::size_t used = 0;
+      numbers.push_back(std::stod(d.substr(i), &used));
+      i += used;
+    } else {
+      ++i;
+    }
+  }
+  for (std::size_t k = 0; k + 1 < numbers.size(); k += 2) {
+    b.x0 = std::min(b.x0, numbers[k]);
+    b.x1 = std::max(b.x1, numbers[k]);
+    b.y0 = std::min(b.y0, numbers[k + 1]);
+    b.y1 = std::max(b.y1, numbers[k + 1]);
+  }
+  return b;
+}
+
+// The plot frames of a figure: rectangles stroked in ink (4 vertices, one sub-path), widest first.
+inline std::vector<PathBounds> plotFrames(const std::vector<XmlElement>& svg) {
+  std::vector<PathBounds> frames;
+  for (const XmlElement& e : svg) {
+    if (e.name != "path" || !sameColour(styleProperty(e, "stroke"), plot::kInk)) continue;
+    const PathShape shape = pathShape(e);
+    if (shape.vertices == 4 && shape.subpaths == 1 && shape.curves == 0) frames.push_back(pathBounds(e));
+  }
+  std::stable_sort(frames.begin(), frames.end(),
+                   [](const PathBounds& a, const PathBounds& b) { return a.x1 - a.x0 > b.x1 - b.x0; });
+  return frames;
+}
+
 // An RGB24 image decoded from PNG bytes.
 struct Pixels {
   int width = 0, height = 0;

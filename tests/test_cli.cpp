@@ -4,7 +4,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -143,6 +146,37 @@ TEST_CASE("cli: run prints a summary and writes the stats and trace CSVs") {
   auto files = s.files();
   std::sort(files.begin(), files.end());
   CHECK(files == std::vector<std::string>{"p.yaml", "stats.csv", "trace.csv"});
+}
+
+TEST_CASE("cli: CSV times are the tick times i / fps exactly, or the step's time without k · dt's rounding") {
+  Scratch s;
+  const std::string springs = std::string(PARTICLES_SOURCE_DIR) + "/scenarios/springs.yaml";
+  const auto times = [&](const std::string& file) { return lines(slurp(s.dir / file)); };
+  // Ten steps per tick at 60 fps: every row is at a tick, and its time reads back as i / 60 exactly,
+  // where 10 · k · dt accumulates rounding (e.g. 0.05 is 30 · 0.0016666666666666668 = 0.05000000000000001).
+  REQUIRE(s.run("run " + springs + " --dt 0.0016666666666666668 --duration 2 --quiet --stats a.csv --trace b.csv "
+                "--trace-only mass_a").code == 0);
+  for (const char* file : {"a.csv", "b.csv"}) {
+    CAPTURE(file);
+    const auto rows = times(file);
+    REQUIRE(rows.size() == 1 + 121);
+    CHECK(rows[0].rfind("t,", 0) == 0);  // the header as before
+    for (size_t i = 1; i < rows.size(); ++i) {
+      CAPTURE(rows[i]);
+      CHECK(std::stod(rows[i].substr(0, rows[i].find(','))) == double(i - 1) / 60.0);
+    }
+  }
+  // Steps of 0.07 s between ticks: the times are the steps' as written in decimals, 0.21, not the
+  // 0.21000000000000002 that 3 · 0.07 gives.
+  REQUIRE(s.run("run " + springs + " --dt 0.07 --duration 1.4 --quiet --stats c.csv").code == 0);
+  const auto rows = times("c.csv");
+  REQUIRE(rows.size() == 1 + 21);
+  CHECK(rows[4].rfind("0.21,", 0) == 0);
+  for (size_t i = 1; i < rows.size(); ++i) {
+    CAPTURE(rows[i]);
+    const std::string t = rows[i].substr(0, rows[i].find(','));
+    CHECK(t == fmt::format("{}", std::round((i - 1) * 7.0) / 100));  // the nearest double to (i − 1) · 0.07
+  }
 }
 
 TEST_CASE("cli: runs are deterministic") {

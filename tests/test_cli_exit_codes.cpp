@@ -87,7 +87,7 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
       {"run s.yaml --stats blocker/x.csv", 3, "error: cannot write blocker/x.csv: Not a directory\n"},
       {"render s.yaml -o blocker/frames/ --quiet", 3,
        "error: cannot create directory blocker/frames/: Not a directory\n"},
-      {"plot good.csv -o out.txt", 3, "error: cannot write figure out.txt: unknown format '.txt' (use .svg or .png)\n"},
+      {"plot good.csv -o out.txt", 3, "error: cannot write figure out.txt: unknown format '.txt' (use .svg, .png or .pdf)\n"},
       {"compare a.png a.png --quiet --diff blocker/d.png", 3, "error: --diff: cannot write blocker/d.png: Not a directory\n"},
   };
   checkCases(s, cases);

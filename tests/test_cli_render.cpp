@@ -180,6 +180,48 @@ TEST_CASE("cli stability and plot: the table as CSV and figures") {
   CHECK_FALSE(fs::exists(s.dir / "bad.svg"));
 }
 
+TEST_CASE("cli plot --scenario and stability --reference: titles, mouse bands, references, and their errors") {
+  Scratch s;
+  const std::string man = std::string(PARTICLES_SOURCE_DIR) + "/scenarios/soft_body.yaml";
+  REQUIRE(s.run("run " + man + " --dt 0.1 --duration 30 --stats man.csv --quiet").code == 0);
+  Result r = s.run("plot man.csv --scenario " + man + " --dt 0.1 -o man.svg --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  const std::string svg = slurp(s.dir / "man.svg");
+  CHECK(svg.find("<title>Energy and constraint error: soft_body, rk4, dt = 0.1 s</title>") != std::string::npos);
+  // Both mouse drags (12–22 s and 32–42 s) as bands: the second lies past the data's 30 s, so only
+  // the first is drawn, in each of the two panels (energy, penetration).
+  size_t bands = 0;
+  for (size_t at = svg.find("fill:rgb(99%,92%,78%)"); at != std::string::npos; at = svg.find("fill:rgb(99%,92%,78%)", at + 1)) ++bands;
+  CHECK(bands == 2);
+  r = s.run("plot man.csv -o man.pdf --quiet");  // no scenario: the CSV's name in the title
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  CHECK(slurp(s.dir / "man.pdf").rfind("%PDF-", 0) == 0);
+  r = s.run("plot man.csv --dt 0.1 -o x.svg");  // the run's --dt means nothing without its scenario
+  CHECK(r.code == 2);
+  CHECK(r.err.find("--scenario") != std::string::npos);
+  r = s.run("plot man.csv --scenario nowhere.yaml -o x.svg");
+  CHECK(r.code == 2);
+  CHECK(r.err.find("nowhere.yaml") != std::string::npos);
+  CHECK_FALSE(fs::exists(s.dir / "x.svg"));
+
+  s.write("s.yaml", kSwing);
+  r = s.run("stability s.yaml --integrators midpoint,rk4 --plot dt.svg --quiet --reference rk4=0.05:0.08,midpoint=0.02 "
+            "--reference-name book");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  for (const auto& [options, says] : std::vector<std::pair<std::string, std::string>>{
+           {"--plot dt.svg --reference euler=0.01", "'euler' is not an integrator studied here (midpoint, rk4)"},
+           {"--plot dt.svg --reference rk4=fast", "'fast' is not a positive number of seconds"},
+           {"--plot dt.svg --reference rk4=0.2:0.1", "LO is larger than HI"},
+           {"--plot dt.svg --reference rk4", "no integrator name"},
+           {"--plot dt.svg --reference rk4=0.1,rk4=0.2", "a second value for rk4"},
+           {"--reference rk4=0.1", "give --plot too"}}) {
+    CAPTURE(options);
+    r = s.run("stability s.yaml --integrators midpoint,rk4 --quiet " + options);
+    CHECK(r.code == 2);
+    CHECK_MESSAGE(r.err.find(says) != std::string::npos, r.err);
+  }
+}
+
 TEST_CASE("cli render --hud: text in the top-left corner, the rest of the frame untouched") {
   Scratch s;
   s.write("s.yaml", kSwing);

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "plot/errors.hpp"
@@ -16,6 +19,7 @@ using namespace particles::plot;
 using particles::test::decodePng;
 using particles::test::parseXml;
 using particles::test::pathShape;
+using particles::test::plotFrames;
 using particles::test::sameColour;
 using particles::test::styleProperty;
 using particles::test::TempDir;
@@ -123,22 +127,37 @@ TEST_CASE("plot: empty, constant and all-non-positive data still make a well-for
   CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
   f.chart = LineChart{};
   CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
-  f.chart = BarChart{};
+  f.chart = DotChart{};
   CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
 }
 
-TEST_CASE("plot: bar chart draws one bar per positive value and a legend swatch per group") {
+TEST_CASE("plot: dot chart draws one dot per positive value and a legend dot per group") {
   Figure f;
-  f.chart = BarChart{"integrator",
-                     "dt [s]",
-                     {"euler", "midpoint", "rk4"},
-                     {{"stable", {0.002, 0.03, 0.3}}, {"smooth", {0.0005, 0.0, 0.1}}}};
+  f.chart = DotChart{"dt [s]", {"euler", "midpoint", "rk4"}, {{"stable", {0.002, 0.03, 0.3}}, {"smooth", {0.0005, 0.0, 0.1}}}, "", {}};
   const auto svg = svgOf(f);
   CHECK(pathsIn(svg, "fill", 0).size() == 3 + 1);
   CHECK(pathsIn(svg, "fill", 1).size() == 2 + 1);  // 0 is not drawable on the log axis: "n/a"
 
-  std::get<BarChart>(f.chart).groups.pop_back();
+  std::get<DotChart>(f.chart).groups.pop_back();
   CHECK(pathsIn(svgOf(f), "fill", 1).empty());
+  std::get<DotChart>(f.chart).references = {Reference{0.1, 0.2}};  // one reference for three rows
+  CHECK_THROWS_AS(renderFigure(f, ImageFormat::Svg), FigureError);
+}
+
+TEST_CASE("plot: a caption is wrapped to the figure's width under the chart") {
+  Figure f = threeSeries("Captioned", true);
+  const auto without = decodePng(renderFigure(f, ImageFormat::Png));
+  f.caption = {std::string(40, 'x') + " " + std::string(40, 'y') + " " + std::string(40, 'z')};
+  f.widthPx = 400;
+  const auto narrow = parseXml(renderFigure(f, ImageFormat::Svg));
+  f.widthPx = 1200;
+  const auto wide = parseXml(renderFigure(f, ImageFormat::Svg));
+  // Three words of 40 letters do not fit on one line of 400 px: more lines, the plot less tall.
+  CHECK(plotFrames(narrow).front().y1 < plotFrames(wide).front().y1 - 10);
+  // In the PNG the caption's ink is in the bottom strip (where the x label was without it).
+  const auto with = decodePng(renderFigure(f, ImageFormat::Png));
+  CHECK(with.inkedPixels(0, with.height - 36, with.width, with.height) >
+        without.inkedPixels(0, without.height - 36, without.width, without.height) + 300);
 }
 
 TEST_CASE("plot: PNG has text where the title and axis labels go and nothing in the margins") {
@@ -167,7 +186,7 @@ TEST_CASE("plot: PNG has text where the title and axis labels go and nothing in 
 TEST_CASE("plot: the same figure gives the same bytes, in one process and written twice") {
   TempDir dir;
   const Figure f = threeSeries("Twice", true);
-  for (const char* name : {"a.svg", "a.png"}) {
+  for (const char* name : {"a.svg", "a.png", "a.pdf"}) {
     CAPTURE(name);
     writeFigure(f, dir / name);
     const auto first = particles::test::readBytes(dir / name);
@@ -178,10 +197,38 @@ TEST_CASE("plot: the same figure gives the same bytes, in one process and writte
   // Only the two outputs: no temporary left behind.
   auto entries = dir.entries();
   std::sort(entries.begin(), entries.end());
-  CHECK(entries == std::vector<std::string>{"a.png", "a.svg"});
+  CHECK(entries == std::vector<std::string>{"a.pdf", "a.png", "a.svg"});
   // The SVG is px-sized like the PNG.
   const auto svg = parseXml(particles::test::readBytes(dir / "a.svg"));
   CHECK(svg.front().attributes.at("width") == "1200px");
+}
+
+// poppler's tools (Debian poppler-utils) read the PDF back: another program than the one that wrote it.
+TEST_CASE("plot: a PDF figure parses, its page is the figure at 96 px per inch, and its text is text") {
+  TempDir dir;
+  Figure f = threeSeries("Energy of a test figure", true);
+  f.caption = {"Caption words here."};
+  writeFigure(f, dir / "figure.pdf");
+  const auto run = [&](const std::string& command) {
+    const std::string out = (dir / "out.txt").string();
+    REQUIRE_MESSAGE(std::system((command + " > " + out + " 2>&1").c_str()) == 0, command);
+    std::ifstream in(out);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  const std::string info = "\n" + run("pdfinfo " + (dir / "figure.pdf").string());
+  const auto field = [&](const std::string& key) {  // "Key:   value" → "value"
+    const auto at = info.find("\n" + key + ":");
+    if (at == std::string::npos) return std::string("(missing)");
+    const auto start = info.find_first_not_of(' ', at + key.size() + 2);
+    return info.substr(start, info.find('\n', start) - start);
+  };
+  CHECK(field("Page size") == "900 x 600 pts");  // 1200 × 800 px
+  CHECK(field("Pages") == "1");
+  CHECK(field("Title") == "Energy of a test figure");
+  const std::string text = run("pdftotext " + (dir / "figure.pdf").string() + " -");
+  for (const char* words : {"Energy of a test figure", "alpha", "energy [J]", "Caption words here."}) {
+    CHECK_MESSAGE(text.find(words) != std::string::npos, words << " in: " << text);
+  }
 }
 
 TEST_CASE("plot: a bad extension or an unwritable path is an error naming it, and leaves no file") {
@@ -198,8 +245,8 @@ TEST_CASE("plot: a bad extension or an unwritable path is an error naming it, an
       CHECK(message.find(says) != std::string::npos);
     }
   };
-  expectError(dir / "figure.jpg", ".svg or .png");
-  expectError(dir / "figure", ".svg or .png");
+  expectError(dir / "figure.jpg", ".svg, .png or .pdf");
+  expectError(dir / "figure", ".svg, .png or .pdf");
   expectError(dir / "missing" / "figure.png", "No such file or directory");
   std::filesystem::create_directory(dir / "taken.svg");  // not ours to replace
   expectError(dir / "taken.svg", "it is a directory");

@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <string>
 
@@ -12,7 +14,15 @@
 #include "plot_support.hpp"
 
 using namespace particles::plot;
+using particles::test::parseXml;
+using particles::test::PathBounds;
+using particles::test::pathBounds;
+using particles::test::pathShape;
+using particles::test::plotFrames;
+using particles::test::sameColour;
+using particles::test::styleProperty;
 using particles::test::TempDir;
+using particles::test::XmlElement;
 
 namespace {
 
@@ -107,47 +117,150 @@ TEST_CASE("plot stats CSV: a missing file is an error naming it") {
   }
 }
 
-TEST_CASE("plot stats figure: energy above, errors below on a log axis only when they span decades") {
+TEST_CASE("plot stats figure: energy, then constraint error on a log axis and penetration, each on its own panel") {
   StatsTable table;
   for (int i = 0; i < 10; ++i) {
     table.t.push_back(0.1 * i);
     table.kinetic.push_back(i);
     table.potential.push_back(10 - i);
     table.total.push_back(10);
-    table.constraintError.push_back(1e-9 * std::pow(10.0, i));  // nine decades
-    table.penetration.push_back(0);
+    table.constraintError.push_back(1e-3 * (1 + i));  // within a decade: still a log axis
+    table.penetration.push_back(1e-9 * std::pow(10.0, i));  // nine decades
   }
   Figure f = statsFigure(table);
   const auto& chart = std::get<LineChart>(f.chart);
   CHECK(chart.xLabel == "t [s]");
-  REQUIRE(chart.panels.size() == 2);
+  REQUIRE(chart.panels.size() == 3);
   CHECK(chart.panels[0].series.size() == 3);
   CHECK(chart.panels[0].series[2].name == "total");
   CHECK(chart.panels[0].yScale == AxisScale::Linear);
+  CHECK(chart.panels[1].yLabel == "constraint error [m]");
   CHECK(chart.panels[1].yScale == AxisScale::Log);
-  CHECK(chart.panels[1].series[1].y == table.penetration);
+  CHECK(chart.panels[1].series[0].y == table.constraintError);
+  CHECK(chart.panels[2].yLabel == "penetration [m]");
+  CHECK(chart.panels[2].yScale == AxisScale::Log);
+  CHECK(chart.panels[2].series[0].y == table.penetration);
+  CHECK(f.caption.empty());
+  CHECK(chart.bands.empty());
 
-  for (double& e : table.constraintError) e = 1e-3 * (1 + e);  // within a decade
-  CHECK(std::get<LineChart>(statsFigure(table).chart).panels[1].yScale == AxisScale::Linear);
-  for (double& e : table.constraintError) e = 0;  // nothing positive
-  CHECK(std::get<LineChart>(statsFigure(table).chart).panels[1].yScale == AxisScale::Linear);
+  for (double& p : table.penetration) p = 1e-3 * (1 + p);  // within a decade: linear
+  CHECK(std::get<LineChart>(statsFigure(table).chart).panels[2].yScale == AxisScale::Linear);
+
+  // A column that is 0 throughout gets a line in the caption instead of a panel hiding on its axis.
+  for (double& e : table.constraintError) e = 0;
+  f = statsFigure(table);
+  REQUIRE(std::get<LineChart>(f.chart).panels.size() == 2);
+  CHECK(std::get<LineChart>(f.chart).panels[1].yLabel == "penetration [m]");
+  CHECK(f.caption == std::vector<std::string>{"Constraint error: 0 throughout."});
+  for (double& p : table.penetration) p = 0;
+  f = statsFigure(table);
+  CHECK(std::get<LineChart>(f.chart).panels.size() == 1);
+  CHECK(f.caption.size() == 2);
 
   table.penetration.pop_back();
   CHECK_THROWS_AS(statsFigure(table), FigureError);
 }
 
-TEST_CASE("plot stability figure: integrators as categories, the two dt columns as groups") {
+TEST_CASE("plot stats figure: the title names the scenario, integrator and dt; mouse intervals become bands") {
+  StatsTable table;
+  for (int i = 0; i <= 60; ++i) {
+    table.t.push_back(i);
+    table.kinetic.push_back(i % 7);
+    table.potential.push_back(1);
+    table.total.push_back(1 + i % 7);
+    table.constraintError.push_back(0);
+    table.penetration.push_back(0);
+  }
+  CHECK(statsFigure(table).title == "Energy and constraint error");
+  StatsFigureContext fromCsv;
+  fromCsv.source = "man.csv";
+  CHECK(statsFigure(table, fromCsv).title == "Energy and constraint error: man.csv");
+  StatsFigureContext context{"soft_body", "rk4", 0.15, "man.csv", {{12, 22, "mouse: torso[2][1]"}, {32, 42, "mouse: arm_l[0][0]"}}};
+  const Figure f = statsFigure(table, context);
+  CHECK(f.title == "Energy and constraint error: soft_body, rk4, dt = 0.15 s");
+  REQUIRE(std::get<LineChart>(f.chart).bands.size() == 2);
+  CHECK(f.caption.front().find("mouse") != std::string::npos);
+
+  // In the SVG: each band is a rectangle filled in the band colour in the (one) panel, from the
+  // x of its start to the x of its end on the time axis, which spans the data (0 … 60 s).
+  const auto svg = parseXml(renderFigure(f, ImageFormat::Svg));
+  const auto frames = plotFrames(svg);
+  REQUIRE(!frames.empty());
+  const PathBounds plot = frames.front();
+  std::vector<PathBounds> bands;
+  for (const XmlElement& e : svg) {
+    if (e.name == "path" && sameColour(styleProperty(e, "fill"), kBand)) bands.push_back(pathBounds(e));
+  }
+  REQUIRE(bands.size() == 2);
+  const auto xOf = [&](double t) { return plot.x0 + (plot.x1 - plot.x0) * t / 60; };
+  for (int k = 0; k < 2; ++k) {
+    CAPTURE(k);
+    const auto& band = std::get<LineChart>(f.chart).bands[k];
+    CHECK(std::abs(bands[k].x0 - xOf(band.from)) < 1.0);
+    CHECK(std::abs(bands[k].x1 - xOf(band.to)) < 1.0);
+    CHECK(bands[k].y0 >= plot.y0 - 1);
+    CHECK(bands[k].y1 <= plot.y1 + 1);
+  }
+}
+
+TEST_CASE("plot stability figure: a dot per integrator and limit on a log axis fitted to the data, references beside") {
   const std::vector<StabilityRow> rows = {
       {"euler", 1, 0.0021, 0.00052, 1923, 1}, {"midpoint", 2, 0.031, 0.012, 166, 11.6}, {"rk4", 4, 0.29, 0.11, 36, 53}};
-  const Figure f = stabilityFigure(rows);
-  const auto& chart = std::get<BarChart>(f.chart);
+  Figure f = stabilityFigure(rows);
+  const auto& chart = std::get<DotChart>(f.chart);
   CHECK(chart.categories == std::vector<std::string>{"euler", "midpoint", "rk4"});
   REQUIRE(chart.groups.size() == 2);
   CHECK(chart.groups[0].name == "largest stable dt");
   CHECK(chart.groups[0].values == std::vector<double>{0.0021, 0.031, 0.29});
   CHECK(chart.groups[1].name == "largest dt without shaking");
   CHECK(chart.groups[1].values == std::vector<double>{0.00052, 0.012, 0.11});
-  CHECK_FALSE(renderFigure(f, ImageFormat::Png).empty());
+  CHECK(chart.references.empty());
+  CHECK(chart.groups[0].lowerBounds == std::vector<bool>{false, false, false});
+  std::vector<StabilityRow> bounded = rows;
+  bounded[2].stableAtMaxDt = true;  // still stable at --max-dt: "≥ 0.29"
+  CHECK(std::get<DotChart>(stabilityFigure(bounded).chart).groups[0].lowerBounds == std::vector<bool>{false, false, true});
+
+  // Dots: filled circles in the group's colour (one more in the legend). From two dots' centres
+  // and the frame, the axis' ends: fitted to the data, not widened to whole decades (0.0001 … 1).
+  auto svg = parseXml(renderFigure(f, ImageFormat::Svg));
+  std::vector<PathBounds> stable;
+  for (const XmlElement& e : svg) {
+    if (e.name == "path" && sameColour(styleProperty(e, "fill"), seriesColour(0)) && pathShape(e).curves > 0)
+      stable.push_back(pathBounds(e));
+  }
+  REQUIRE(stable.size() == 3 + 1);
+  const PathBounds plot = plotFrames(svg).front();
+  std::sort(stable.begin(), stable.end(), [](const auto& a, const auto& b) { return a.centreY() > b.centreY(); });
+  stable.pop_back();  // the legend's, above the plot
+  std::sort(stable.begin(), stable.end(), [](const auto& a, const auto& b) { return a.centreX() < b.centreX(); });
+  const double f0 = (stable[0].centreX() - plot.x0) / (plot.x1 - plot.x0);  // 0.0021
+  const double f2 = (stable[2].centreX() - plot.x0) / (plot.x1 - plot.x0);  // 0.29
+  const double decadesPerWidth = (std::log10(0.29) - std::log10(0.0021)) / (f2 - f0);
+  const double axisLo = std::log10(0.0021) - f0 * decadesPerWidth, axisHi = axisLo + decadesPerWidth;
+  CHECK(axisLo > std::log10(0.00052) - 0.5);  // the smallest value, 0.00052, is near the left end
+  CHECK(axisLo < std::log10(0.00052));
+  CHECK(axisHi > std::log10(0.29));
+  CHECK(axisHi < std::log10(0.29) + 0.7);  // room for its label, not a decade of air
+
+  // References: a point (an open diamond) and a range (a bar with end caps), and one in the legend.
+  StabilityFigureNotes notes;
+  notes.references = {{"euler", {0.003, 0.005}}, {"rk4", {0.3, 0.3}}};
+  notes.referenceName = "report";
+  notes.caption = {"Criteria."};
+  f = stabilityFigure(rows, notes);
+  const auto& withReferences = std::get<DotChart>(f.chart);
+  REQUIRE(withReferences.references.size() == 3);
+  CHECK(withReferences.references[0]->lo == 0.003);
+  CHECK_FALSE(withReferences.references[1].has_value());
+  CHECK(f.caption == notes.caption);
+  // Marks are stroked 1.5 px wide in ink (ticks and frames are 1 px hairlines).
+  const auto inkStrokes = [](const std::vector<XmlElement>& doc) {
+    return std::count_if(doc.begin(), doc.end(), [](const XmlElement& e) {
+      return e.name == "path" && sameColour(styleProperty(e, "stroke"), kInk) &&
+             styleProperty(e, "stroke-width") == "1.5";
+    });
+  };
+  CHECK(inkStrokes(parseXml(renderFigure(f, ImageFormat::Svg))) - inkStrokes(svg) == 3);
 }
 
 // Values near ±1.8e308 once overflowed the axis span: the tick loop never ended (and cast ±inf to

@@ -146,6 +146,29 @@ TEST_CASE("plot ticks: a log axis within one decade, or without positive data, s
   CHECK(none.hi == 10);
 }
 
+TEST_CASE("plot ticks: a log axis fitted to its range keeps the range and picks 1-2-5 or 1…9 ticks inside it") {
+  // 0.0004 … 0.4: three decades; 1, 2, 5 × 10^k gives 9 labels, within 10.
+  AxisTicks axis = logTicksWithin(4e-4, 0.4, 10);
+  CHECK(axis.lo == 4e-4);
+  CHECK(axis.hi == 0.4);
+  CHECK(texts(axis) == joined({"0.0005", "0.001", "0.002", "0.005", "0.01", "0.02", "0.05", "0.1", "0.2"}));
+  CHECK(axis.minor.size() == 6 + 9 + 9 + 4 - 9);  // every m × 10^k in range (0.0004 … 0.4) but the labelled
+  for (double v : axis.minor) CHECK((v >= axis.lo && v <= axis.hi));
+  // Fewer labels allowed: decades only.
+  CHECK(texts(logTicksWithin(4e-4, 0.4, 4)) == joined({"0.001", "0.01", "0.1"}));
+  // Within a factor of three: every m × 10^k.
+  CHECK(texts(logTicksWithin(0.2, 0.55, 10)) == joined({"0.2", "0.3", "0.4", "0.5"}));
+  // Too narrow for two of them: linear steps inside the range.
+  axis = logTicksWithin(0.21, 0.29, 5);
+  CHECK(axis.major.size() >= 2);
+  for (const Tick& t : axis.major) CHECK((t.value >= 0.21 && t.value <= 0.29));
+  // Many decades and few labels: whole decades, still inside the range.
+  axis = logTicksWithin(3e-7, 2e4, 4);
+  CHECK(axis.lo == 3e-7);
+  CHECK(axis.major.size() <= 4);
+  for (const Tick& t : axis.major) CHECK((t.value >= 3e-7 && t.value <= 2e4));
+}
+
 TEST_CASE("plot ticks: values are labelled with their significant digits") {
   CHECK(formatValue(0.0125, 3) == Label{"0.0125", ""});
   CHECK(formatValue(0.00052, 2) == Label{"0.00052", ""});

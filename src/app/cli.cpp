@@ -140,7 +140,16 @@ Cli::Cli() {
   stabilityCmd->add_option("--csv", stability.csv,
                            "Write integrator,evals_per_step,max_stable_dt,max_smooth_dt,cost_dt,evals_per_sim_second,"
                            "speed_vs_euler,wall_seconds_per_sim_second to this CSV");
-  stabilityCmd->add_option("--plot", stability.plot, "Write the table as a bar chart (log axis): .svg or .png");
+  stabilityCmd->add_option("--plot", stability.plot,
+                           "Write the limits as a dot plot (log axis, criteria in the caption): .svg, .png or .pdf");
+  stabilityCmd
+      ->add_option("--reference", stability.references,
+                   "Values to show beside the limits on the plot, per integrator: NAME=DT (a point) or NAME=LO:HI "
+                   "(the limit lies between), e.g. euler=0.003:0.005,rk4=0.3")
+      ->delimiter(',')
+      ->type_name("NAME=DT");
+  stabilityCmd->add_option("--reference-name", stability.referenceName, "What the references are, in the legend")
+      ->capture_default_str();
   stabilityCmd
       ->add_option("--energy-tolerance", stability.energyTolerance,
                    "Unstable when energy exceeds E(0) + mouse work by this fraction of the energy scale")
@@ -163,7 +172,9 @@ Cli::Cli() {
       "Examples:\n"
       "  particles stability scenarios/cloth.yaml\n"
       "  particles stability scenarios/cloth.yaml --csv cloth_dt.csv --plot cloth_dt.svg\n"
-      "  particles stability scenarios/soft_body.yaml --integrators midpoint,rk4 --duration 20\n");
+      "  particles stability scenarios/soft_body.yaml --integrators midpoint,rk4 --duration 20\n"
+      "  particles stability scenarios/cloth_report.yaml --integrators euler,midpoint,rk4 --plot dt.pdf \\\n"
+      "      --reference euler=0.003:0.005,midpoint=0.03:0.05,rk4=0.3:0.4 --reference-name report\n");
 
   compareCmd = addCompareCommand(app, compare);
 
@@ -172,8 +183,18 @@ Cli::Cli() {
 
   plotCmd = app.add_subcommand("plot", "Draw the figure of a --stats CSV: energy and constraint error over time");
   plotCmd->add_option("stats", plot.input, "A CSV written by run/render --stats")->required();
-  plotCmd->add_option("-o,--output", plot.output, "The figure: .svg (vector) or .png")->required();
-  plotCmd->add_option("--title", plot.title, "Title above the chart");
+  plotCmd->add_option("-o,--output", plot.output, "The figure: .svg (vector), .pdf (vector, for LaTeX) or .png")
+      ->required();
+  plotCmd->add_option("--title", plot.title, "Title above the chart (default: scenario, integrator and dt)");
+  auto* plotScenario = plotCmd->add_option(
+      "--scenario", plot.scenario,
+      "The scenario that was run: names it, its integrator and dt in the title and shades the mouse's intervals");
+  plotCmd->add_option("--integrator", plot.integrator, "The run's --integrator, if it had one")->needs(plotScenario);
+  plotCmd->add_option("--dt", plot.dt, "The run's --dt, if it had one")->needs(plotScenario);
+  plotCmd->add_option("--set", plot.sets, "The run's --set overrides, if it had any (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false)
+      ->needs(plotScenario);
   plotCmd->add_option("--width", plot.width, "Width in px (default 1200)")->check(CLI::Range(200, 10000));
   plotCmd->add_option("--height", plot.height, "Height in px (default 800)")->check(CLI::Range(150, 10000));
   plotCmd->add_flag("-q,--quiet", plot.quiet, "Print nothing on success");
@@ -183,7 +204,9 @@ Cli::Cli() {
   plotCmd->footer(
       "Examples:\n"
       "  particles run scenarios/cloth.yaml --stats cloth.csv && particles plot cloth.csv -o energy.svg\n"
-      "  particles plot cloth.csv -o energy.png --title 'Cloth, RK4, dt = 0.01 s'\n");
+      "  particles plot cloth.csv -o energy.png --title 'Cloth, RK4, dt = 0.01 s'\n"
+      "  particles run scenarios/soft_body.yaml --stats man.csv --dt 0.1\n"
+      "  particles plot man.csv --scenario scenarios/soft_body.yaml --dt 0.1 -o man.pdf   # mouse intervals shaded\n");
 
   schemaCmd = app.add_subcommand(
       "schema", "Print the scenario format as JSON Schema (draft 7), for editors and validators");

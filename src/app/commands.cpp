@@ -23,7 +23,7 @@ int checkCommand(const CommonOptions& common) {
 int runCommand(const CommonOptions& common, const RunOptions& options) {
   scenario::Scenario s = loadScenario(common);
   // A SimulationError leaves the CSVs uncommitted: they are removed as they go out of scope.
-  auto recorder = CsvRecorder::open(s.system, options.stats, options.trace, options.traceOnly);
+  auto recorder = CsvRecorder::open(s.system, s.render.fps, options.stats, options.trace, options.traceOnly);
   scenario::RunObserver observer;
   observer.onTick = [&](const System& system) { recorder->record(system); };
   Progress progress(!common.quiet, "steps");

@@ -40,7 +40,9 @@ struct RunOptions {
 struct StabilityOptionsCli {
   std::vector<std::string> integrators = integratorNames();  // every integrator the core has
   std::string csv;   // --csv, empty: none
-  std::string plot;  // --plot .svg | .png, empty: none
+  std::string plot;  // --plot .svg | .png | .pdf, empty: none
+  std::vector<std::string> references;  // --reference NAME=DT or NAME=LO:HI, for the figure
+  std::string referenceName = "reference";
   double energyTolerance = 0.1;
   double stretchFactor = 1.5;  // × the reference run's largest stretch
   double shakeThreshold = 0.1;
@@ -73,8 +75,12 @@ struct RenderCommandOptions {
 
 struct PlotOptions {
   std::string input;   // a --stats CSV
-  std::string output;  // .svg | .png
+  std::string output;  // .svg | .png | .pdf
   std::string title;
+  // The run's scenario and its overrides, for the title and the mouse's intervals; empty: none.
+  std::string scenario;
+  std::optional<std::string> integrator, dt;
+  std::vector<std::string> sets;
   int width = 0, height = 0;  // px; 0: the figure's default
   std::uintmax_t maxInputMiB = 64;  // --max-input
   bool quiet = false;

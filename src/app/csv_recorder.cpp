@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 
 #include "app/exit_codes.hpp"
@@ -11,13 +12,22 @@
 
 namespace particles::app {
 
-std::unique_ptr<CsvRecorder> CsvRecorder::open(const System& system, const std::string& statsPath,
+double CsvRecorder::nominalTime(double t, double fps) {
+  if (!std::isfinite(t)) return t;
+  // A tick, to the rounding a run of steps accumulates (the runner's own tolerance, 1e-9 of a tick).
+  const double ticks = t * fps;
+  if (fps > 0 && std::abs(ticks) < 9e15 && std::abs(ticks - std::round(ticks)) <= 1e-9) return std::round(ticks) / fps;
+  return std::stod(fmt::format("{:.12g}", t));
+}
+
+std::unique_ptr<CsvRecorder> CsvRecorder::open(const System& system, double fps, const std::string& statsPath,
                                              const std::string& tracePath, const std::vector<std::string>& traceOnly) {
   if (!statsPath.empty() && statsPath == tracePath) {
     throw InputError(fmt::format("--stats and --trace name the same file '{}'", statsPath));
   }
   std::unique_ptr<CsvRecorder> owner(new CsvRecorder());
   CsvRecorder& r = *owner;
+  r.fps_ = fps;
   const Model& model = system.model();
   std::vector<std::string> all;
   for (int p = 0; p < model.layout.numPoints(); ++p) all.push_back(scenario::pointName(model, p));
@@ -51,11 +61,12 @@ void CsvRecorder::record(const System& system) {
   fmt::memory_buffer buffer;
   if (stats_) {
     const scenario::Sample x = scenario::sampleOf(system);
-    fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{}\n", x.t, x.kinetic, x.potential, x.total,
+    fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{}\n", nominalTime(x.t, fps_), x.kinetic, x.potential, x.total,
                    x.constraintError, x.penetration);
     stats_->write({buffer.data(), buffer.size()});
   }
   if (trace_) {
+    const double t = nominalTime(system.time(), fps_);
     const StateView v = system.view();
     const int numParticles = system.layout().numParticles;
     buffer.clear();
@@ -64,7 +75,7 @@ void CsvRecorder::record(const System& system) {
       const Vec2 x = v.pos(p), u = v.vel(p);
       const double angle = p < numParticles ? 0.0 : v.angle(p - numParticles);
       const double omega = p < numParticles ? 0.0 : v.omega(p - numParticles);
-      fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{},{},{}\n", system.time(), names_[k], x.x(), x.y(),
+      fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{},{},{}\n", t, names_[k], x.x(), x.y(),
                      u.x(), u.y(), angle, omega);
     }
     trace_->write({buffer.data(), buffer.size()});

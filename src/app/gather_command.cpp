@@ -71,7 +71,7 @@ CLI::App* addGatherCommand(CLI::App& app, GatherOptions& o) {
   cmd->add_option("outdir", o.outDir, "A sweep's output folder (with jobs.csv)")->required();
   cmd->add_option("-o,--output", o.output, "The CSV (default OUTDIR/results.csv)");
   cmd->add_option("--plot", o.plot,
-                  "The figure, .svg or .png (default OUTDIR/results.svg when one parameter varies; none: no figure)");
+                  "The figure, .svg, .pdf or .png (default OUTDIR/results.svg when one parameter varies; none: no figure)");
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
   cmd->footer(
       "Columns: index, stage, scenario, the parameters, segment, status (ok, failed or not run), exit,\n"

@@ -197,7 +197,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   render::setLibavVerbose(options.verbose);
   refusedOptionsAreInputErrors([&] { render::validate(look); });
   const render::GlRequest gl = glRequestOf(options.gl, options.gpu);
-  const auto recorder = CsvRecorder::open(s.system, options.stats, options.trace, options.traceOnly);
+  const auto recorder = CsvRecorder::open(s.system, fps, options.stats, options.trace, options.traceOnly);
 
   render::RenderJob job;
   job.output = options.output;

@@ -1,6 +1,12 @@
 // `particles stability`: the time-step study (src/core/stability.hpp, docs/stability.md) as a command,
 // with the table on stdout, `--csv` and a `--plot` figure.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <map>
 
 #include <fstream>
 #include <sstream>
@@ -42,6 +48,60 @@ std::string describe(const RunAssessment& a) {
   return "";
 }
 
+// --reference NAME=DT or NAME=LO:HI, for the figure; NAME must be one of the integrators studied.
+std::map<std::string, plot::Reference> parseReferences(const std::vector<std::string>& texts,
+                                                       const std::vector<Integrator>& studied) {
+  std::map<std::string, plot::Reference> out;
+  for (const std::string& text : texts) {
+    const auto fail = [&](const std::string& why) {
+      throw InputError(fmt::format("--reference '{}': {} (expected NAME=DT or NAME=LO:HI, e.g. rk4=0.3:0.4)", text, why));
+    };
+    const std::size_t eq = text.find('=');
+    if (eq == std::string::npos || eq == 0) fail("no integrator name");
+    const std::string name = text.substr(0, eq);
+    std::vector<std::string> names;
+    for (Integrator i : studied) names.emplace_back(integratorName(i));
+    if (std::find(names.begin(), names.end(), name) == names.end()) {
+      fail(fmt::format("'{}' is not an integrator studied here ({})", name, fmt::join(names, ", ")));
+    }
+    const std::string values = text.substr(eq + 1);
+    const std::size_t colon = values.find(':');
+    const auto number = [&](const std::string& field) {
+      double v = 0;
+      const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
+      if (field.empty() || ec != std::errc() || end != field.data() + field.size() || !(v > 0) || !std::isfinite(v)) {
+        fail(fmt::format("'{}' is not a positive number of seconds", field));
+      }
+      return v;
+    };
+    plot::Reference r{};
+    r.lo = number(values.substr(0, colon));
+    r.hi = colon == std::string::npos ? r.lo : number(values.substr(colon + 1));
+    if (r.hi < r.lo) fail("LO is larger than HI");
+    if (!out.emplace(name, r).second) fail(fmt::format("a second value for {}", name));
+  }
+  return out;
+}
+
+// The criteria behind the figure's values (docs/stability.md), in words, for its caption.
+std::vector<std::string> criteriaCaption(const scenario::Scenario& s, const StabilityOptions& study,
+                                         const StabilityStudy& found, const StabilityOptionsCli& options) {
+  std::vector<std::string> caption = {
+      fmt::format("Each dt runs the whole {} s. Stable: no NaN or explosion, total energy never above E(0) + the "
+                  "mouse's work by more than {} × the energy scale, no spring longer than {:.3g}× its rest length "
+                  "({}× an RK4 run at dt = {:.3g} s).",
+                  s.simulation.duration, options.energyTolerance, found.maxStretch, options.stretchFactor,
+                  found.referenceDt),
+      fmt::format("Without shaking: stable, and over the second half the velocities' second difference stays "
+                  "under {} of their RMS. Limits bisected to {:.1f} %; dt tried from {:.3g} s to {:.3g} s.",
+                  options.shakeThreshold, 100 * study.relativePrecision, study.minDt, study.maxDt)};
+  if (!options.references.empty()) {
+    caption.push_back(fmt::format("{}: a diamond (a value) or a bar (the limit lies between its ends).",
+                                  options.referenceName));
+  }
+  return caption;
+}
+
 std::string dtText(double dt, bool atMax) {
   if (atMax) return fmt::format("≥ {:.2g} s", dt);
   return dt > 0.0 ? fmt::format("{:.2g} s", dt) : std::string("none ≥ min");
@@ -52,6 +112,8 @@ std::string dtText(double dt, bool atMax) {
 int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& options) {
   const scenario::Scenario s = loadScenario(common);
   const std::vector<Integrator> integrators = parseIntegrators(options.integrators);
+  const auto references = parseReferences(options.references, integrators);
+  if (!references.empty() && options.plot.empty()) throw InputError("--reference is shown on --plot: give --plot too");
   const double minDt = options.minDt > 0 ? options.minDt : s.simulation.dt / 1000.0;
   // Written as "not inside" so that NaN, which fails every comparison, is refused too.
   const bool inside = options.energyTolerance > 0 && std::isfinite(options.energyTolerance) &&
@@ -103,7 +165,7 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
     reportHeadline(fmt::format("max_stable_dt.{}", integratorName(r.integrator)), r.maxStableDt);
     reportHeadline(fmt::format("max_smooth_dt.{}", integratorName(r.integrator)), r.maxSmoothDt);
     rows.push_back({std::string(integratorName(r.integrator)), r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
-                    r.evalsPerSimSecond, r.speedVsEuler});
+                    r.evalsPerSimSecond, r.speedVsEuler, r.stableAtMaxDt, r.smoothAtMaxDt});
   }
 
   if (!common.quiet) {
@@ -148,9 +210,12 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
     csv.commit();
   }
   if (!options.plot.empty()) {
-    plot::Figure figure = plot::stabilityFigure(rows);
-    figure.title = fmt::format("Largest time step per integrator: {}", s.name);
-    plot::writeFigure(figure, options.plot);
+    plot::StabilityFigureNotes notes;
+    notes.scenario = s.name;
+    notes.caption = criteriaCaption(s, study, found, options);
+    notes.references = references;
+    notes.referenceName = options.referenceName;
+    plot::writeFigure(plot::stabilityFigure(rows, notes), options.plot);
   }
   return kOk;
 }
