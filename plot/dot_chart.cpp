@@ -80,8 +80,7 @@ void range(const Canvas& canvas, double x0, double x1, double y) {
 }
 
 bool hasReferences(const DotChart& chart) {
-  return std::any_of(chart.references.begin(), chart.references.end(),
-                     [](const auto& r) { return drawable(r); });
+  return std::any_of(chart.references.begin(), chart.references.end(), [](const auto& r) { return drawable(r); });
 }
 
 // The legend: a dot per group, a diamond for the reference; centred; returns the top of what follows.
@@ -129,8 +128,8 @@ double drawLegendRow(const Canvas& canvas, const Figure& figure, const DotChart&
 void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& chart) {
   const double top = drawLegendRow(canvas, figure, chart, drawTitle(canvas, figure));
   const double tickLabelsBottom = kTickLengthPx + kTickLabelGapPx + Canvas::capHeight(kTickLabelSizePx);
-  const double bottomMargin = tickLabelsBottom + (chart.xLabel.empty() ? 0 : 14 + kAxisLabelSizePx) + 4 +
-                              kOuterPadPx + captionHeight(canvas, figure);
+  const double bottomMargin = tickLabelsBottom + (chart.xLabel.empty() ? 0 : 14 + kAxisLabelSizePx) + 4 + kOuterPadPx +
+                              captionHeight(canvas, figure);
   const double plotHeight = std::max(40.0, std::round(figure.heightPx - top - bottomMargin));
 
   // The data's range, and the widest value label (room is kept for it right of the largest value).
@@ -191,8 +190,9 @@ void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& ch
   const double lineStep = std::min(18.0, rowHeight / (lines + 1.0));
   for (std::size_t c = 0; c < rows; ++c) {
     const double centre = std::round(plot.y + (c + 0.5) * rowHeight);
-    if (c > 0) canvas.hairline(plot.x, std::round(plot.y + c * rowHeight), plot.right(),
-                               std::round(plot.y + c * rowHeight), kGrid);
+    if (c > 0)
+      canvas.hairline(plot.x, std::round(plot.y + c * rowHeight), plot.right(), std::round(plot.y + c * rowHeight),
+                      kGrid);
     auto lineY = [&](std::size_t i) { return std::round(centre + (i - (lines - 1) / 2.0) * lineStep); };
     for (std::size_t g = 0; g < chart.groups.size(); ++g) {
       const double v = c < chart.groups[g].values.size() ? chart.groups[g].values[c] : NAN;

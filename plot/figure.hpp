@@ -56,8 +56,8 @@ struct LineChart {
 
 // One value per category in each group, e.g. the largest stable dt per integrator.
 struct DotGroup {
-  std::string name;            // in the legend, e.g. "largest stable dt"
-  std::vector<double> values;  // one per category; a value ≤ 0 or not finite is drawn as "n/a"
+  std::string name;                    // in the legend, e.g. "largest stable dt"
+  std::vector<double> values;          // one per category; a value ≤ 0 or not finite is drawn as "n/a"
   std::vector<bool> lowerBounds = {};  // empty, or one per category: true labels the value "≥ v"
 };
 
@@ -73,7 +73,7 @@ struct DotChart {
   std::string xLabel;                   // e.g. "dt [s]"
   std::vector<std::string> categories;  // the rows, top to bottom, e.g. euler, midpoint, rk4
   std::vector<DotGroup> groups;
-  std::string referenceName;  // in the legend, e.g. "report"; used when `references` has any
+  std::string referenceName;                         // in the legend, e.g. "report"; used when `references` has any
   std::vector<std::optional<Reference>> references;  // empty, or one per category
 };
 

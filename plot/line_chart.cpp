@@ -20,7 +20,7 @@ namespace {
 constexpr double kPanelGapPx = 28;
 constexpr double kRightMarginPx = 32;
 constexpr double kLineWidthPx = 2;
-constexpr double kDotRadiusPx = 2.5;  // an isolated point, with no neighbour to draw a line to
+constexpr double kDotRadiusPx = 2.5;     // an isolated point, with no neighbour to draw a line to
 constexpr double kMarkerRadiusPx = 3.5;  // each point of a series with markers
 constexpr double kLegendInsetPx = 10;
 constexpr double kLegendRowPx = 20;
@@ -192,7 +192,8 @@ std::optional<std::pair<double, double>> bandPixels(const Band& band, const XAxi
 // The bands' shading (under the grid and the data) and their labels (over them, top panel only).
 void shadeBands(const Canvas& canvas, const std::vector<Band>& bands, const XAxis& xAxis, const Rect& plot) {
   for (const Band& band : bands) {
-    if (const auto x = bandPixels(band, xAxis, plot)) canvas.fillRect({x->first, plot.y, x->second - x->first, plot.h}, kBand);
+    if (const auto x = bandPixels(band, xAxis, plot))
+      canvas.fillRect({x->first, plot.y, x->second - x->first, plot.h}, kBand);
   }
 }
 void labelBands(const Canvas& canvas, const std::vector<Band>& bands, const XAxis& xAxis, const Rect& plot) {
@@ -257,7 +258,8 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
   if (chart.xScale == AxisScale::Log) {
     xAxis.ticks = xRange.empty() ? logTicks(1, 10, 2) : logTicks(xRange.lo, xRange.hi, xTarget);
   } else {
-    xAxis.ticks = xRange.empty() ? linearTicks(0, 1, xTarget, false) : linearTicks(xRange.lo, xRange.hi, xTarget, false);
+    xAxis.ticks =
+        xRange.empty() ? linearTicks(0, 1, xTarget, false) : linearTicks(xRange.lo, xRange.hi, xTarget, false);
   }
 
   Rect plot{left, 0, std::round(plotWidth), std::round(panelHeight)};

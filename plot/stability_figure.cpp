@@ -28,7 +28,8 @@ Figure stabilityFigure(const std::vector<StabilityRow>& rows, const StabilityFig
                                         : "Largest time step per integrator: " + notes.scenario;
   figure.caption = notes.caption;
   figure.chart = std::move(chart);
-  figure.heightPx = std::max(360, 170 + 60 * static_cast<int>(rows.size()) + 18 * static_cast<int>(notes.caption.size()));
+  figure.heightPx =
+      std::max(360, 170 + 60 * static_cast<int>(rows.size()) + 18 * static_cast<int>(notes.caption.size()));
   return figure;
 }
 

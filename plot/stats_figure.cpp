@@ -1,10 +1,11 @@
 #include "plot/stats_figure.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <array>
 #include <charconv>
-#include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -146,10 +147,11 @@ Figure statsFigure(const StatsTable& table, const StatsFigureContext& context) {
     if (column->size() != n) throw FigureError("stats table: columns of different lengths");
   }
   LineChart chart{"t [s]", {}};
-  chart.panels.push_back(
-      {"energy [J]",
-       AxisScale::Linear,
-       {{"kinetic", table.t, table.kinetic}, {"potential", table.t, table.potential}, {"total", table.t, table.total}}});
+  chart.panels.push_back({"energy [J]",
+                          AxisScale::Linear,
+                          {{"kinetic", table.t, table.kinetic},
+                           {"potential", table.t, table.potential},
+                           {"total", table.t, table.total}}});
   Figure figure;
   // An empty table has nothing to report as zero: its panels say "no data".
   if (n > 0 && allZero(table.constraintError)) {

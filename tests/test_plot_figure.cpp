@@ -133,7 +133,8 @@ TEST_CASE("plot: empty, constant and all-non-positive data still make a well-for
 
 TEST_CASE("plot: dot chart draws one dot per positive value and a legend dot per group") {
   Figure f;
-  f.chart = DotChart{"dt [s]", {"euler", "midpoint", "rk4"}, {{"stable", {0.002, 0.03, 0.3}}, {"smooth", {0.0005, 0.0, 0.1}}}, "", {}};
+  f.chart = DotChart{
+      "dt [s]", {"euler", "midpoint", "rk4"}, {{"stable", {0.002, 0.03, 0.3}}, {"smooth", {0.0005, 0.0, 0.1}}}, "", {}};
   const auto svg = svgOf(f);
   CHECK(pathsIn(svg, "fill", 0).size() == 3 + 1);
   CHECK(pathsIn(svg, "fill", 1).size() == 2 + 1);  // 0 is not drawable on the log axis: "n/a"

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "plot/errors.hpp"
-#include "plot/stability_figure.hpp"
 #include "plot/figure.hpp"
+#include "plot/stability_figure.hpp"
 #include "plot/stats_figure.hpp"
 #include "plot_support.hpp"
 
@@ -124,7 +124,7 @@ TEST_CASE("plot stats figure: energy, then constraint error on a log axis and pe
     table.kinetic.push_back(i);
     table.potential.push_back(10 - i);
     table.total.push_back(10);
-    table.constraintError.push_back(1e-3 * (1 + i));  // within a decade: still a log axis
+    table.constraintError.push_back(1e-3 * (1 + i));        // within a decade: still a log axis
     table.penetration.push_back(1e-9 * std::pow(10.0, i));  // nine decades
   }
   Figure f = statsFigure(table);
@@ -175,7 +175,8 @@ TEST_CASE("plot stats figure: the title names the scenario, integrator and dt; m
   StatsFigureContext fromCsv;
   fromCsv.source = "man.csv";
   CHECK(statsFigure(table, fromCsv).title == "Energy and constraint error: man.csv");
-  StatsFigureContext context{"soft_body", "rk4", 0.15, "man.csv", {{12, 22, "mouse: torso[2][1]"}, {32, 42, "mouse: arm_l[0][0]"}}};
+  StatsFigureContext context{
+      "soft_body", "rk4", 0.15, "man.csv", {{12, 22, "mouse: torso[2][1]"}, {32, 42, "mouse: arm_l[0][0]"}}};
   const Figure f = statsFigure(table, context);
   CHECK(f.title == "Energy and constraint error: soft_body, rk4, dt = 0.15 s");
   REQUIRE(std::get<LineChart>(f.chart).bands.size() == 2);
@@ -218,7 +219,8 @@ TEST_CASE("plot stability figure: a dot per integrator and limit on a log axis f
   CHECK(chart.groups[0].lowerBounds == std::vector<bool>{false, false, false});
   std::vector<StabilityRow> bounded = rows;
   bounded[2].stableAtMaxDt = true;  // still stable at --max-dt: "≥ 0.29"
-  CHECK(std::get<DotChart>(stabilityFigure(bounded).chart).groups[0].lowerBounds == std::vector<bool>{false, false, true});
+  CHECK(std::get<DotChart>(stabilityFigure(bounded).chart).groups[0].lowerBounds ==
+        std::vector<bool>{false, false, true});
 
   // Dots: filled circles in the group's colour (one more in the legend). From two dots' centres
   // and the frame, the axis' ends: fitted to the data, not widened to whole decades (0.0001 … 1).
@@ -268,7 +270,9 @@ TEST_CASE("plot stability figure: a dot per integrator and limit on a log axis f
 TEST_CASE("plot stats figure: values up to the largest double give a figure, not a hang or an error") {
   TempDir dir;
   const StatsTable table = readStatsCsv(writeText(
-      dir, kHeader + "\n0,1e308,-1e308,0,0,0\n1,-1.7976931348623157e308,1.7976931348623157e308,0,1e308,1e308\n2,1,2,3,0,0\n"));
+      dir,
+      kHeader +
+          "\n0,1e308,-1e308,0,0,0\n1,-1.7976931348623157e308,1.7976931348623157e308,0,1e308,1e308\n2,1,2,3,0,0\n"));
   for (const char* name : {"huge.svg", "huge.png"}) {
     CAPTURE(name);
     CHECK_NOTHROW(writeFigure(statsFigure(table), dir / name));

@@ -21,7 +21,8 @@ double CsvRecorder::nominalTime(double t, double fps) {
 }
 
 std::unique_ptr<CsvRecorder> CsvRecorder::open(const System& system, double fps, const std::string& statsPath,
-                                             const std::string& tracePath, const std::vector<std::string>& traceOnly) {
+                                               const std::string& tracePath,
+                                               const std::vector<std::string>& traceOnly) {
   if (!statsPath.empty() && statsPath == tracePath) {
     throw InputError(fmt::format("--stats and --trace name the same file '{}'", statsPath));
   }
@@ -61,8 +62,8 @@ void CsvRecorder::record(const System& system) {
   fmt::memory_buffer buffer;
   if (stats_) {
     const scenario::Sample x = scenario::sampleOf(system);
-    fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{}\n", nominalTime(x.t, fps_), x.kinetic, x.potential, x.total,
-                   x.constraintError, x.penetration);
+    fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{}\n", nominalTime(x.t, fps_), x.kinetic, x.potential,
+                   x.total, x.constraintError, x.penetration);
     stats_->write({buffer.data(), buffer.size()});
   }
   if (trace_) {
@@ -75,8 +76,8 @@ void CsvRecorder::record(const System& system) {
       const Vec2 x = v.pos(p), u = v.vel(p);
       const double angle = p < numParticles ? 0.0 : v.angle(p - numParticles);
       const double omega = p < numParticles ? 0.0 : v.omega(p - numParticles);
-      fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{},{},{}\n", t, names_[k], x.x(), x.y(),
-                     u.x(), u.y(), angle, omega);
+      fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{},{},{}\n", t, names_[k], x.x(), x.y(), u.x(), u.y(),
+                     angle, omega);
     }
     trace_->write({buffer.data(), buffer.size()});
   }
