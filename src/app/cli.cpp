@@ -84,8 +84,8 @@ Cli::Cli() {
                         "a segment of an MP4, or those frames of a sequence (join MP4 segments with concat)");
   renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
   renderCmd->add_option("--fps", render.fps,
-                        "Frames per simulated second (default: the scenario's render.fps; for a GIF at most 30, "
-                        "and GIF takes no more than 50)");
+                        "Frames per simulated second (default: the scenario's render.fps, for a GIF capped at 30; "
+                        "a GIF takes at most 50)");
   renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: 1 (off), 2, 4, 8 or 16")
       ->check(CLI::IsMember(render::kSampleCounts))
       ->capture_default_str();
