@@ -20,17 +20,23 @@ void GlContext::loadFunctions(GlProcLookup lookup, const char* lookupName, GlBac
   info_.version = glString(gl_, GL_VERSION);
 }
 
-void GlContext::beginFrame(Rgb bg) {
+void GlContext::beginFrame(Rgb bg, bool transparent) {
   makeCurrent();
   gl_.glViewport(0, 0, image_.width, image_.height);
   gl_.glDisable(GL_DEPTH_TEST);
   gl_.glDisable(GL_CULL_FACE);
   gl_.glDisable(GL_DITHER);
   gl_.glDisable(GL_MULTISAMPLE);
-  // Coverage as alpha over what is drawn (render/shader_program.hpp); the destination keeps alpha 1.
+  // Coverage a as alpha over what is drawn (render/shader_program.hpp): colour c·a + d·(1 − a), alpha
+  // a + d_a·(1 − a). Over an opaque background the destination keeps alpha 1. Over a transparent one
+  // (cleared to 0) this is "over" with the destination premultiplied: d holds colour × d_a.
   gl_.glEnable(GL_BLEND);
   gl_.glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-  gl_.glClearColor(float(bg.r) / 255.0f, float(bg.g) / 255.0f, float(bg.b) / 255.0f, 1.0f);
+  if (transparent) {
+    gl_.glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  } else {
+    gl_.glClearColor(float(bg.r) / 255.0f, float(bg.g) / 255.0f, float(bg.b) / 255.0f, 1.0f);
+  }
   gl_.glClear(GL_COLOR_BUFFER_BIT);
 }
 

@@ -35,8 +35,10 @@ class GlContext {
 
   // Makes this context current (another renderer may have been drawing in between), sets the
   // state every frame is drawn with (coverage blended as alpha, nothing else) and clears the image
-  // to `background`. Throws RenderError.
-  void beginFrame(Rgb background);
+  // to `background`, or with `transparent` to nothing (0, 0, 0, 0): the image then holds colours
+  // premultiplied by their alpha (the blending below is Porter–Duff "over" on premultiplied
+  // colour). Throws RenderError.
+  void beginFrame(Rgb background, bool transparent);
   // Waits until GL has drawn everything and returns the image. Throws RenderError if GL reported an
   // error since beginFrame.
   const Image& finishFrame();

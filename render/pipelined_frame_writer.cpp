@@ -19,4 +19,23 @@ void PipelinedFrameWriter::write(const Image& frame) {
   ++frames_;
 }
 
+void PipelinedFrameWriter::finish() {
+  if (finished_ || aborted_) throw std::logic_error("finish of " + what_ + " called twice or after abort");
+  try {
+    pipeline_->close();  // the worker has stopped: what it used is this thread's again
+    publish();
+  } catch (...) {
+    abort();
+    throw;
+  }
+  finished_ = true;
+}
+
+void PipelinedFrameWriter::abort() noexcept {
+  if (aborted_ || finished_) return;
+  aborted_ = true;
+  if (pipeline_) pipeline_->cancel();
+  discard();
+}
+
 }  // namespace particles::render

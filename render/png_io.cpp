@@ -52,14 +52,16 @@ using PngWritePtr = std::unique_ptr<png_struct, PngWriteDeleter>;
 using PngReadPtr = std::unique_ptr<png_struct, PngReadDeleter>;
 using PngInfoPtr = std::unique_ptr<png_info, PngInfoDeleter>;
 
-bool writeRows(png_structp png, png_infop info, std::FILE* file, const Image& image, int level, png_bytepp rows) {
+bool writeRows(png_structp png, png_infop info, std::FILE* file, const Image& image, const PngOptions& options,
+               png_bytepp rows) {
   if (setjmp(png_jmpbuf(png))) return false;
   png_init_io(png, file);
-  png_set_compression_level(png, level);
-  png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_compression_level(png, options.compressionLevel);
+  png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8,
+               options.alpha ? PNG_COLOR_TYPE_RGBA : PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
-  png_set_filler(png, 0, PNG_FILLER_AFTER);  // input rows are RGBA: drop the A byte
+  if (!options.alpha) png_set_filler(png, 0, PNG_FILLER_AFTER);  // input rows are RGBA: drop the A byte
   png_write_image(png, rows);
   png_write_end(png, nullptr);
   return true;
@@ -195,7 +197,7 @@ void writePngStream(output::FilePtr file, const std::filesystem::path& path, con
   // libpng takes non-const rows; it only reads them when writing.
   std::vector<png_bytep> rows(size_t(image.height));
   for (int y = 0; y < image.height; ++y) rows[size_t(y)] = const_cast<png_bytep>(image.pixel(0, y));
-  if (!writeRows(png.get(), info.get(), file.get(), image, options.compressionLevel, rows.data())) {
+  if (!writeRows(png.get(), info.get(), file.get(), image, options, rows.data())) {
     throw OutputError("libpng could not write " + path.string() + ": " + sink.message);
   }
   // fclose flushes: a full disk shows up here, so its result counts.

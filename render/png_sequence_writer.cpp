@@ -51,7 +51,8 @@ PngSequenceWriter::PngSequenceWriter(const fs::path& directory, const FrameWrite
     throw;
   }
   const fs::path staging = staging_->path();
-  const PngOptions png = options.png;
+  PngOptions png = options.png;
+  png.alpha = png.alpha || options.alpha;  // frames with a transparent background: RGBA files
   const long firstIndex = options.firstIndex;
   firstIndex_ = firstIndex;
   wholeSequence_ = options.wholeSequence;
@@ -74,34 +75,23 @@ PngSequenceWriter::~PngSequenceWriter() {
   if (!finished_) abort();
 }
 
-void PngSequenceWriter::finish() {
-  if (finished_ || aborted_) throw std::logic_error("PngSequenceWriter::finish called twice or after abort");
-  try {
-    pipeline_->close();
-    std::error_code ec;
-    for (long i = 0; i < frames_; ++i) {
-      const std::string name = sequenceFrameName(firstIndex_ + i);
-      fs::rename(staging_->path() / name, directory_ / name, ec);
-      if (ec) throw OutputError("cannot move " + name + " into " + directory_.string() + ": " + ec.message());
-    }
-    // Frames beyond this run's last, left by an earlier run (a range leaves the others' frames).
-    for (const fs::directory_entry& entry : fs::directory_iterator(directory_, ec)) {
-      if (!wholeSequence_) break;
-      const std::optional<long> index = sequenceFrameIndex(entry.path().filename().string());
-      if (index && *index >= frames_) fs::remove(entry.path(), ec);
-    }
-    staging_->discard();
-  } catch (...) {
-    abort();
-    throw;
+void PngSequenceWriter::publish() {
+  std::error_code ec;
+  for (long i = 0; i < frames_; ++i) {
+    const std::string name = sequenceFrameName(firstIndex_ + i);
+    fs::rename(staging_->path() / name, directory_ / name, ec);
+    if (ec) throw OutputError("cannot move " + name + " into " + directory_.string() + ": " + ec.message());
   }
-  finished_ = true;
+  // Frames beyond this run's last, left by an earlier run (a range leaves the others' frames).
+  for (const fs::directory_entry& entry : fs::directory_iterator(directory_, ec)) {
+    if (!wholeSequence_) break;
+    const std::optional<long> index = sequenceFrameIndex(entry.path().filename().string());
+    if (index && *index >= frames_) fs::remove(entry.path(), ec);
+  }
+  staging_->discard();
 }
 
-void PngSequenceWriter::abort() noexcept {
-  if (aborted_ || finished_) return;
-  aborted_ = true;
-  if (pipeline_) pipeline_->cancel();
+void PngSequenceWriter::discard() noexcept {
   if (staging_) staging_->discard();
   std::error_code ec;
   if (createdDirectory_ && fs::is_empty(directory_, ec)) fs::remove(directory_, ec);

@@ -31,11 +31,12 @@ class PngSequenceWriter final : public PipelinedFrameWriter {
   PngSequenceWriter(const std::filesystem::path& directory, const FrameWriterOptions& options);
   ~PngSequenceWriter() override;  // abort() unless finished
 
-  void finish() override;
-  void abort() noexcept override;
   const std::filesystem::path& destination() const override { return directory_; }
 
  private:
+  void publish() override;
+  void discard() noexcept override;
+
   std::filesystem::path directory_;
   long firstIndex_ = 0;        // the first frame's index in the whole render (its file name)
   bool wholeSequence_ = true;  // finish() removes frames of an earlier, longer run

@@ -49,6 +49,11 @@ struct RenderOptions {
   int msaa = 4;  // samples per pixel: one of kSampleCounts (1 is off)
   Raster raster = Raster::automatic;
   ThemeName themeName = ThemeName::dark;
+  // The background left transparent instead of the theme's colour (`render --background
+  // transparent`): the image's alpha is then each pixel's coverage, 0 where nothing is drawn, 255
+  // under an opaque shape, in between on anti-aliased edges, and its colour is straight (not
+  // premultiplied) as PNG and VP9's alpha want it. Off, every pixel has alpha 255.
+  bool transparentBackground = false;
   Length particleRadius{4.0, Length::Unit::pixels};
   double springWidthPx = 1.5;
   double rodWidthPx = 3.5;

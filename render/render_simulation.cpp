@@ -57,10 +57,22 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
     throw std::invalid_argument("a frame range is for a video or a sequence, not the single frame '" +
                                 job.output.string() + "'");
   }
+  // Segments of an MP4 join without re-encoding (particles concat); a GIF's palette and WebM's
+  // keyframe and alpha streams would not, so they render whole.
+  if (job.frames && (kind == OutputKind::gif || kind == OutputKind::webm)) {
+    throw std::invalid_argument("a frame range (a split render) is for MP4 or a PNG sequence, not " +
+                                outputKindName(kind) + " ('" + job.output.string() + "')");
+  }
   if (!(0 <= first && first < end && end <= total)) {
     throw std::invalid_argument("frames " + std::to_string(first) + ":" + std::to_string(end) +
                                 " are not a range of the video's " + std::to_string(total) + " frames (0:" +
                                 std::to_string(total) + ")");
+  }
+
+  const bool alpha = job.look.transparentBackground;
+  if (alpha && !keepsAlpha(kind)) {
+    throw std::invalid_argument("a transparent background cannot be kept in " + outputKindName(kind) + " ('" +
+                                job.output.string() + "'): write .webm, .png or dir/");
   }
 
   FramePainter painter(job, hooks);
@@ -75,7 +87,9 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
 
   if (kind == OutputKind::png) {
     reached(*job.at);
-    writePng(job.output, painter.paint(system), job.png);
+    PngOptions png = job.png;
+    png.alpha = png.alpha || alpha;
+    writePng(job.output, painter.paint(system), png);
     summary.frames = 1;
     summary.steps = stepper.steps();
     summary.wallSeconds = secondsSince(start);
@@ -88,6 +102,7 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
   out.video = job.video;
   out.video.fps = job.fps;
   out.png = job.png;
+  out.alpha = alpha;
   out.firstIndex = first;
   out.wholeSequence = !job.frames;
   const long frames = end - first;

@@ -2,6 +2,8 @@
 // `particles render` as a library call: steps a simulation, draws it at each frame's time and
 // writes the frames (render/frame_writer.hpp, render/png_io.hpp):
 //   file.mp4   H.264 video, frames i = 0 … frameCount(duration, fps) − 1 at t = i / fps
+//   file.webm  the same as VP9 (with alpha for a transparent background)
+//   file.gif   the same as an animated GIF (fps at most kMaxGifFps)
 //   dir/       the same frames as frame_000000.png …
 //   file.png   one frame at `at` seconds
 // or a range of the frames of a video or sequence (RenderJob::frames).
@@ -28,7 +30,7 @@
 namespace particles::render {
 
 struct RenderJob {
-  std::filesystem::path output;  // file.mp4, dir/ (or an existing directory) or file.png
+  std::filesystem::path output;  // file.mp4, file.webm, file.gif, dir/ (or an existing directory) or file.png
   std::optional<double> at;      // s: the time of the one frame of a file.png; only with one. A time
                                  // not after the system's (or NaN) draws its current state
   double duration = 0.0;         // s of simulated time a video or sequence covers, > 0
@@ -38,7 +40,7 @@ struct RenderJob {
   // them, so each frame is the same as in the whole render. A sequence names the frames by their
   // index in the whole (frame_000060.png …) and leaves other frames in the directory alone; an
   // MP4 holds end − first frames from t = 0 and starts with a keyframe (particles concat joins
-  // segments). Nothing: every frame. 0 ≤ first < end ≤ frameCount(duration, fps).
+  // segments). Not for a GIF or WebM. Nothing: every frame. 0 ≤ first < end ≤ frameCount(duration, fps).
   std::optional<std::pair<long, long>> frames;
   Camera camera;
   RenderOptions look;
@@ -75,7 +77,8 @@ struct RenderSummary {
 // OutputError when the output cannot be written, std::invalid_argument for options out of range
 // (render/render_options.hpp, render/gl_backend.hpp's validate, a video of odd size, an unknown
 // preset, a file.png without `at` or `at` for anything else, a frame range outside the video or
-// with a file.png), and whatever a hook throws.
+// with a file.png, a transparent background (RenderOptions::transparentBackground) for an output
+// that cannot keep it: MP4 or GIF), and whatever a hook throws.
 RenderSummary renderSimulation(System& system, Integrator integrator, double dt, const RenderJob& job,
                                const RenderHooks& hooks = {});
 

@@ -9,6 +9,23 @@
 
 namespace particles::render {
 
+namespace {
+
+// Premultiplied colour (what GL leaves over a transparent background) to straight colour, in
+// place: c = C · 255 / a, rounded to nearest. A pixel with alpha 0 stays (0, 0, 0, 0).
+void unpremultiply(Image& image) {
+  for (size_t i = 0; i < image.rgba.size(); i += 4) {
+    const unsigned a = image.rgba[i + 3];
+    if (a == 0 || a == 255) continue;
+    for (size_t k = 0; k < 3; ++k) {
+      const unsigned c = (unsigned(image.rgba[i + k]) * 255u + a / 2) / a;
+      image.rgba[i + k] = std::uint8_t(c > 255u ? 255u : c);
+    }
+  }
+}
+
+}  // namespace
+
 struct Renderer::Impl {
   // Members in the order they are made: the program is compiled in the context, current once made.
   RenderOptions options;
@@ -18,6 +35,7 @@ struct Renderer::Impl {
   ShapeMesh mesh;  // the frame's triangles, storage reused from frame to frame
   TileBins bins;   // or its shapes in tiles
   std::unique_ptr<TileProgram> tiles;  // made when first needed
+  Image straight;                      // a transparent frame with its colour unpremultiplied
 
   Impl(const RenderOptions& o, const GlRequest& gl)
       : options(o),
@@ -54,7 +72,8 @@ const Image& Renderer::render(const Drawing& frame, const Camera& camera) {
     buildFrameMesh(frame, camera, m.options, m.colors, m.bins);
     tiled = m.options.raster == Raster::tiles || m.bins.shapes().size() >= kTilesFromShapes;
   }
-  m.context->beginFrame(m.colors.background);
+  const bool transparent = m.options.transparentBackground;
+  m.context->beginFrame(m.colors.background, transparent);
   if (tiled) {
     m.bins.bin();
     if (!m.tiles) {
@@ -64,12 +83,15 @@ const Image& Renderer::render(const Drawing& frame, const Camera& camera) {
     tiled = m.tiles->fits(m.bins);  // else too large for GL's texture buffers: triangles
   }
   if (tiled) {
-    m.tiles->draw(m.bins, m.colors.background);
+    m.tiles->draw(m.bins, m.colors.background, transparent);
   } else {
     buildFrameMesh(frame, camera, m.options, m.colors, m.mesh);
     m.program.draw(m.mesh);
   }
-  return m.context->finishFrame();
+  if (!transparent) return m.context->finishFrame();
+  m.straight = m.context->finishFrame();
+  unpremultiply(m.straight);
+  return m.straight;
 }
 
 }  // namespace particles::render

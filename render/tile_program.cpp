@@ -29,6 +29,7 @@ uniform usamplerBuffer items;
 uniform int tilesPerRow;
 uniform float imageHeight;
 uniform vec3 background;  // 0 … 255
+uniform float backgroundAlpha;  // 1 opaque, 0 transparent: then the colour stays premultiplied
 out vec4 fragColor;
 
 const vec2 samples[SAMPLE_COUNT] = vec2[SAMPLE_COUNT](SAMPLES);
@@ -83,8 +84,8 @@ void main() {
     color += transmitted * alpha * shapeColor;
     transmitted *= 1.0 - alpha;
   }
-  color += transmitted * background;
-  fragColor = vec4(floor(color + 0.5) / 255.0, 1.0);
+  color += transmitted * backgroundAlpha * background;
+  fragColor = vec4(floor(color + 0.5) / 255.0, 1.0 - transmitted * (1.0 - backgroundAlpha));
 }
 )";
 
@@ -109,6 +110,7 @@ TileProgram::TileProgram(const GlFunctions& gl, int samples, int width, int heig
   gl.glUniform1f(gl.glGetUniformLocation(program_, "imageHeight"), float(height));
   gl.glUniform2f(gl.glGetUniformLocation(program_, "imageSize"), float(width), float(height));
   backgroundUniform_ = gl.glGetUniformLocation(program_, "background");
+  backgroundAlphaUniform_ = gl.glGetUniformLocation(program_, "backgroundAlpha");
   tilesPerRowUniform_ = gl.glGetUniformLocation(program_, "tilesPerRow");
   GLint most = 0;
   gl.glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
@@ -121,11 +123,12 @@ bool TileProgram::fits(const TileBins& bins) const {
          (long long)bins.tiles().size() / 2 <= maxTexels_;
 }
 
-void TileProgram::draw(const TileBins& bins, Rgb background) const {
+void TileProgram::draw(const TileBins& bins, Rgb background, bool transparent) const {
   const GlFunctions& gl = gl_;
   gl.glUseProgram(program_);
   gl.glUniform1i(tilesPerRowUniform_, bins.tilesPerRow());
   gl.glUniform3f(backgroundUniform_, float(background.r), float(background.g), float(background.b));
+  gl.glUniform1f(backgroundAlphaUniform_, transparent ? 0.0f : 1.0f);
   // GL needs a buffer of at least one texel; an empty frame binds one zero.
   static const std::uint32_t kZero[4] = {0, 0, 0, 0};
   const void* data[3] = {bins.shapes().data(), bins.tiles().data(), bins.items().data()};

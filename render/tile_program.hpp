@@ -34,8 +34,10 @@ class TileProgram {
 
   // Draws the frame's shapes over `background` in the current context, every pixel of the tiles
   // that have shapes written whole; the other pixels keep what the frame was cleared to (the
-  // same background). `bins` must have been binned for this image size.
-  void draw(const TileBins& bins, Rgb background) const;
+  // same background). With `transparent`, over nothing instead: colour premultiplied by alpha, as
+  // the triangle path leaves it (GlContext::beginFrame). `bins` must have been binned for this
+  // image size.
+  void draw(const TileBins& bins, Rgb background, bool transparent) const;
 
  private:
   const GlFunctions& gl_;
@@ -44,7 +46,7 @@ class TileProgram {
   unsigned buffers_[3] = {0, 0, 0};   // shapes, tiles, items
   unsigned textures_[3] = {0, 0, 0};  // their texture buffers
   mutable size_t capacity_[3] = {0, 0, 0};  // bytes each buffer's store holds
-  int backgroundUniform_ = -1, tilesPerRowUniform_ = -1;
+  int backgroundUniform_ = -1, backgroundAlphaUniform_ = -1, tilesPerRowUniform_ = -1;
   long long maxTexels_ = 0;  // GL_MAX_TEXTURE_BUFFER_SIZE
 };
 

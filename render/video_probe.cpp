@@ -34,7 +34,7 @@ Image toRgba(const AVFrame* f) {
 
 }  // namespace
 
-VideoInfo probeVideo(const std::filesystem::path& path, long sampleFrame) {
+VideoInfo probeVideo(const std::filesystem::path& path, long sampleFrame, const std::string& decoderName) {
   const std::string name = path.string();
   AVFormatContext* raw = nullptr;
   check(avformat_open_input(&raw, name.c_str(), nullptr, nullptr), "avformat_open_input(" + name + ")");
@@ -44,6 +44,10 @@ VideoInfo probeVideo(const std::filesystem::path& path, long sampleFrame) {
   const int streamIndex = av_find_best_stream(raw, AVMEDIA_TYPE_VIDEO, -1, -1, &decoder, 0);
   check(streamIndex, "av_find_best_stream(video, " + name + ")");
   const AVStream* stream = raw->streams[streamIndex];
+  if (!decoderName.empty()) {
+    decoder = avcodec_find_decoder_by_name(decoderName.c_str());
+    if (!decoder) throw OutputError("avcodec_find_decoder_by_name(" + decoderName + "): not in this libavcodec");
+  }
 
   VideoInfo info;
   info.codec = avcodec_get_name(stream->codecpar->codec_id);
@@ -52,6 +56,9 @@ VideoInfo probeVideo(const std::filesystem::path& path, long sampleFrame) {
   info.width = stream->codecpar->width;
   info.height = stream->codecpar->height;
   info.fps = av_q2d(stream->avg_frame_rate);
+  if (const AVDictionaryEntry* alpha = av_dict_get(stream->metadata, "alpha_mode", nullptr, 0)) {
+    info.alphaMode = alpha->value;
+  }
   info.durationSeconds = stream->duration != AV_NOPTS_VALUE ? double(stream->duration) * av_q2d(stream->time_base)
                                                             : double(raw->duration) / AV_TIME_BASE;
 
@@ -68,6 +75,10 @@ VideoInfo probeVideo(const std::filesystem::path& path, long sampleFrame) {
       const int ret = avcodec_receive_frame(codec.get(), frame.get());
       if (ret == AVERROR(EAGAIN) || ret == AVERROR_EOF) return;
       check(ret, "avcodec_receive_frame");
+      if (info.frames == 0) {
+        const char* decoded = av_get_pix_fmt_name(AVPixelFormat(frame->format));
+        info.decodedPixelFormat = decoded ? decoded : "none";
+      }
       if (info.frames == sampleFrame) info.sample = toRgba(frame.get());
       ++info.frames;
       av_frame_unref(frame.get());

@@ -65,9 +65,33 @@ __attribute__((target_clones("avx2", "default"))) void chromaRow(const std::uint
   }
 }
 
-}  // namespace
+// A block's chroma with each pixel's colour weighted by its alpha; the Q16 coefficients multiply a
+// sum of four colours, so the weighted mean is scaled to four times itself. All four transparent:
+// the plain sum (their colour, grey for the renderer's transparent black).
+void chromaRowWeighted(const std::uint8_t* top, const std::uint8_t* bottom, std::uint8_t* u, std::uint8_t* v,
+                       int halfWidth) {
+  for (int x = 0; x < halfWidth; ++x) {
+    const std::uint8_t* px[4] = {top + 8 * x, top + 8 * x + 4, bottom + 8 * x, bottom + 8 * x + 4};
+    int weight = 0, sum[3] = {0, 0, 0}, plain[3] = {0, 0, 0};
+    for (const std::uint8_t* p : px) {
+      weight += p[3];
+      for (int k = 0; k < 3; ++k) {
+        sum[k] += p[k] * p[3];
+        plain[k] += p[k];
+      }
+    }
+    int block[3];
+    for (int k = 0; k < 3; ++k) block[k] = weight ? (4 * sum[k] + weight / 2) / weight : plain[k];
+    u[x] = std::uint8_t((kUr * block[0] + kUg * block[1] + kUb * block[2] + kChromaBias) >> 16);
+    v[x] = std::uint8_t((kVr * block[0] + kVg * block[1] + kVb * block[2] + kChromaBias) >> 16);
+  }
+}
 
-void rgbaToYuv420(const Image& image, const Yuv420Planes& out) {
+using ChromaRow = void (*)(const std::uint8_t* top, const std::uint8_t* bottom, std::uint8_t* u, std::uint8_t* v,
+                           int halfWidth);
+
+// Luma per pixel and chroma per 2 × 2 block (by `chromaRow`), row pair by row pair.
+void convertRows(const Image& image, const Yuv420Planes& out, ChromaRow chroma) {
   const int w = image.width, h = image.height;
   if (w < 2 || h < 2 || (w & 1) || (h & 1)) {
     throw std::invalid_argument("yuv420p needs an even width and height, not " + std::to_string(w) + "x" +
@@ -82,9 +106,24 @@ void rgbaToYuv420(const Image& image, const Yuv420Planes& out) {
     const std::uint8_t* bottom = image.pixel(0, row + 1);
     lumaRow(top, out.y + std::ptrdiff_t(row) * out.yStride, w);
     lumaRow(bottom, out.y + std::ptrdiff_t(row + 1) * out.yStride, w);
-    chromaRow(top, bottom, out.u + std::ptrdiff_t(row / 2) * out.uStride, out.v + std::ptrdiff_t(row / 2) * out.vStride,
-              w / 2);
+    chroma(top, bottom, out.u + std::ptrdiff_t(row / 2) * out.uStride, out.v + std::ptrdiff_t(row / 2) * out.vStride,
+           w / 2);
   }
+}
+
+}  // namespace
+
+void rgbaToYuva420(const Image& image, const Yuv420Planes& out, std::uint8_t* alpha, int alphaStride) {
+  convertRows(image, out, chromaRowWeighted);
+  for (int row = 0; row < image.height; ++row) {
+    const std::uint8_t* in = image.pixel(0, row);
+    std::uint8_t* a = alpha + std::ptrdiff_t(row) * alphaStride;
+    for (int x = 0; x < image.width; ++x) a[x] = in[4 * x + 3];
+  }
+}
+
+void rgbaToYuv420(const Image& image, const Yuv420Planes& out) {
+  convertRows(image, out, chromaRow);
 }
 
 }  // namespace particles::render

@@ -6,7 +6,10 @@
 //   Cb = 128 + 224/255 · (B − Y′) / 1.8556,   Cr = 128 + 224/255 · (R − Y′) / 1.5748
 // with Y′ = 0.2126 R + 0.7152 G + 0.0722 B; each 2 × 2 block of pixels shares one Cb and Cr, taken
 // from the block's mean colour (chroma centred in the block), so a thin coloured line keeps its hue.
-// Alpha is ignored: frames are opaque.
+// rgbaToYuv420 ignores alpha (opaque frames). rgbaToYuva420 keeps it as a fourth, full-resolution
+// plane (0 … 255, VP9's alpha in WebM) and takes a block's chroma from its colours weighted by their
+// alpha: a transparent pixel's colour is nothing, and averaged in evenly it would tint the edges of
+// shapes (with the renderer's straight colour, black for the transparent background).
 //
 // Written here rather than through libswscale: with the flags that keep chroma exact
 // (ACCURATE_RND | FULL_CHR_H_INP) swscale takes its unvectorised path, 1.4 ms per 1280×720 frame
@@ -29,5 +32,8 @@ struct Yuv420Planes {
 
 // Converts `image` (even width and height, else std::invalid_argument) into `out`.
 void rgbaToYuv420(const Image& image, const Yuv420Planes& out);
+// The same with alpha into `alpha` (width × height, `alphaStride` bytes a row), chroma weighted by
+// alpha. A scalar loop: it feeds VP9, whose encoding costs far more.
+void rgbaToYuva420(const Image& image, const Yuv420Planes& out, std::uint8_t* alpha, int alphaStride);
 
 }  // namespace particles::render

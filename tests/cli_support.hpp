@@ -6,9 +6,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -101,6 +103,28 @@ struct Scratch {
     return collect(std::system(command.c_str()));
   }
 
+  // Starts `particles ARGS` here, waits until its output is open (the render is under way: a named
+  // temporary in the folder, or an anonymous file, which /proc shows as "<folder>/#<inode>
+  // (deleted)"), sends it `signal` ("INT", "TERM", "KILL") and returns its exit code and stderr.
+  // SIGINT and SIGTERM are caught: the render stops and discards its output. SIGKILL cannot be
+  // caught: the output is an anonymous O_TMPFILE file (PendingOutput), which vanishes with the process.
+  Result interrupt(const std::string& args, const std::string& signal) const {
+    const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
+    const std::string command = "cd '" + dir.string() + "' && ('" + exe.string() + "' " + args +
+                                " 2> stderr.txt & pid=$!; "
+                                "for i in $(seq 100); do ls | grep -q partial && break; "
+                                "ls -l /proc/$pid/fd | grep -qF \"$(pwd)/#\" && break; sleep 0.05; done; "
+                                "kill -" +
+                                signal + " $pid; wait $pid 2> /dev/null; echo $? > code.txt)";
+    REQUIRE(std::system(command.c_str()) == 0);
+    Result r;
+    r.code = std::stoi(slurp(dir / "code.txt"));
+    r.err = slurp(dir / "stderr.txt");
+    fs::remove(dir / "code.txt");
+    fs::remove(dir / "stderr.txt");
+    return r;
+  }
+
   // What a bounded run used: CPU seconds (user + system) and peak resident memory.
   struct Usage {
     double cpuSeconds = 0;
@@ -152,5 +176,53 @@ struct Scratch {
     return r;
   }
 };
+
+// Runs `particles ARGS` in `s` as bad input: exit 2, with a message naming `option`.
+inline void checkRefused(const Scratch& s, const std::string& args, const std::string& option) {
+  CAPTURE(args);
+  const Result r = s.run(args);
+  CHECK(r.code == 2);
+  CHECK_MESSAGE(r.err.find(option) != std::string::npos, r.err);
+}
+
+// What a shell command prints on stdout, and whether it exited 0.
+inline std::string commandOutput(const std::string& command, bool& succeeded) {
+  FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE_MESSAGE(pipe != nullptr, "popen " << command);
+  std::string text;
+  char buffer[4096];
+  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) text.append(buffer, n);
+  succeeded = ::pclose(pipe) == 0;
+  return text;
+}
+
+// The presentation times of the keyframes of `video`, in seconds, from ffprobe's packet list
+// (flags "K" mark a keyframe).
+inline std::vector<double> keyframeTimes(const fs::path& video) {
+  bool succeeded = false;
+  const std::string text = commandOutput(
+      "ffprobe -v error -select_streams v:0 -show_entries packet=pts_time,flags -of csv=p=0 '" + video.string() + "'",
+      succeeded);
+  REQUIRE_MESSAGE(succeeded, "ffprobe failed on " << video << " (scripts/deps installs ffmpeg)");
+  std::vector<double> times;
+  for (const std::string& line : lines(text)) {
+    const size_t comma = line.find(',');
+    if (comma != std::string::npos && line.find('K', comma) != std::string::npos) {
+      times.push_back(std::stod(line.substr(0, comma)));
+    }
+  }
+  std::sort(times.begin(), times.end());  // packets come in decoding order
+  return times;
+}
+
+// The longest time from a keyframe to the next one or to the end of a video `duration` s long:
+// what a player may have to decode to reach a point.
+inline double longestKeyframeGap(const std::vector<double>& keyframes, double duration) {
+  REQUIRE(!keyframes.empty());
+  CHECK(keyframes.front() == 0.0);
+  double longest = duration - keyframes.back();
+  for (size_t i = 1; i < keyframes.size(); ++i) longest = std::max(longest, keyframes[i] - keyframes[i - 1]);
+  return longest;
+}
 
 }  // namespace particles::test

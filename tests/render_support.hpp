@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the render tests: a scratch directory and small scenes.
 
+#include <doctest/doctest.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -12,6 +13,7 @@
 #include "core/system.hpp"
 #include "render/image.hpp"
 #include "render/renderer.hpp"
+#include "render/video_probe.hpp"
 
 namespace particles::test {
 
@@ -73,6 +75,14 @@ inline Vec2 projectToPixel(const Vec2& p, const render::Camera& camera, int widt
 
 inline bool sameRgb(const std::uint8_t* px, render::Rgb c) {
   return px[0] == c.r && px[1] == c.g && px[2] == c.b;
+}
+
+// What every decoded video is checked for: its codec, size and frame count.
+inline void checkVideo(const render::VideoInfo& info, const std::string& codec, int width, int height, long frames) {
+  CHECK(info.codec == codec);
+  CHECK(info.width == width);
+  CHECK(info.height == height);
+  CHECK(info.frames == frames);
 }
 
 }  // namespace particles::test

@@ -4,15 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iterator>
 #include <cstdio>
+#include <iterator>
+#include <string>
 #include <utility>
 #include <vector>
-#include <string>
 
 #include "cli_support.hpp"
 #include "render/png_io.hpp"
 #include "render/video_probe.hpp"
+#include "render_support.hpp"
 
 using namespace particles::test;
 namespace fs = std::filesystem;
@@ -37,11 +38,8 @@ TEST_CASE("cli render: an MP4 with fps × duration H.264 frames") {
   const Result r = s.run("render s.yaml -o swing.mp4 --quiet");
   REQUIRE_MESSAGE(r.code == 0, r.err);
   const auto info = particles::render::probeVideo(s.dir / "swing.mp4");
-  CHECK(info.codec == "h264");
+  checkVideo(info, "h264", 160, 120, 10);
   CHECK(info.pixelFormat == "yuv420p");
-  CHECK(info.width == 160);
-  CHECK(info.height == 120);
-  CHECK(info.frames == 10);
   CHECK(info.durationSeconds == doctest::Approx(1.0).epsilon(0.1));
   CHECK(outputs(s) == std::vector<std::string>{"swing.mp4"});
   // Command-line size and fps win over the scenario's.
@@ -126,28 +124,15 @@ TEST_CASE("cli render: an explosion is exit 1, names the step, and leaves no fil
   CHECK(outputs(s).empty());
 }
 
-// SIGINT and SIGTERM are caught: the render stops and discards its output. SIGKILL cannot be
-// caught: the output is an anonymous O_TMPFILE file (PendingOutput), which vanishes with the process.
 TEST_CASE("cli render: SIGINT, SIGTERM and SIGKILL stop the render and leave no partial output") {
   Scratch s;
   // Long enough (600 frames at 640×480) to still be running when the signal arrives.
   s.write("s.yaml", kSwing);
-  const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
   for (const auto& [signal, code] : {std::pair{"INT", 130}, std::pair{"TERM", 143}, std::pair{"KILL", 137}}) {
     CAPTURE(signal);
-    // Wait until the output is open (the render is under way), then signal it: a named temporary
-    // in the folder, or an anonymous file, which /proc shows as "<folder>/#<inode> (deleted)".
-    const std::string command = "cd '" + s.dir.string() + "' && ('" + exe.string() +
-                                "' render s.yaml -o long.mp4 --quiet --duration 20 --size 640x480 --fps 30 "
-                                "2> err.txt & pid=$!; "
-                                "for i in $(seq 100); do ls | grep -q partial && break; "
-                                "ls -l /proc/$pid/fd | grep -qF \"$(pwd)/#\" && break; sleep 0.05; done; "
-                                "kill -" + signal + " $pid; wait $pid 2> /dev/null; echo $? > code.txt)";
-    REQUIRE(std::system(command.c_str()) == 0);
-    CHECK(std::stoi(slurp(s.dir / "code.txt")) == code);
-    if (code != 137) CHECK(slurp(s.dir / "err.txt").find("interrupted") != std::string::npos);
-    fs::remove(s.dir / "code.txt");
-    fs::remove(s.dir / "err.txt");
+    const Result r = s.interrupt("render s.yaml -o long.mp4 --quiet --duration 20 --size 640x480 --fps 30", signal);
+    CHECK(r.code == code);
+    if (code != 137) CHECK(r.err.find("interrupted") != std::string::npos);
     CHECK(outputs(s).empty());
   }
 }
@@ -248,50 +233,6 @@ TEST_CASE("cli render --hud: text in the top-left corner, the rest of the frame 
   CHECK(changedInCorner > 1000);  // the translucent panel darkens the corner
   CHECK(brightInCorner > 100);    // light glyphs on it (dark theme)
   CHECK(changedElsewhere == 0);
-}
-
-namespace {
-
-// What a shell command prints on stdout, and whether it exited 0.
-std::string commandOutput(const std::string& command, bool& succeeded) {
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE_MESSAGE(pipe != nullptr, "popen " << command);
-  std::string text;
-  char buffer[4096];
-  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) text.append(buffer, n);
-  succeeded = ::pclose(pipe) == 0;
-  return text;
-}
-
-// The presentation times of the keyframes of `video`, in seconds, from ffprobe's packet list
-// (flags "K" mark a keyframe).
-std::vector<double> keyframeTimes(const fs::path& video) {
-  bool succeeded = false;
-  const std::string text = commandOutput(
-      "ffprobe -v error -select_streams v:0 -show_entries packet=pts_time,flags -of csv=p=0 '" + video.string() + "'",
-      succeeded);
-  REQUIRE_MESSAGE(succeeded, "ffprobe failed on " << video << " (scripts/deps installs ffmpeg)");
-  std::vector<double> times;
-  for (const std::string& line : lines(text)) {
-    const size_t comma = line.find(',');
-    if (comma != std::string::npos && line.find('K', comma) != std::string::npos) {
-      times.push_back(std::stod(line.substr(0, comma)));
-    }
-  }
-  std::sort(times.begin(), times.end());  // packets come in decoding order
-  return times;
-}
-
-}  // namespace
-
-// The longest time from a keyframe to the next one or to the end of a video `duration` s long:
-// what a player may have to decode to reach a point.
-double longestKeyframeGap(const std::vector<double>& keyframes, double duration) {
-  REQUIRE(!keyframes.empty());
-  CHECK(keyframes.front() == 0.0);
-  double longest = duration - keyframes.back();
-  for (size_t i = 1; i < keyframes.size(); ++i) longest = std::max(longest, keyframes[i] - keyframes[i - 1]);
-  return longest;
 }
 
 TEST_CASE("cli render --keyint: a keyframe at least every 2 s by default, or as asked; bad values refused") {

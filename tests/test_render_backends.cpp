@@ -57,6 +57,15 @@ DemoFrame demoFrame(const std::string& name, double at) {
   return {s.system.draw(), {s.render.viewCenter, s.render.viewHeight}};
 }
 
+// Every sample count, opaque and with a transparent background.
+std::vector<std::pair<int, bool>> sampleCountsOpaqueAndTransparent() {
+  std::vector<std::pair<int, bool>> cases;
+  for (int msaa : kSampleCounts) {
+    for (bool transparent : {false, true}) cases.emplace_back(msaa, transparent);
+  }
+  return cases;
+}
+
 }  // namespace
 
 TEST_CASE("GL backends: every backend built draws the demos' frames to the same bytes") {
@@ -69,15 +78,18 @@ TEST_CASE("GL backends: every backend built draws the demos' frames to the same 
   for (const auto& [name, at] : demos) {
     const DemoFrame frame = demoFrame(name, at);
     for (const auto& [width, height] : {std::pair{320, 240}, std::pair{333, 217}}) {  // odd sizes too
-      for (int msaa : kSampleCounts) {
+      // With a transparent background too: alpha kept by both framebuffers, colour premultiplied alike.
+      for (const auto& [msaa, transparent] : sampleCountsOpaqueAndTransparent()) {
         CAPTURE(std::string(name));
         CAPTURE(width);
         CAPTURE(height);
         CAPTURE(msaa);
+        CAPTURE(transparent);
         RenderOptions options;
         options.width = width;
         options.height = height;
         options.msaa = msaa;
+        options.transparentBackground = transparent;
         std::optional<Image> first;
         for (GlBackend backend : backends) {
           CAPTURE(glBackendName(backend));

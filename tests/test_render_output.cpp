@@ -4,22 +4,23 @@
 #include <doctest/doctest.h>
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <string>
 
+#include "core/drawing.hpp"
+#include "core/solver.hpp"
+#include "core/system.hpp"
 #include "render/errors.hpp"
 #include "render/frame_writer.hpp"
 #include "render/png_io.hpp"
 #include "render/png_sequence_writer.hpp"
 #include "render/renderer.hpp"
-#include "core/drawing.hpp"
-#include "core/system.hpp"
 #include "render/video_probe.hpp"
 #include "render_support.hpp"
-#include "core/solver.hpp"
 
 using namespace particles;
 using namespace particles::render;
@@ -27,18 +28,20 @@ using particles::test::ScratchDir;
 
 namespace {
 
-RenderOptions outputRenderOptions() {
-  return particles::test::smallRenderOptions(320, 180);
+RenderOptions outputRenderOptions(bool transparent = false) {
+  RenderOptions o = particles::test::smallRenderOptions(320, 180);
+  o.transparentBackground = transparent;
+  return o;
 }
 
 const Camera camera{Vec2(0.1, -0.2), 2.4};
 
 // Renders `count` frames of the falling particles at `fps` into the writer, as the command line
 // will: frame i at t = i / fps.
-std::vector<Image> renderInto(FrameWriter& writer, long count, int fps, bool keep = false) {
+std::vector<Image> renderInto(FrameWriter& writer, long count, int fps, bool keep = false, bool transparent = false) {
   System system = particles::test::fallingParticles();
   Solver solver(Integrator::Rk4);
-  Renderer renderer(outputRenderOptions());
+  Renderer renderer(outputRenderOptions(transparent));
   std::vector<Image> kept;
   for (long i = 0; i < count; ++i) {
     while (system.time() < double(i) / fps - 1e-9) solver.doStep(system, 1.0 / (4.0 * fps));
@@ -76,6 +79,25 @@ double meanAbsoluteDifference(const Image& a, const Image& b) {
   return sum / double(a.rgba.size() / 4 * 3);
 }
 
+// `frames` frames of the falling particles at `fps` written to `path` (finished); the frames as rendered.
+std::vector<Image> writeVideo(const std::filesystem::path& path, long frames, int fps, const FrameWriterOptions& o,
+                              bool transparent = false) {
+  auto writer = openFrameWriter(path, o);
+  std::vector<Image> rendered = renderInto(*writer, frames, fps, true, transparent);
+  CHECK(writer->framesWritten() == frames);
+  writer->finish();
+  return rendered;
+}
+
+// The decoded last frame is the last rendered one (not the first, not blank): it differs from its
+// source by compression (under `maxError` levels on average) far less than the frames differ.
+void checkLastFrame(const VideoInfo& info, const std::vector<Image>& rendered, double maxError) {
+  REQUIRE(info.sample.width == rendered.back().width);
+  const double error = meanAbsoluteDifference(info.sample, rendered.back());
+  CHECK(error < maxError);
+  CHECK(error < meanAbsoluteDifference(rendered.front(), rendered.back()) / 4);
+}
+
 }  // namespace
 
 TEST_CASE("frame counts and output kinds") {
@@ -86,7 +108,18 @@ TEST_CASE("frame counts and output kinds") {
   CHECK(outputKind("OUT.MP4") == OutputKind::mp4);
   CHECK(outputKind("frame.png") == OutputKind::png);
   CHECK(outputKind("frames/") == OutputKind::pngSequence);
+  CHECK(outputKind("a/out.gif") == OutputKind::gif);
+  CHECK(outputKind("OUT.WebM") == OutputKind::webm);
   CHECK_THROWS_AS(outputKind("out.avi"), std::invalid_argument);
+  // The error lists every kind there is.
+  try {
+    outputKind("out.mkv");
+    FAIL("out.mkv accepted");
+  } catch (const std::invalid_argument& e) {
+    for (const char* kind : {"file.mp4", "file.webm", "file.gif", "file.png", "dir/"}) {
+      CHECK_MESSAGE(std::string(e.what()).find(kind) != std::string::npos, e.what());
+    }
+  }
   CHECK(sequenceFrameName(42) == "frame_000042.png");
   CHECK(sequenceFrameIndex("frame_000042.png") == 42);
   CHECK(sequenceFrameIndex("frame_1234567.png") == 1234567);
@@ -120,26 +153,13 @@ TEST_CASE("an MP4 decodes as H.264 yuv420p with fps × duration frames") {
     CAPTURE(fps);
     const long frames = frameCount(duration, fps);
     const auto path = dir / ("out" + std::to_string(fps) + ".mp4");
-    auto writer = openFrameWriter(path, writerOptions(fps));
-    const std::vector<Image> rendered = renderInto(*writer, frames, fps, true);
-    CHECK(writer->framesWritten() == frames);
-    writer->finish();
-
+    const std::vector<Image> rendered = writeVideo(path, frames, fps, writerOptions(fps));
     const VideoInfo info = probeVideo(path, frames - 1);
-    CHECK(info.codec == "h264");
+    particles::test::checkVideo(info, "h264", 320, 180, frames);
     CHECK(info.pixelFormat == "yuv420p");
-    CHECK(info.width == 320);
-    CHECK(info.height == 180);
     CHECK(info.fps == doctest::Approx(fps));
-    CHECK(info.frames == frames);
     CHECK(std::abs(info.durationSeconds - duration) <= 1.0 / fps);
-    // The last decoded frame is the last rendered one (not the first, not blank): it differs from
-    // its source only by compression and the YUV round trip.
-    REQUIRE(info.sample.width == 320);
-    const double error = meanAbsoluteDifference(info.sample, rendered.back());
-    const double moved = meanAbsoluteDifference(rendered.front(), rendered.back());
-    CHECK(error < 2.0);
-    CHECK(error < moved / 4);
+    checkLastFrame(info, rendered, 2.0);
   }
   CHECK(dir.entries() == std::set<std::string>{"out24.mp4", "out30.mp4"});
 }
@@ -295,4 +315,190 @@ TEST_CASE("PNG bytes in memory that are not a whole PNG fail with libpng's messa
   CHECK_THROWS_WITH_AS(readPngText(bytes.substr(0, 7)), "test.png is not a PNG file", OutputError);
   CHECK_THROWS_WITH_AS(readPngText(bytes.substr(0, bytes.size() / 2)),
                        doctest::Contains("libpng could not read test.png: unexpected end of data"), OutputError);
+}
+
+namespace {
+
+// A particle's pixels and the background's in a frame of the falling particles at t = 0: the first
+// particle (0.2, 0.6) is 6 px in radius, so its centre pixel is covered and a pixel 3 px in is too;
+// the top-left corner is far from every shape.
+struct Probe {
+  Vec2 centre;
+  Image frame;
+};
+
+Probe renderedFalling(bool transparent, Raster raster = Raster::triangles) {
+  RenderOptions o = outputRenderOptions(transparent);
+  o.raster = raster;
+  System system = particles::test::fallingParticles();
+  Renderer renderer(o);
+  return {particles::test::projectToPixel(Vec2(0.2, 0.6), camera, o.width, o.height),
+          renderer.render(system.draw(), camera)};
+}
+
+}  // namespace
+
+TEST_CASE("a transparent background: alpha 0 where nothing is drawn, 255 on a particle, straight colour between") {
+  const Theme colors = theme(ThemeName::dark);
+  for (const Raster raster : {Raster::triangles, Raster::tiles}) {
+    CAPTURE(int(raster));
+    const Probe opaque = renderedFalling(false, raster);
+    const Probe clear = renderedFalling(true, raster);
+    const int cx = int(clear.centre.x()), cy = int(clear.centre.y());
+    const std::uint8_t* inside = clear.frame.pixel(cx, cy);
+    CHECK(int(inside[3]) == 255);
+    CHECK(particles::test::sameRgb(inside, colors.particle));
+    CHECK(int(clear.frame.pixel(cx + 3, cy)[3]) == 255);
+    const std::uint8_t* corner = clear.frame.pixel(2, 2);
+    CHECK(int(corner[3]) == 0);
+    // Nothing drawn anywhere far from the shapes, and the opaque frame there is the theme's colour.
+    CHECK(particles::test::sameRgb(opaque.frame.pixel(2, 2), colors.background));
+    // Edge pixels: partial alpha, the particle's own colour (unpremultiplied, to rounding), and
+    // composited over the theme's background they give the opaque frame's pixel.
+    int edges = 0;
+    for (int y = 0; y < clear.frame.height; ++y) {
+      for (int x = 0; x < clear.frame.width; ++x) {
+        const std::uint8_t* px = clear.frame.pixel(x, y);
+        const std::uint8_t* over = opaque.frame.pixel(x, y);
+        CHECK(int(over[3]) == 255);
+        const int a = px[3];
+        if (a == 0) {
+          CHECK(particles::test::sameRgb(over, colors.background));
+          continue;
+        }
+        if (a == 255) {
+          CHECK(std::equal(px, px + 3, over));
+          continue;
+        }
+        ++edges;
+        const int particle[3] = {colors.particle.r, colors.particle.g, colors.particle.b};
+        const int background[3] = {colors.background.r, colors.background.g, colors.background.b};
+        for (int k = 0; k < 3; ++k) {
+          // Straight colour is premultiplied ÷ alpha: an 8-bit premultiplied value is off by up to
+          // half a level, so up to 128 / alpha levels after the division.
+          CHECK(std::abs(int(px[k]) - particle[k]) <= 1 + 128 / a);
+          const double composited = (px[k] * a + background[k] * (255 - a)) / 255.0;
+          CHECK(std::abs(composited - over[k]) <= 2.0);
+        }
+      }
+    }
+    CHECK(edges > 20);  // three anti-aliased discs
+  }
+}
+
+TEST_CASE("a transparent frame survives an RGBA PNG round trip; an opaque one is written as RGB") {
+  ScratchDir dir;
+  const Image clear = renderedFalling(true).frame;
+  writePng(dir / "clear.png", clear, {.compressionLevel = 6, .alpha = true});
+  CHECK(readPng(dir / "clear.png") == clear);
+  writePng(dir / "dropped.png", clear, {.compressionLevel = 6});  // alpha dropped: read back as 255
+  const Image dropped = readPng(dir / "dropped.png");
+  CHECK(int(dropped.pixel(2, 2)[3]) == 255);
+  // Byte 25 of a PNG is IHDR's colour type: 6 RGBA, 2 RGB.
+  CHECK(int(contents(dir / "clear.png")[25]) == 6);
+  CHECK(int(contents(dir / "dropped.png")[25]) == 2);
+}
+
+TEST_CASE("a GIF decodes with fps × duration frames, each close to its source, and one palette") {
+  ScratchDir dir;
+  setLibavVerbose(false);
+  for (const auto& [fps, duration] : {std::pair{30, 1.0}, std::pair{25, 0.4}}) {
+    CAPTURE(fps);
+    const long frames = frameCount(duration, fps);
+    const auto path = dir / ("out" + std::to_string(fps) + ".gif");
+    const std::vector<Image> rendered = writeVideo(path, frames, fps, writerOptions(fps));
+    const VideoInfo info = probeVideo(path, frames - 1);
+    particles::test::checkVideo(info, "gif", 320, 180, frames);
+    // Delays are whole centiseconds adding up to the video's length exactly.
+    CHECK(info.durationSeconds == doctest::Approx(duration).epsilon(1e-9));
+    // Three flat colours and their anti-aliased edges fit the 256 colours of the palette.
+    checkLastFrame(info, rendered, 0.5);
+  }
+  CHECK(dir.entries() == std::set<std::string>{"out25.gif", "out30.gif"});
+  // Delays under 2 cs are shown as 10 cs by browsers: more than 50 fps is refused before any file.
+  CHECK_THROWS_AS(openFrameWriter(dir / "fast.gif", writerOptions(60)), std::invalid_argument);
+  // An odd size is fine for a palette.
+  FrameWriterOptions odd = writerOptions(10);
+  odd.width = 321;
+  auto writer = openFrameWriter(dir / "odd.gif", odd);
+  writer->write(Image(321, 180));
+  writer->finish();
+  CHECK(probeVideo(dir / "odd.gif").width == 321);
+  CHECK_FALSE(std::filesystem::exists(dir / "fast.gif"));
+}
+
+TEST_CASE("a WebM decodes as VP9 with fps × duration frames; with alpha, libvpx decodes its alpha plane") {
+  ScratchDir dir;
+  setLibavVerbose(false);
+  const int fps = 30;
+  const long frames = 12;
+  const std::vector<Image> rendered = writeVideo(dir / "out.webm", frames, fps, writerOptions(fps));
+  const VideoInfo info = probeVideo(dir / "out.webm", frames - 1);
+  particles::test::checkVideo(info, "vp9", 320, 180, frames);
+  CHECK(info.pixelFormat == "yuv420p");
+  CHECK(info.alphaMode.empty());
+  CHECK(info.durationSeconds == doctest::Approx(double(frames) / fps).epsilon(0.01));
+  checkLastFrame(info, rendered, 2.0);
+
+  FrameWriterOptions withAlpha = writerOptions(fps);
+  withAlpha.alpha = true;
+  const std::vector<Image> clearFrames = writeVideo(dir / "clear.webm", frames, fps, withAlpha, true);
+  // libavcodec's own vp9 decoder sees the colour stream only; the track says there is alpha.
+  const VideoInfo plain = probeVideo(dir / "clear.webm");
+  CHECK(plain.alphaMode == "1");
+  CHECK(plain.decodedPixelFormat == "yuv420p");
+  const VideoInfo alpha = probeVideo(dir / "clear.webm", 0, "libvpx-vp9");
+  CHECK(alpha.decodedPixelFormat == "yuva420p");
+  CHECK(alpha.frames == frames);
+  REQUIRE(alpha.sample.width == 320);
+  // The first frame's particle is opaque and the corner transparent, to VP9's (lossy) precision;
+  // the mean alpha error over the frame is small.
+  const Vec2 c = particles::test::projectToPixel(Vec2(0.2, 0.6), camera, 320, 180);
+  CHECK(int(alpha.sample.pixel(int(c.x()), int(c.y()))[3]) >= 250);
+  CHECK(int(alpha.sample.pixel(2, 2)[3]) <= 5);
+  double alphaError = 0;
+  for (size_t i = 3; i < clearFrames.front().rgba.size(); i += 4) {
+    alphaError += std::abs(int(alpha.sample.rgba[i]) - int(clearFrames.front().rgba[i]));
+  }
+  CHECK(alphaError / double(320 * 180) < 1.0);
+  // Alpha is only for the outputs that keep it.
+  for (const char* name : {"clear.mp4", "clear.gif"}) {
+    CAPTURE(name);
+    CHECK_THROWS_AS(openFrameWriter(dir / name, withAlpha), std::invalid_argument);
+  }
+  CHECK(dir.entries() == std::set<std::string>{"clear.webm", "out.webm"});
+}
+
+TEST_CASE("GIF and WebM replace an existing output only on success, and are the same bytes every time") {
+  ScratchDir dir;
+  setLibavVerbose(false);
+  for (const char* name : {"out.gif", "out.webm"}) {
+    CAPTURE(name);
+    const auto path = dir / name;
+    std::ofstream(path) << "previous run";
+    {  // aborted, as the command line does on SIGINT
+      auto writer = openFrameWriter(path, writerOptions(30));
+      renderInto(*writer, 5, 30);
+      writer->abort();
+    }
+    {  // dropped without finish(): an exception unwinding the frame loop
+      auto writer = openFrameWriter(path, writerOptions(30));
+      renderInto(*writer, 5, 30);
+    }
+    CHECK(contents(path) == "previous run");
+    CHECK(dir.entries() == std::set<std::string>{name});
+    auto first = openFrameWriter(path, writerOptions(30));
+    renderInto(*first, 8, 30);
+    first->finish();
+    const std::string bytes = contents(path);
+    CHECK(probeVideo(path).frames == 8);
+    // The same frames again: the same file (libvpx with row-mt on this machine's threads, the
+    // muxer's track ids fixed; the GIF's palette and encoding have no randomness).
+    auto second = openFrameWriter(path, writerOptions(30));
+    renderInto(*second, 8, 30);
+    second->finish();
+    CHECK(contents(path) == bytes);
+    CHECK(dir.entries() == std::set<std::string>{name});
+    std::filesystem::remove(path);
+  }
 }

@@ -71,17 +71,21 @@ Cli::Cli() {
       "  particles run scenarios/rod_pendulum.yaml --trace pendulum.csv --trace-only bob\n"
       "  particles run scenarios/springs.yaml --duration 2 --quiet --stats springs.csv\n");
 
-  renderCmd = app.add_subcommand("render", "Simulate and draw the scenario off-screen to an MP4, PNG frames or one PNG");
+  renderCmd = app.add_subcommand(
+      "render", "Simulate and draw the scenario off-screen to an MP4, WebM or GIF video, PNG frames or one PNG");
   addCommonOptions(*renderCmd, common);
   renderCmd
-      ->add_option("-o,--output", render.output, "file.mp4 (H.264), dir/ (frame_000000.png …) or file.png (with --at)")
+      ->add_option("-o,--output", render.output,
+                   "file.mp4 (H.264), file.webm (VP9), file.gif, dir/ (frame_000000.png …) or file.png (with --at)")
       ->required();
   renderCmd->add_option("--at", render.at, "Draw the one frame at this simulated time, s (with -o file.png)");
   renderCmd->add_option("--frames", render.frames,
                         "Render frames A … B−1 only (A:B; A: to the end), each the same as in the whole render: "
-                        "a segment of the video, or those frames of the sequence (join MP4 segments with concat)");
+                        "a segment of an MP4, or those frames of a sequence (join MP4 segments with concat)");
   renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
-  renderCmd->add_option("--fps", render.fps, "Frames per simulated second (default: the scenario's render.fps)");
+  renderCmd->add_option("--fps", render.fps,
+                        "Frames per simulated second (default: the scenario's render.fps, for a GIF capped at 30; "
+                        "a GIF takes at most 50)");
   renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: 1 (off), 2, 4, 8 or 16")
       ->check(CLI::IsMember(render::kSampleCounts))
       ->capture_default_str();
@@ -92,15 +96,23 @@ Cli::Cli() {
       ->check(CLI::IsMember({"auto", "triangles", "tiles"}))
       ->capture_default_str();
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
+  renderCmd
+      ->add_option("--background", render.background,
+                   "theme (the theme's colour) or transparent (alpha 0 behind the shapes: PNG, PNG frames and WebM "
+                   "only)")
+      ->capture_default_str();
   renderCmd->add_option("--particle-radius", render.particleRadius,
                         "Particle disc radius: 4px (pixels) or 0.02m (world)");
-  renderCmd->add_option("--crf", render.crf, "x264 constant rate factor, 0 (lossless) … 51")->capture_default_str();
+  renderCmd->add_option("--crf", render.crf,
+                        "Constant quality, lower is better and larger: MP4 (x264) 0 … 51, default 18; WebM (VP9) "
+                        "0 … 63, default 31");
   renderCmd
       ->add_option("--keyint", render.keyint,
-                   "Longest time between keyframes, s (MP4): players seek to a keyframe, so shorter seeks faster")
+                   "Longest time between keyframes, s (MP4, WebM): players seek to a keyframe, so shorter seeks "
+                   "faster")
       ->check(CLI::Range(1e-3, render::kMaxKeyintSeconds))
       ->capture_default_str();
-  renderCmd->add_option("--preset", render.preset, "x264 preset: ultrafast … veryslow")->capture_default_str();
+  renderCmd->add_option("--preset", render.preset, "x264 preset (MP4): ultrafast … veryslow")->capture_default_str();
   renderCmd->add_option("--png-level", render.pngLevel, "PNG compression level 0 … 9")->capture_default_str();
   renderCmd->add_flag("--verbose", render.verbose, "Name the GL backend and renderer; show libav/x264's own log");
   renderCmd
@@ -119,8 +131,11 @@ Cli::Cli() {
       ->delimiter(',')
       ->needs(renderTrace);
   renderCmd->footer(
-      "Frame i shows t = i / fps; an MP4 has round(duration · fps) frames. Odd sizes are refused for MP4\n"
-      "(H.264 yuv420p needs even sizes); PNG takes any size. Outputs appear only when complete.\n"
+      "Frame i shows t = i / fps; a video has round(duration · fps) frames. Odd sizes are refused for MP4\n"
+      "and WebM (yuv420p needs even sizes); GIF and PNG take any size. A GIF has one palette made for the\n"
+      "whole video, at most 50 fps (30 unless --fps says), delays rounded to whole centiseconds.\n"
+      "--background transparent keeps alpha in PNG and WebM (VP9 with an alpha channel); MP4 and GIF\n"
+      "refuse it. --frames (split renders) is for MP4 and PNG sequences. Outputs appear only when complete.\n"
       "Frames are drawn by Mesa's llvmpipe on the CPU, the same bytes through EGL or OSMesa;\n"
       "'particles --version' names the backend and renderer.\n"
       "Examples:\n"
@@ -129,6 +144,8 @@ Cli::Cli() {
       "  particles render scenarios/cloth.yaml -o fig.png --at 2.5 --theme light --size 1600x1200\n"
       "  particles render scenarios/soft_body.yaml -o man.mp4 --hud   # time, integrator, dt, energy on every frame\n"
       "  particles render scenarios/rigid_chain.yaml -o chain.mp4 --crf 23 --preset veryfast --quiet\n"
+      "  particles render scenarios/cloth.yaml -o cloth.gif --size 480x270   # 30 fps, a palette for the video\n"
+      "  particles render scenarios/cloth.yaml -o cloth.webm --background transparent   # VP9 with alpha\n"
       "  PARTICLES_GL=osmesa particles render scenarios/cloth.yaml -o cloth.mp4   # where EGL will not start\n");
 
   stabilityCmd = app.add_subcommand(

@@ -1,5 +1,7 @@
 // `particles render SCENARIO -o OUT` (docs/physics.md §9, §12): simulate and draw frames off-screen.
 //   OUT.mp4   H.264 video, frames i = 0 … round(duration·fps) − 1 at t = i / fps
+//   OUT.webm  the same as VP9, with alpha under --background transparent
+//   OUT.gif   the same as an animated GIF (at most 30 fps unless --fps says, at most 50)
 //   OUT/      the same frames as frame_000000.png …
 //   OUT.png   one frame at --at T, for report figures
 // The work is render::renderSimulation (render/render_simulation.hpp); this file reads the options,
@@ -105,6 +107,11 @@ render::RenderOptions lookOf(const scenario::Scenario& s, const RenderCommandOpt
   } else {
     throw InputError(fmt::format("--theme: expected dark or light, not '{}'", options.theme));
   }
+  if (options.background == "transparent") {
+    look.transparentBackground = true;
+  } else if (options.background != "theme") {
+    throw InputError(fmt::format("--background: expected theme or transparent, not '{}'", options.background));
+  }
   if (!options.particleRadius.empty()) {
     const auto radius = parseRadius(options.particleRadius);
     if (!radius) {
@@ -162,17 +169,44 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   if (options.at && !std::isfinite(*options.at)) {
     throw InputError(fmt::format("--at: expected a simulated time in seconds, not {}", *options.at));
   }
-  const double fpsValue = options.fps.value_or(s.render.fps);
-  const int fps = int(std::lround(fpsValue));
-  if (std::abs(fpsValue - fps) > 1e-9 || fps <= 0) {
-    throw InputError(fmt::format("render needs a whole, positive number of frames per second, not {}", fpsValue));
-  }
-
   render::OutputKind kind;
   try {
     kind = render::outputKind(options.output);
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("-o {}: {}", options.output, e.what()));
+  }
+  const bool gif = kind == render::OutputKind::gif;
+  // A GIF without --fps: the scenario's rate, at most 30 (render/frame_writer.hpp, kDefaultMaxGifFps).
+  const double fpsValue =
+      options.fps.value_or(gif ? std::min<double>(s.render.fps, render::kDefaultMaxGifFps) : s.render.fps);
+  const int fps = int(std::lround(fpsValue));
+  if (std::abs(fpsValue - fps) > 1e-9 || fps <= 0) {
+    throw InputError(fmt::format("render needs a whole, positive number of frames per second, not {}", fpsValue));
+  }
+  if (gif && fps > render::kMaxGifFps) {
+    throw InputError(
+        fmt::format("--fps {}: a GIF has at most {} frames per second (its delays are whole "
+                    "centiseconds, and browsers slow delays under 2 cs down to 10 cs)",
+                    fps, render::kMaxGifFps));
+  }
+  if (look.transparentBackground && !render::keepsAlpha(kind)) {
+    throw InputError(fmt::format(
+        "--background transparent: {} output ({}) cannot keep it ({}); write .webm, .png "
+        "or DIR/",
+        render::outputKindName(kind), options.output,
+        gif ? "GIF has one transparent colour, no smooth edges over it" : "H.264 in MP4 has no alpha channel"));
+  }
+  if (look.transparentBackground && options.hud) {
+    throw InputError("--hud draws an opaque panel over the frame: not with --background transparent");
+  }
+  if (options.crf) {
+    const int most = kind == render::OutputKind::webm ? 63 : 51;
+    if (kind != render::OutputKind::mp4 && kind != render::OutputKind::webm) {
+      throw InputError(fmt::format("--crf is for MP4 and WebM, not {} output", render::outputKindName(kind)));
+    }
+    if (*options.crf < 0 || *options.crf > most) {
+      throw InputError(fmt::format("--crf {}: {} takes 0 … {}", *options.crf, render::outputKindName(kind), most));
+    }
   }
   if (kind == render::OutputKind::png && !options.at) {
     throw InputError(
@@ -186,8 +220,11 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   const long totalFrames = render::frameCount(s.simulation.duration, fps);
   std::optional<std::pair<long, long>> frameRange;
   if (!options.frames.empty()) {
-    if (kind == render::OutputKind::png) {
-      throw InputError("--frames is for a video or a sequence: give -o FILE.mp4 or DIR/");
+    if (kind != render::OutputKind::mp4 && kind != render::OutputKind::pngSequence) {
+      throw InputError(
+          fmt::format("--frames (a split render) is for MP4, whose segments concat joins, or a PNG "
+                      "sequence: give -o FILE.mp4 or DIR/, not {} output",
+                      render::outputKindName(kind)));
     }
     frameRange = parseFrameRange(options.frames, totalFrames);
   }
