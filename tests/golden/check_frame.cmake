@@ -139,7 +139,8 @@ endif()
 
 # The numbers `particles compare` prints (src/app/compare_command.cpp), for the report. A change to
 # that wording fails every golden test here rather than leaving the report without its numbers.
-set(share_line "share: +([0-9.]+) % of the pixels differ by more than ([0-9]+) \\(([0-9]+) of ([0-9]+); bound ([^ ]+) %\\)")
+string(CONCAT share_line "share: +([0-9.]+) % of the pixels differ by more than ([0-9]+) "
+                         "\\(([0-9]+) of ([0-9]+); bound ([^ ]+) %\\)")
 if(NOT out MATCHES "${share_line}" OR NOT out MATCHES "largest: +([0-9]+)" OR NOT out MATCHES "box: +([^\n]+)")
   fail_with_error("cannot read the numbers `particles compare` printed:\n  ${compare_shown}\n${out}" "${numbers}")
 endif()

@@ -84,6 +84,11 @@ def kept_file(directory, result, key):
     return name if os.path.isfile(os.path.join(directory, name)) else None
 
 
+def renders_golden(result):
+    """Whether the test renders the golden's own command and must match: its frame is a candidate golden."""
+    return result.get("golden_command") == "yes" and result["expect"] == "match"
+
+
 def same_bytes(paths):
     with open(paths[0], "rb") as f:
         first = f.read()
@@ -123,13 +128,12 @@ def plan(directory, frames_txt, wanted):
     if wanted:
         frames = list(wanted)
     else:  # every frame with a failing test of its own command
-        frames = sorted({r["frame"] for r in results if r.get("golden_command") == "yes"
-                         and r["expect"] == "match" and r["outcome"] in FAILING_OUTCOMES})
+        frames = sorted({r["frame"] for r in results if renders_golden(r) and r["outcome"] in FAILING_OUTCOMES})
     for frame in frames:
         if frame not in known:
             lines.append(("refuse", frame, "not a frame of golden/frames.txt"))
             continue
-        own = [r for r in results if r["frame"] == frame and r.get("golden_command") == "yes" and r["expect"] == "match"]
+        own = [r for r in results if r["frame"] == frame and renders_golden(r)]
         verdict = plan_frame(directory, frame, own)
         lines.append((verdict[0], frame) + verdict[1:])
         for r in results:

@@ -18,7 +18,8 @@ import sys
 import tempfile
 import urllib.parse
 
-from results import FAILING_OUTCOMES, read_results
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree, whoever runs this
+from results import FAILING_OUTCOMES, read_results  # noqa: E402  (after the line above)
 
 STYLE = """
 body { font: 14px/1.45 system-ui, sans-serif; margin: 1.5em; color: #1d1d1f; background: #fafafa; }
