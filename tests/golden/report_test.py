@@ -171,7 +171,8 @@ def check_report(out, report):
     with open(os.path.join(out, "results", FRAME + ".default.txt"), encoding="utf-8") as f:
         result = dict(line.split("=", 1) for line in f.read().splitlines())
     for shown in (f"{result['differing']} of {result['pixels']} px ({result['share_percent']} %)",
-                  f"largest {result['largest']}", f"threshold {result['threshold']}, bound {result['bound_percent']} %",
+                  f"{result['largest']} of 255", result["box"],
+                  f"threshold {result['threshold']}, bound {result['bound_percent']} %",
                   result["render_command"]):
         check(shown in text, f"the report does not show {shown!r}")
     check(DIFFER_TEST in text and "b" not in parsed.tags, "the test name with <, & and ' is not shown as text")

@@ -19,7 +19,7 @@ import tempfile
 import urllib.parse
 
 sys.dont_write_bytecode = True  # no __pycache__ in the source tree, whoever runs this
-from results import FAILING_OUTCOMES, read_results  # noqa: E402  (after the line above)
+from results import FAILING_OUTCOMES, kept_file, read_results  # noqa: E402  (after the line above)
 
 STYLE = """
 body { font: 14px/1.45 system-ui, sans-serif; margin: 1.5em; color: #1d1d1f; background: #fafafa; }
@@ -61,14 +61,15 @@ def expectation(result):
     return "must match"
 
 
-def numbers_text(result):
-    """"18 of 76800 px (0.0234 %), largest 59, box …": empty when the comparison did not run."""
+def pixels_text(result):
+    """"18 of 76800 px (0.0234 %)": empty when the comparison did not run."""
     if "differing" not in result:
         return ""
-    return (
-        f"{result['differing']} of {result.get('pixels', '?')} px ({result.get('share_percent', '?')} %), "
-        f"largest {result.get('largest', '?')}, box {result.get('box', '?')}"
-    )
+    return f"{result['differing']} of {result.get('pixels', '?')} px ({result.get('share_percent', '?')} %)"
+
+
+def largest_text(result):
+    return f"{result['largest']} of 255" if "largest" in result else ""
 
 
 def tolerance_text(result):
@@ -79,8 +80,8 @@ def tolerance_text(result):
 
 def picture(directory, result, key, caption):
     """A figure for the picture the result names under KEY, if it is a file in DIRECTORY."""
-    name = result.get(key, "")
-    if not name or os.sep in name or not os.path.isfile(os.path.join(directory, name)):
+    name = kept_file(directory, result, key)
+    if name is None:
         return f"<figure><figcaption>{e(caption)}: not kept</figcaption></figure>"
     href = e(urllib.parse.quote(name))
     return (
@@ -92,12 +93,12 @@ def picture(directory, result, key, caption):
 def failing_section(directory, result):
     rows = [
         ("expects", expectation(result)),
-        ("differing pixels", numbers_text(result) or "—"),
+        ("differing pixels", pixels_text(result) or "—"),
+        ("largest channel difference", largest_text(result) or "—"),
+        ("bounding box", result.get("box", "—")),
         ("tolerance", tolerance_text(result) or "—"),
         ("golden frame", result.get("golden", "?")),
     ]
-    if result.get("threads"):
-        rows.append(("LP_NUM_THREADS", result["threads"]))
     table = "".join(f"<tr><th>{e(k)}</th><td>{e(v)}</td></tr>" for k, v in rows)
     parts = [
         f'<section id="{e(result["test"])}">',
@@ -120,16 +121,13 @@ def failing_section(directory, result):
 
 
 def passing_row(directory, result):
-    links = []
-    for key in ("actual", "diff"):  # kept by tests that must differ: what the comparison saw
-        name = result.get(key, "")
-        if name and os.sep not in name and os.path.isfile(os.path.join(directory, name)):
-            links.append(f'<a href="{e(urllib.parse.quote(name))}">{e(key)}</a>')
+    # Tests that must differ keep their frame and diff: what the comparison saw of the perturbation.
+    links = [f'<a href="{e(urllib.parse.quote(name))}">{e(key)}</a>'
+             for key in ("actual", "diff") if (name := kept_file(directory, result, key))]
     expects = "differ" if result.get("expect") == "differ" else "match"
-    return (
-        f"<tr><td><code>{e(result['test'])}</code></td><td>{e(expects)}</td>"
-        f"<td>{e(numbers_text(result))}</td><td>{e(tolerance_text(result))}</td><td>{' '.join(links)}</td></tr>"
-    )
+    cells = [f"<code>{e(result['test'])}</code>", e(expects), e(pixels_text(result)), e(largest_text(result)),
+             e(result.get("box", "")), e(tolerance_text(result)), " ".join(links)]
+    return "<tr>" + "".join(f"<td>{cell}</td>" for cell in cells) + "</tr>"
 
 
 def report_html(directory, results, unreadable):
@@ -168,7 +166,7 @@ def report_html(directory, results, unreadable):
     if passing:
         out.append("<h2>Passing</h2>")
         out.append('<table class="passing"><tr><th>test</th><th>expects</th><th>differing pixels</th>'
-                   "<th>tolerance</th><th>kept</th></tr>")
+                   "<th>largest difference</th><th>box</th><th>tolerance</th><th>kept</th></tr>")
         out.extend(passing_row(directory, r) for r in passing)
         out.append("</table>")
     out.append("</body></html>\n")
