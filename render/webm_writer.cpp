@@ -11,6 +11,7 @@ namespace {
 // libvpx's speed for deadline "good", 0 (slowest) … 5 (libvpx 1.12 treats more as 5). Measured on
 // 4 s of the cloth at 1280×720 and 60 fps, crf 31, 2 cores (ffmpeg's libvpx-vp9, row-mt): 4 encodes
 // 33 frames/s (4.8 MB, PSNR 42.7 dB against the frames), 2 and 5 about 25 frames/s.
+constexpr int kVp9Threads = 4;
 constexpr int kVp9CpuUsed = 4;
 
 void validate(const FrameWriterOptions& o) {
@@ -34,7 +35,10 @@ WebmWriter::WebmWriter(const std::filesystem::path& path, const FrameWriterOptio
   AVCodecContext* c = video->codec();
   c->gop_size = options.video.keyframeInterval();  // libvpx's kf_max_dist
   c->bit_rate = 0;                                 // with crf: constant quality, no bit-rate target
-  c->thread_count = 0;                             // one thread per core (the API default is one)
+  // A fixed number of threads, not one per core: libvpx's output depends on its thread count (its
+  // tiles and row synchronisation), and the same command must give the same bytes on any machine
+  // (measured: 1 core against 2 gave different files with one thread per core).
+  c->thread_count = kVp9Threads;
   video->setOption("crf", std::to_string(options.video.crf.value_or(kVp9DefaultCrf)));
   video->setOption("deadline", "good");
   video->setOption("cpu-used", std::to_string(kVp9CpuUsed));
