@@ -20,6 +20,31 @@ double YAxis::toPixel(double v, const Rect& plot) const {
   return plot.bottom() - f * plot.h;
 }
 
+double XAxis::toPixel(double v, const Rect& plot) const {
+  if (scale == AxisScale::Log) {
+    return plot.x + (std::log10(v) - std::log10(ticks.lo)) / (std::log10(ticks.hi) - std::log10(ticks.lo)) * plot.w;
+  }
+  return plot.x + axisFraction(v, ticks) * plot.w;
+}
+
+double xAxisMargin(const Canvas& canvas, const Figure& figure, const std::string& xLabel) {
+  const double tickLabelsBottom = kTickLengthPx + kTickLabelGapPx + Canvas::capHeight(kTickLabelSizePx);
+  return tickLabelsBottom + (xLabel.empty() ? 0 : 14 + kAxisLabelSizePx) + 4 + kOuterPadPx +
+         captionHeight(canvas, figure);
+}
+
+void drawXLabels(const Canvas& canvas, const XAxis& axis, const Rect& plot, const std::string& xLabel) {
+  const double labelsTop = plot.bottom() + kTickLengthPx + kTickLabelGapPx;
+  for (const Tick& t : axis.ticks.major) {
+    canvas.text(t.label, pixelCentre(axis.toPixel(t.value, plot)), labelsTop, kTickLabelSizePx, HAlign::Center,
+                VAlign::Top, kInk);
+  }
+  if (!xLabel.empty()) {
+    canvas.text({xLabel, ""}, plot.x + plot.w / 2, labelsTop + Canvas::capHeight(kTickLabelSizePx) + 14,
+                kAxisLabelSizePx, HAlign::Center, VAlign::Top, kInk);
+  }
+}
+
 double tickLabelWidth(const Canvas& canvas, const AxisTicks& ticks) {
   double w = 0;
   for (const Tick& t : ticks.major) w = std::max(w, canvas.textWidth(t.label, kTickLabelSizePx));

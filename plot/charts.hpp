@@ -26,6 +26,17 @@ struct YAxis {
   double toPixel(double v, const Rect& plot) const;
 };
 void drawYAxis(const Canvas& canvas, const YAxis& axis, const Rect& plot, const std::string& label, double labelX);
+
+// The x axis shared by the charts: data value to pixel column inside `plot`.
+struct XAxis {
+  AxisTicks ticks;
+  AxisScale scale = AxisScale::Linear;
+  double toPixel(double v, const Rect& plot) const;
+};
+// The height under the plot taken by the x tick labels, the x label (if any) and the caption.
+double xAxisMargin(const Canvas& canvas, const Figure& figure, const std::string& xLabel);
+// Under `plot`: the major ticks' labels, and the x label under them.
+void drawXLabels(const Canvas& canvas, const XAxis& axis, const Rect& plot, const std::string& xLabel);
 void drawYGrid(const Canvas& canvas, const YAxis& axis, const Rect& plot);
 // Widest tick label of the axis, for the left margin.
 double tickLabelWidth(const Canvas& canvas, const AxisTicks& ticks);

@@ -127,9 +127,7 @@ double drawLegendRow(const Canvas& canvas, const Figure& figure, const DotChart&
 
 void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& chart) {
   const double top = drawLegendRow(canvas, figure, chart, drawTitle(canvas, figure));
-  const double tickLabelsBottom = kTickLengthPx + kTickLabelGapPx + Canvas::capHeight(kTickLabelSizePx);
-  const double bottomMargin = tickLabelsBottom + (chart.xLabel.empty() ? 0 : 14 + kAxisLabelSizePx) + 4 + kOuterPadPx +
-                              captionHeight(canvas, figure);
+  const double bottomMargin = xAxisMargin(canvas, figure, chart.xLabel);
   const double plotHeight = std::max(40.0, std::round(figure.heightPx - top - bottomMargin));
 
   // The data's range, and the widest value label (room is kept for it right of the largest value).
@@ -161,7 +159,7 @@ void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& ch
 
   // In decades: at least a factor of 2 shown, 8 % of the span as air on the left, and the right
   // end pushed out until the largest value's label fits inside the frame.
-  AxisTicks ticks = logTicks(1, 10, 2);
+  XAxis axis{logTicks(1, 10, 2), AxisScale::Log};
   if (anyValue) {
     double l0 = std::log10(lo), l1 = std::log10(hi);
     const double minSpan = std::log10(2.0);
@@ -173,12 +171,11 @@ void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& ch
     const double axisLo = l0 - 0.08 * (l1 - l0);
     const double usable = std::clamp((plot.w - widestLabel - kValueGapPx - kDotRadiusPx - 8) / plot.w, 0.5, 1.0);
     const double axisHi = axisLo + (l1 - axisLo) / usable;
-    ticks = logTicksWithin(std::pow(10.0, axisLo), std::pow(10.0, axisHi), std::max(2, int(plot.w / 70)));
+    axis.ticks = logTicksWithin(std::pow(10.0, axisLo), std::pow(10.0, axisHi), std::max(2, int(plot.w / 70)));
   }
-  const double lgLo = std::log10(ticks.lo), lgHi = std::log10(ticks.hi);
-  auto toPixel = [&](double v) { return plot.x + (std::log10(v) - lgLo) / (lgHi - lgLo) * plot.w; };
+  auto toPixel = [&](double v) { return axis.toPixel(v, plot); };
 
-  for (const Tick& t : ticks.major) {
+  for (const Tick& t : axis.ticks.major) {
     const double x = pixelCentre(toPixel(t.value));
     if (x > plot.x + 0.5 && x < plot.right() - 0.5) canvas.hairline(x, plot.y, x, plot.bottom(), kGrid);
   }
@@ -226,20 +223,15 @@ void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& ch
   }
   canvas.frame(plot, kInk);
 
-  const double labelsTop = plot.bottom() + kTickLengthPx + kTickLabelGapPx;
-  for (double v : ticks.minor) {
+  for (double v : axis.ticks.minor) {
     const double x = pixelCentre(toPixel(v));
     canvas.hairline(x, plot.bottom(), x, plot.bottom() + kMinorTickLengthPx, kInk);
   }
-  for (const Tick& t : ticks.major) {
+  for (const Tick& t : axis.ticks.major) {
     const double x = pixelCentre(toPixel(t.value));
     canvas.hairline(x, plot.bottom(), x, plot.bottom() + kTickLengthPx, kInk);
-    canvas.text(t.label, x, labelsTop, kTickLabelSizePx, HAlign::Center, VAlign::Top, kInk);
   }
-  if (!chart.xLabel.empty()) {
-    canvas.text({chart.xLabel, ""}, plot.x + plot.w / 2, labelsTop + Canvas::capHeight(kTickLabelSizePx) + 14,
-                kAxisLabelSizePx, HAlign::Center, VAlign::Top, kInk);
-  }
+  drawXLabels(canvas, axis, plot, chart.xLabel);
   drawCaption(canvas, figure);
 }
 

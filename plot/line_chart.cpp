@@ -45,17 +45,6 @@ bool drawable(double x, double y, AxisScale scale, AxisScale xScale) {
          (xScale != AxisScale::Log || x > 0);
 }
 
-struct XAxis {
-  AxisTicks ticks;
-  AxisScale scale = AxisScale::Linear;
-  double toPixel(double v, const Rect& plot) const {
-    if (scale == AxisScale::Log) {
-      return plot.x + (std::log10(v) - std::log10(ticks.lo)) / (std::log10(ticks.hi) - std::log10(ticks.lo)) * plot.w;
-    }
-    return plot.x + axisFraction(v, ticks) * plot.w;
-  }
-};
-
 // Runs of consecutive drawable points, in pixels. A point that cannot be drawn ends a run.
 std::vector<std::vector<Point>> pixelRuns(const Series& s, const XAxis& xAxis, const YAxis& yAxis, const Rect& plot) {
   std::vector<std::vector<Point>> runs;
@@ -211,9 +200,7 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
   const std::vector<Panel> oneEmptyPanel(1);
   const std::vector<Panel>& panels = chart.panels.empty() ? oneEmptyPanel : chart.panels;
   const double top = drawTitle(canvas, figure);
-  const double tickLabelsBottom = kTickLengthPx + kTickLabelGapPx + Canvas::capHeight(kTickLabelSizePx);
-  const double bottomMargin = tickLabelsBottom + (chart.xLabel.empty() ? 0 : 14 + kAxisLabelSizePx) + 4 + kOuterPadPx +
-                              captionHeight(canvas, figure);
+  const double bottomMargin = xAxisMargin(canvas, figure, chart.xLabel);
   const std::size_t panelCount = std::max<std::size_t>(1, panels.size());
   const double panelHeight =
       std::max(40.0, (figure.heightPx - top - bottomMargin - kPanelGapPx * (panelCount - 1)) / panelCount);
@@ -301,16 +288,7 @@ void drawLineChart(const Canvas& canvas, const Figure& figure, const LineChart& 
     drawLegend(canvas, panel, plot, runs);
   }
 
-  // x tick labels and the x label, under the bottom panel only.
-  const double labelsTop = plot.bottom() + kTickLengthPx + kTickLabelGapPx;
-  for (const Tick& t : xAxis.ticks.major) {
-    canvas.text(t.label, pixelCentre(xAxis.toPixel(t.value, plot)), labelsTop, kTickLabelSizePx, HAlign::Center,
-                VAlign::Top, kInk);
-  }
-  if (!chart.xLabel.empty()) {
-    canvas.text({chart.xLabel, ""}, plot.x + plot.w / 2, labelsTop + Canvas::capHeight(kTickLabelSizePx) + 14,
-                kAxisLabelSizePx, HAlign::Center, VAlign::Top, kInk);
-  }
+  drawXLabels(canvas, xAxis, plot, chart.xLabel);  // under the bottom panel only
   drawCaption(canvas, figure);
 }
 
