@@ -1,7 +1,8 @@
 // `particles sweep` and `particles gather` (docs/sweeps.md), through the real program: a sweep file
 // expanded into jobs, bad sweep files refused before any job runs, jobs run here with failures
 // listed, a killed sweep resumed without running a finished job again, and a render split into
-// segments and joined. GNU parallel and Slurm run the emitted lists in tests/sweep/ (CTest).
+// segments and joined. GNU parallel and Slurm run the emitted lists in tests/sweep/ (CTest);
+// hostile sweep files and tampered sweep folders are test_sweep_hostile.cpp's.
 #include <doctest/doctest.h>
 #include <sys/stat.h>
 
@@ -102,7 +103,9 @@ TEST_CASE("sweep: the parameters crossed and zipped, one plain command line per 
     CHECK(command.find("--integrator " + expected[i][1] + " --dt " + expected[i][2]) != std::string::npos);
     CHECK(command.find("--stats " + (s.dir / "out" / jobs[i].at("dir") / "stats.csv").string()) != std::string::npos);
     CHECK(command.find("--record " + (s.dir / "out" / jobs[i].at("dir") / "record.txt").string()) != std::string::npos);
-    CHECK(list[i] == command);
+    // The list names the job; its command line stays in jobs.csv, never passed to a shell.
+    CHECK(list[i] == fs::read_symlink("/proc/self/exe").parent_path().string() + "/particles job " +
+                         (s.dir / "out").string() + " " + std::to_string(i));
     CHECK(fs::is_directory(s.dir / "out" / jobs[i].at("dir")));
   }
   CHECK_FALSE(fs::exists(s.dir / "out/results.csv"));  // emitted, not run
@@ -112,7 +115,8 @@ TEST_CASE("sweep: the parameters crossed and zipped, one plain command line per 
   const std::string script = slurp(s.dir / "out/sweep.sbatch");
   CHECK(script.rfind("#!/bin/bash\n", 0) == 0);
   CHECK(script.find("\n#SBATCH --array=0-5\n") != std::string::npos);
-  CHECK(script.find("$((SLURM_ARRAY_TASK_ID + 1))p") != std::string::npos);
+  CHECK(script.find("particles job " + (s.dir / "out").string() + " \"$((0 + SLURM_ARRAY_TASK_ID))\"\n") !=
+        std::string::npos);
   CHECK(fs::is_directory(s.dir / "out/logs"));
 }
 

@@ -2,6 +2,7 @@
 // run; render_, stability_, plot_, compare_, concat_, sweep_, gather_ and schema_command.cpp);
 // errors become exit codes and messages in exit_codes.cpp only.
 #include "app/cli.hpp"
+#include "app/cli_support.hpp"
 
 #include <fmt/format.h>
 
@@ -26,12 +27,11 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   command.add_flag("-q,--quiet", o.quiet, "No progress and no summary; errors are still printed");
-  command.add_option("--max-input", o.maxInputMiB, "Refuse a scenario file larger than this, MiB")
-      ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))
-      ->capture_default_str();
-  command.add_option("--limit", o.limits,
-                     "Raise (or lower) a scene limit, counted before anything is built: particles, springs, "
-                     "constraints, endpoints or entries (repeatable; defaults in docs/scenarios.md, Limits)")
+  addMaxInputOption(command, o.maxInputMiB, "a scenario file");
+  command
+      .add_option("--limit", o.limits,
+                  "Raise (or lower) a scene limit, counted before anything is built: particles, springs, "
+                  "constraints, endpoints or entries (repeatable; defaults in docs/scenarios.md, Limits)")
       ->type_name("NAME=N")
       ->allow_extra_args(false);
 }
@@ -40,8 +40,7 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
 
 Cli::Cli() {
   // The version, and on a second line the GL backend and renderer `render` would use.
-  app.set_version_flag("--version",
-                       [] { return "particles " + programVersion() + "\n" + glVersionLine(); });
+  app.set_version_flag("--version", [] { return "particles " + programVersion() + "\n" + glVersionLine(); });
   app.require_subcommand(1);
   app.footer(
       "Exit codes: 0 success, 1 simulation failure (explosion; for compare: the frames differ),\n"
@@ -215,9 +214,7 @@ Cli::Cli() {
   plotCmd->add_option("--width", plot.width, "Width in px (default 1200)")->check(CLI::Range(200, 10000));
   plotCmd->add_option("--height", plot.height, "Height in px (default 800)")->check(CLI::Range(150, 10000));
   plotCmd->add_flag("-q,--quiet", plot.quiet, "Print nothing on success");
-  plotCmd->add_option("--max-input", plot.maxInputMiB, "Refuse a CSV file larger than this, MiB")
-      ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))
-      ->capture_default_str();
+  addMaxInputOption(*plotCmd, plot.maxInputMiB, "a CSV file");
   plotCmd->footer(
       "Examples:\n"
       "  particles run scenarios/cloth.yaml --stats cloth.csv && particles plot cloth.csv -o energy.svg\n"
@@ -225,8 +222,8 @@ Cli::Cli() {
       "  particles run scenarios/soft_body.yaml --stats man.csv --dt 0.1\n"
       "  particles plot man.csv --scenario scenarios/soft_body.yaml --dt 0.1 -o man.pdf   # mouse intervals shaded\n");
 
-  schemaCmd = app.add_subcommand(
-      "schema", "Print the scenario format as JSON Schema (draft 7), for editors and validators");
+  schemaCmd =
+      app.add_subcommand("schema", "Print the scenario format as JSON Schema (draft 7), for editors and validators");
   schemaCmd->add_flag("--markdown", schema.markdown, "Print each kind's key table as docs/scenarios.md has it");
   schemaCmd->footer(
       "Examples:\n"
@@ -239,6 +236,7 @@ Cli::Cli() {
   addJobOptions(*stabilityCmd, job);
   sweepCmd = addSweepCommand(app, sweep);
   gatherCmd = addGatherCommand(app, gather);
+  runJobCmd = addRunJobCommand(app, runJob);
 }
 
 int Cli::dispatch(const std::vector<std::string>& args) {
@@ -253,6 +251,7 @@ int Cli::dispatch(const std::vector<std::string>& args) {
     if (renderCmd->parsed()) return renderCommand(common, render);
     if (sweepCmd->parsed()) return sweepCommand(sweep);
     if (gatherCmd->parsed()) return gatherCommand(gather);
+    if (runJobCmd->parsed()) return runJobCommand(runJob);
     return runCommand(common, run);
   };
   if (job.record.empty()) return runReportingErrors(context, command);
@@ -264,6 +263,7 @@ int Cli::dispatch(const std::vector<std::string>& args) {
   if (stabilityCmd->parsed()) outputs = {stability.csv, stability.plot};
   if (concatCmd->parsed()) outputs = {concat.output};
   std::erase(outputs, std::string());
+  if (!concatCmd->parsed()) job.maxInputMiB = common.maxInputMiB;
   return runRecordedJob(job, args, outputs, context, command);
 }
 

@@ -11,6 +11,7 @@
 #include "app/commands.hpp"
 #include "app/compare_command.hpp"
 #include "app/concat_command.hpp"
+#include "app/job_command.hpp"
 #include "app/job_record.hpp"
 #include "app/sweep_command.hpp"
 
@@ -37,10 +38,11 @@ struct Cli {
   JobOptions job;
   SweepOptions sweep;
   GatherOptions gather;
+  RunJobOptions runJob;
 
-  CLI::App *checkCmd = nullptr, *runCmd = nullptr, *renderCmd = nullptr, *stabilityCmd = nullptr,
-           *compareCmd = nullptr, *concatCmd = nullptr, *plotCmd = nullptr, *schemaCmd = nullptr,
-           *sweepCmd = nullptr, *gatherCmd = nullptr;
+  CLI::App *checkCmd = nullptr, *runCmd = nullptr, *renderCmd = nullptr, *stabilityCmd = nullptr, *compareCmd = nullptr,
+           *concatCmd = nullptr, *plotCmd = nullptr, *schemaCmd = nullptr, *sweepCmd = nullptr, *gatherCmd = nullptr,
+           *runJobCmd = nullptr;
 };
 
 }  // namespace particles::app

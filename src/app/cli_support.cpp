@@ -33,6 +33,12 @@ scenario::Scenario loadScenario(const CommonOptions& o) {
   return scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB, sceneLimitsOf(o));
 }
 
+void addMaxInputOption(CLI::App& command, std::uintmax_t& mebibytes, const std::string& what) {
+  command.add_option("--max-input", mebibytes, fmt::format("Refuse {} larger than this, MiB", what))
+      ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))
+      ->capture_default_str();
+}
+
 std::string plural(size_t n, const char* one, const char* many) {
   return fmt::format("{} {}", n, n == 1 ? one : many);
 }

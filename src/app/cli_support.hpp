@@ -2,7 +2,9 @@
 // What the subcommands share: loading the scenario with the command line's overrides, and the
 // progress line on stderr.
 
+#include <CLI/CLI.hpp>
 #include <chrono>
+#include <cstdint>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -21,6 +23,9 @@ scenario::SceneLimits sceneLimitsOf(const CommonOptions& o);
 scenario::Scenario loadScenario(const CommonOptions& o);
 
 std::string plural(size_t n, const char* one, const char* many);
+
+// --max-input MIB, from 1 MiB to 1 TiB, its default shown: every command that reads files takes it.
+void addMaxInputOption(CLI::App& command, std::uintmax_t& mebibytes, const std::string& what);
 // "625 particles, 0 rigid bodies, 1200 springs, …" for messages.
 std::string contents(const scenario::Scenario& s);
 

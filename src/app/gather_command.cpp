@@ -10,9 +10,11 @@
 #include <map>
 #include <set>
 
+#include "app/cli_support.hpp"
 #include "app/csv_table.hpp"
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
+#include "app/job_table.hpp"
 #include "app/sweep_command.hpp"
 #include "input/text_file.hpp"
 #include "output/output_file.hpp"
@@ -23,8 +25,9 @@ namespace particles::app {
 namespace {
 
 struct GatheredRow {
-  std::vector<std::string> job;        // the jobs.csv row
+  std::vector<std::string> job;  // the jobs.csv row
   std::optional<JobRecord> record;
+  std::string unreadable;  // why the record at the job's path could not be read
 };
 
 // Headline numbers that describe the job rather than its result: left out of the figure.
@@ -70,9 +73,11 @@ CLI::App* addGatherCommand(CLI::App& app, GatherOptions& o) {
   CLI::App* cmd = app.add_subcommand("gather", "Collect a sweep's results: one CSV row per job, and a figure");
   cmd->add_option("outdir", o.outDir, "A sweep's output folder (with jobs.csv)")->required();
   cmd->add_option("-o,--output", o.output, "The CSV (default OUTDIR/results.csv)");
-  cmd->add_option("--plot", o.plot,
-                  "The figure, .svg, .pdf or .png (default OUTDIR/results.svg when one parameter varies; none: no figure)");
+  cmd->add_option(
+      "--plot", o.plot,
+      "The figure, .svg, .pdf or .png (default OUTDIR/results.svg when one parameter varies; none: no figure)");
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
+  addMaxInputOption(*cmd, o.maxInputMiB, "a job table or record");
   cmd->footer(
       "Columns: index, stage, scenario, the parameters, segment, status (ok, failed or not run), exit,\n"
       "seconds, then the numbers the jobs report (run: final_energy, worst_constraint_error,\n"
@@ -85,42 +90,27 @@ CLI::App* addGatherCommand(CLI::App& app, GatherOptions& o) {
 
 int gatherCommand(const GatherOptions& o) {
   const std::filesystem::path dir = o.outDir;
-  const std::filesystem::path jobsFile = dir / "jobs.csv";
-  std::string text;
-  try {
-    text = input::readTextFile(jobsFile, 256);
-  } catch (const input::ReadError& e) {
-    throw InputError(fmt::format("{} (is {} the output folder of a sweep?)", e.what(), o.outDir));
-  }
-  const auto table = parseCsv(text, jobsFile.string());
-  if (table.empty()) throw InputError(fmt::format("{}: empty; expected a sweep's job table", jobsFile.string()));
-  const std::vector<std::string>& header = table.front();
-  const auto column = [&](const std::string& name) -> size_t {
-    const auto it = std::find(header.begin(), header.end(), name);
-    if (it == header.end()) {
-      throw InputError(fmt::format("{}:1: no column '{}'; expected a sweep's job table", jobsFile.string(), name));
-    }
-    return size_t(it - header.begin());
-  };
-  const size_t stageCol = column("stage"), scenarioCol = column("scenario"), segmentCol = column("segment"),
-               dirCol = column("dir");
-  if (column("index") != 0 || scenarioCol > segmentCol) {
-    throw InputError(fmt::format("{}:1: expected index, stage, scenario, parameters…, segment, dir, command",
-                                 jobsFile.string()));
-  }
-  const std::vector<std::string> parameters(header.begin() + long(scenarioCol) + 1, header.begin() + long(segmentCol));
+  const JobTable table = readJobTable(dir, o.maxInputMiB);
+  const std::vector<std::string>& parameters = table.parameters;
+  const size_t stageCol = JobTable::kStage, scenarioCol = JobTable::kScenario, segmentCol = table.segmentColumn();
 
   std::vector<GatheredRow> rows;
-  std::vector<std::string> keys;  // headline keys in order of first appearance
-  for (size_t r = 1; r < table.size(); ++r) {
-    if (table[r].size() != header.size()) {
-      throw InputError(fmt::format("{}:{}: {} fields, the header has {}", jobsFile.string(), r + 1, table[r].size(),
-                                   header.size()));
+  std::vector<std::string> keys;                     // headline keys in order of first appearance
+  std::map<std::string, size_t, std::less<>> keyAt;  // … and where, so that many keys stay linear
+  size_t unreadable = 0;
+  for (const auto& job : table.rows) {
+    GatheredRow row{job, std::nullopt, {}};
+    const std::filesystem::path file = dir / job[table.dirColumn()] / "record.txt";
+    try {
+      row.record = readJobRecord(file, o.maxInputMiB);
+    } catch (const input::ReadError& e) {
+      row.unreadable = fmt::format("{}: {}", file.string(), e.what());
+      ++unreadable;
+      if (!o.quiet) fmt::print(stderr, "warning: {}\n", row.unreadable);
     }
-    GatheredRow row{table[r], readJobRecord(dir / table[r][dirCol] / "record.txt")};
     if (row.record) {
       for (const auto& [k, v] : row.record->headline) {
-        if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
+        if (keyAt.emplace(k, keys.size()).second) keys.push_back(k);
       }
     }
     rows.push_back(std::move(row));
@@ -141,19 +131,17 @@ int gatherCommand(const GatherOptions& o) {
       std::vector<std::string> fields(row.job.begin(), row.job.begin() + long(segmentCol) + 1);
       if (!row.record) {
         ++notRun;
-        fields.insert(fields.end(), {"not run", "", ""});
+        fields.insert(fields.end(), {row.unreadable.empty() ? "not run" : "unreadable", "", ""});
         fields.resize(fields.size() + keys.size());
-        fields.push_back("");
+        fields.push_back(row.unreadable);
       } else {
         const JobRecord& rec = *row.record;
         (rec.exitCode == 0 ? ok : failed)++;
         fields.insert(fields.end(), {rec.exitCode == 0 ? "ok" : "failed", std::to_string(rec.exitCode),
                                      fmt::format("{:.3f}", rec.seconds)});
-        for (const std::string& k : keys) {
-          const auto it = std::find_if(rec.headline.begin(), rec.headline.end(),
-                                       [&](const auto& kv) { return kv.first == k; });
-          fields.push_back(it == rec.headline.end() ? std::string() : fmt::format("{}", it->second));
-        }
+        const size_t first = fields.size();
+        fields.resize(first + keys.size());
+        for (const auto& [k, v] : rec.headline) fields[first + keyAt.find(k)->second] = fmt::format("{}", v);
         fields.push_back(rec.message);
       }
       csv.write(csvRow(fields));
@@ -248,7 +236,8 @@ int gatherCommand(const GatherOptions& o) {
     }
   }
   if (!o.quiet) {
-    fmt::print("{}: {} jobs: {} ok, {} failed, {} not run → {}\n", o.outDir, rows.size(), ok, failed, notRun,
+    fmt::print("{}: {} jobs: {} ok, {} failed, {} not run{} → {}\n", o.outDir, rows.size(), ok, failed,
+               notRun - unreadable, unreadable ? fmt::format(", {} with unreadable records", unreadable) : "",
                csvPath.string());
     fmt::print("{}\n", figurePath.empty() ? figureNote : "figure: " + figurePath.string());
   }

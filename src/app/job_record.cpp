@@ -10,8 +10,9 @@
 #include <charconv>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
+#include <map>
 
+#include "input/text_file.hpp"
 #include "output/output_error.hpp"
 #include "output/output_file.hpp"
 
@@ -55,17 +56,40 @@ void reportHeadline(const std::string& key, double value) {
   values.emplace_back(key, value);
 }
 
+namespace {
+
+bool isPlainShellChar(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) ||
+         std::string_view("_./=:,+-@%^").find(c) != std::string_view::npos;
+}
+bool isControlChar(char c) {
+  const auto u = static_cast<unsigned char>(c);
+  return u < 0x20 || u == 0x7f;
+}
+
+}  // namespace
+
+// Three forms, each read back by splitCommandText: plain words as they are; anything else in
+// single quotes, where the shell takes every byte literally but the quote itself ('\'' closes,
+// adds an escaped quote and reopens); and words with control characters (a newline above all) in
+// bash's $'…', so that a command line is always one line of text.
 std::string shellQuote(const std::string& arg) {
-  const bool plain = !arg.empty() && std::all_of(arg.begin(), arg.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("_./=:,+-@%^").find(c) != std::string_view::npos;
-  });
-  if (plain) return arg;
-  std::string out = "'";
+  if (!arg.empty() && std::all_of(arg.begin(), arg.end(), isPlainShellChar)) return arg;
+  if (std::none_of(arg.begin(), arg.end(), isControlChar)) {
+    std::string out = "'";
+    for (char c : arg) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+  }
+  std::string out = "$'";
   for (char c : arg) {
-    if (c == '\'')
-      out += "'\\''";
-    else
-      out += c;
+    switch (c) {
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      case '\\': out += "\\\\"; break;
+      case '\'': out += "\\'"; break;
+      default: out += isControlChar(c) ? fmt::format("\\x{:02x}", static_cast<unsigned char>(c)) : std::string(1, c);
+    }
   }
   return out + "'";
 }
@@ -78,6 +102,73 @@ std::string commandText(const std::vector<std::string>& args) {
     out += shellQuote(a);
   }
   return out;
+}
+
+std::optional<std::vector<std::string>> splitCommandText(std::string_view text) {
+  std::vector<std::string> words;
+  std::string word;
+  bool inWord = false;
+  auto hex = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    return -1;
+  };
+  for (size_t i = 0; i < text.size();) {
+    const char c = text[i];
+    if (c == ' ') {
+      if (inWord) words.push_back(std::move(word));
+      word.clear();
+      inWord = false;
+      ++i;
+    } else if (c == '\'') {  // '…': every byte literal up to the next quote
+      const size_t end = text.find('\'', i + 1);
+      if (end == std::string_view::npos) return std::nullopt;
+      word.append(text.substr(i + 1, end - i - 1));
+      inWord = true;
+      i = end + 1;
+    } else if (c == '\\') {  // \': the quote between two quoted parts
+      if (i + 1 >= text.size() || text[i + 1] != '\'') return std::nullopt;
+      word += '\'';
+      inWord = true;
+      i += 2;
+    } else if (c == '$' && i + 1 < text.size() && text[i + 1] == '\'') {  // $'…' with escapes
+      i += 2;
+      for (;;) {
+        if (i >= text.size()) return std::nullopt;
+        const char d = text[i++];
+        if (d == '\'') break;
+        if (d != '\\') {
+          word += d;
+          continue;
+        }
+        if (i >= text.size()) return std::nullopt;
+        const char e = text[i++];
+        if (e == 'n')
+          word += '\n';
+        else if (e == 't')
+          word += '\t';
+        else if (e == 'r')
+          word += '\r';
+        else if (e == '\\' || e == '\'')
+          word += e;
+        else if (e == 'x' && i + 1 < text.size() && hex(text[i]) >= 0 && hex(text[i + 1]) >= 0) {
+          word += char(hex(text[i]) * 16 + hex(text[i + 1]));
+          i += 2;
+        } else {
+          return std::nullopt;
+        }
+      }
+      inWord = true;
+    } else if (isPlainShellChar(c)) {
+      word += c;
+      inWord = true;
+      ++i;
+    } else {
+      return std::nullopt;
+    }
+  }
+  if (inWord) words.push_back(std::move(word));
+  return words;
 }
 
 namespace {
@@ -126,17 +217,20 @@ std::string programVersion() {
   return version;
 }
 
-std::optional<JobRecord> readJobRecord(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) return std::nullopt;
+std::optional<JobRecord> parseJobRecord(std::string_view text) {
   JobRecord r;
   bool sawVersion = false, sawExit = false;
-  std::string line;
-  while (std::getline(in, line)) {
+  // Headline keys seen, for a key written twice (the last value counts, as reportHeadline keeps
+  // it): a map keeps this linear in the number of keys.
+  std::map<std::string, size_t, std::less<>> headlineAt;
+  while (!text.empty()) {
+    const size_t newline = text.find('\n');
+    const std::string_view line = text.substr(0, newline);
+    text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
     if (line.empty() || line[0] == '#') continue;
     const size_t colon = line.find(": ");
-    const std::string key = line.substr(0, colon);
-    const std::string value = colon == std::string::npos ? std::string() : line.substr(colon + 2);
+    const std::string_view key = line.substr(0, colon);
+    const std::string_view value = colon == std::string_view::npos ? std::string_view() : line.substr(colon + 2);
     auto number = [&](double& x) {
       const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), x);
       return ec == std::errc() && end == value.data() + value.size();
@@ -147,24 +241,45 @@ std::optional<JobRecord> readJobRecord(const std::filesystem::path& file) {
     } else if (key == "command") {
       r.command = value;
     } else if (key == "exit") {
-      double x = 0;
-      if (!number(x)) return std::nullopt;
-      r.exitCode = int(x);
+      int code = 0;
+      const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), code);
+      if (ec != std::errc() || end != value.data() + value.size() || code < 0 || code > 255) return std::nullopt;
+      r.exitCode = code;
       sawExit = true;
     } else if (key == "message") {
       r.message = value;
     } else if (key == "seconds") {
       if (!number(r.seconds)) return std::nullopt;
     } else if (key == "output") {
-      r.outputs.push_back(value);
-    } else if (key.rfind("value.", 0) == 0) {
+      r.outputs.emplace_back(value);
+    } else if (key.substr(0, 6) == "value.") {
       double x = 0;
       if (!number(x)) return std::nullopt;
-      r.headline.emplace_back(key.substr(6), x);
+      const std::string_view name = key.substr(6);
+      if (const auto it = headlineAt.find(name); it != headlineAt.end()) {
+        r.headline[it->second].second = x;
+      } else {
+        headlineAt.emplace(name, r.headline.size());
+        r.headline.emplace_back(name, x);
+      }
     }
   }
   if (!sawVersion || !sawExit) return std::nullopt;
   return r;
+}
+
+std::optional<JobRecord> readJobRecord(const std::filesystem::path& file, std::uintmax_t maxInputMiB) {
+  std::string text;
+  try {
+    text = input::readTextFile(file, maxInputMiB, input::Accept::regularOnly);
+  } catch (const input::ReadError& e) {
+    if (e.reason() == input::ReadError::Reason::cannotOpen &&
+        !std::filesystem::exists(std::filesystem::symlink_status(file))) {
+      return std::nullopt;
+    }
+    throw;
+  }
+  return parseJobRecord(text);
 }
 
 void writeJobRecord(const std::filesystem::path& file, const JobRecord& r) {
@@ -199,7 +314,15 @@ int runRecordedJob(const JobOptions& options, const std::vector<std::string>& ar
                    const std::vector<std::string>& outputs, const ErrorContext& context,
                    const std::function<int()>& command) {
   const std::string text = commandText(args);
-  if (!options.force && jobDone(readJobRecord(options.record), text)) {
+  std::optional<JobRecord> previous;
+  try {
+    previous = readJobRecord(options.record, options.maxInputMiB);
+  } catch (const input::ReadError& e) {
+    // Not a record this program wrote: refused before anything runs, and left as it is.
+    return runReportingErrors(
+        context, [&]() -> int { throw InputError(fmt::format("--record {}: {}", options.record, e.what())); });
+  }
+  if (!options.force && jobDone(previous, text)) {
     fmt::print(stderr, "{}: done before by this command and version; skipped (--force runs it again)\n",
                options.record);
     return kOk;

@@ -7,10 +7,12 @@
 // FILE (atomically, after its outputs): version, command, exit code, error message, seconds, outputs
 // and the job's headline numbers, which `particles gather` collects into one table.
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -22,9 +24,13 @@ class App;
 
 namespace particles::app {
 
+// The most a record (or a sweep's jobs.csv) may take unless --max-input says otherwise, MiB.
+inline constexpr std::uintmax_t kDefaultMaxTableMiB = 64;
+
 struct JobOptions {
-  std::string record;  // --record FILE; empty: not a sweep job
-  bool force = false;  // --force: run even when the record says done
+  std::string record;                                // --record FILE; empty: not a sweep job
+  bool force = false;                                // --force: run even when the record says done
+  std::uintmax_t maxInputMiB = kDefaultMaxTableMiB;  // the record is read within the command's --max-input
 };
 
 void addJobOptions(CLI::App& command, JobOptions& options);
@@ -43,13 +49,22 @@ struct JobRecord {
   std::vector<std::pair<std::string, double>> headline;
 };
 
-// The arguments as one shell command line, each quoted where the shell would read it otherwise,
-// without --force (a forced rerun is the same job).
+// The arguments as one shell command line (always one line: see shellQuote), without --force (a
+// forced rerun is the same job). It is for people to read and copy, and for records to compare:
+// the program never hands it to a shell. splitCommandText reads it back into the arguments
+// (`particles job` runs a sweep's job from it); nullopt when the text is not commandText's.
 std::string commandText(const std::vector<std::string>& args);
+std::optional<std::vector<std::string>> splitCommandText(std::string_view text);
+// One word for bash whatever its bytes: as it is, in '…', or in $'…' when it holds control
+// characters. The one quoting function of the program.
 std::string shellQuote(const std::string& arg);
 
-// nullopt when the file is missing or is not a record.
-std::optional<JobRecord> readJobRecord(const std::filesystem::path& file);
+// nullopt when the file is missing or is not a record. A file that cannot be read as one (a
+// FIFO, a device, a file past maxInputMiB, binary bytes) throws input::ReadError: such a thing
+// was not written by a job, and reading it could block or exhaust memory.
+std::optional<JobRecord> readJobRecord(const std::filesystem::path& file, std::uintmax_t maxInputMiB);
+// The record a text holds; nullopt when it is not one. Linear in the text.
+std::optional<JobRecord> parseJobRecord(std::string_view text);
 // Throws output::OutputError.
 void writeJobRecord(const std::filesystem::path& file, const JobRecord& record);
 

@@ -22,6 +22,7 @@
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
 #include "app/sweep_plan.hpp"
+#include "input/text_file.hpp"
 #include "output/output_error.hpp"
 #include "scenario/sweep_spec.hpp"
 
@@ -53,7 +54,8 @@ class SweepSignals {
   SweepSignals& operator=(const SweepSignals&) = delete;
 
  private:
-  struct sigaction oldInt_ {}, oldTerm_ {};
+  struct sigaction oldInt_ {
+  }, oldTerm_{};
 };
 
 std::string thisProgram() {
@@ -63,11 +65,10 @@ std::string thisProgram() {
   return self.string();
 }
 
-// Starts `program args…` with its output in `log`; the child gets SIGTERM if the sweep dies.
-pid_t startJob(const std::string& program, const std::vector<std::string>& args, const std::filesystem::path& log,
-               bool force) {
-  std::vector<std::string> all = {program};
-  all.insert(all.end(), args.begin(), args.end());
+// Starts job `index` as `program job OUT INDEX`, exactly the line the emitted lists hold, with its
+// output in `log`; the child gets SIGTERM if the sweep dies.
+pid_t startJob(const SweepPlan& plan, size_t index, const std::filesystem::path& log, bool force) {
+  std::vector<std::string> all = {plan.program, "job", plan.outDir.string(), std::to_string(index)};
   if (force) all.push_back("--force");
   std::vector<char*> argv;
   for (std::string& a : all) argv.push_back(a.data());
@@ -81,8 +82,11 @@ pid_t startJob(const std::string& program, const std::vector<std::string>& args,
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) _exit(128 + SIGTERM);
     const int in = open("/dev/null", O_RDONLY);
-    const int out = open(logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (in < 0 || out < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(out, 2) < 0) _exit(127);
+    // Non-blocking, so that a FIFO put at the log's path fails here instead of waiting for a reader.
+    const int out = open(logPath.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_NONBLOCK, 0644);
+    if (in < 0 || out < 0 || fcntl(out, F_SETFL, 0) < 0 || dup2(in, 0) < 0 || dup2(out, 1) < 0 || dup2(out, 2) < 0) {
+      _exit(127);
+    }
     close(in);
     close(out);
     signal(SIGINT, SIG_DFL);
@@ -93,14 +97,37 @@ pid_t startJob(const std::string& program, const std::vector<std::string>& args,
   return pid;
 }
 
-// The error a failed job printed: its record's message, else the last line of its log.
-std::string failureMessage(const SweepJob& job, const std::filesystem::path& outDir, int code) {
-  if (auto r = readJobRecord(job.record); r && !r->message.empty()) return r->message;
-  std::ifstream log(outDir / job.dir / "log.txt");
-  std::string line, last;
-  while (std::getline(log, line)) {
-    if (!line.empty()) last = line;
+// The record at `file`, or nullopt when there is none or it cannot be read as one (the job
+// itself then says why).
+std::optional<JobRecord> recordOrNothing(const std::filesystem::path& file, std::uintmax_t maxInputMiB) {
+  try {
+    return readJobRecord(file, maxInputMiB);
+  } catch (const input::ReadError&) {
+    return std::nullopt;
   }
+}
+
+// The last non-empty line of a job's log, read from its last 4 KiB only.
+std::string lastLogLine(const std::filesystem::path& log) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(log, ec)) return {};
+  std::ifstream in(log, std::ios::binary);
+  const auto size = std::filesystem::file_size(log, ec);
+  if (ec) return {};
+  const std::uintmax_t tail = std::min<std::uintmax_t>(size, 4096);
+  in.seekg(std::streamoff(size - tail));
+  std::string text(tail, '\0');
+  in.read(text.data(), std::streamsize(tail));
+  text.resize(size_t(in.gcount()));
+  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+  const size_t start = text.find_last_of('\n');
+  return start == std::string::npos ? text : text.substr(start + 1);
+}
+
+// The error a failed job printed: its record's message, else the last line of its log.
+std::string failureMessage(const SweepJob& job, const SweepPlan& plan, int code, std::uintmax_t maxInputMiB) {
+  if (auto r = recordOrNothing(job.record, maxInputMiB); r && !r->message.empty()) return r->message;
+  const std::string last = lastLogLine(plan.outDir / job.dir / "log.txt");
   if (code == 127 && last.empty()) return "could not start the program";
   return last.empty() ? fmt::format("exit {}", code) : last;
 }
@@ -143,13 +170,13 @@ bool runJobs(const SweepPlan& plan, size_t from, size_t to, int parallel, const 
         ++done;
         continue;
       }
-      if (!o.force && jobDone(readJobRecord(job.record), commandText(job.args))) {
+      if (!o.force && jobDone(recordOrNothing(job.record, o.maxInputMiB), commandText(job.args))) {
         succeeded[job.index] = true;
         ++tally.skipped;
         ++done;
         continue;
       }
-      running[startJob(plan.program, job.args, plan.outDir / job.dir / "log.txt", o.force)] = job.index;
+      running[startJob(plan, job.index, plan.outDir / job.dir / "log.txt", o.force)] = job.index;
       ++tally.ran;
     }
     progress.update(long(done), long(total), fmt::format("{} running", running.size()));
@@ -172,7 +199,7 @@ bool runJobs(const SweepPlan& plan, size_t from, size_t to, int parallel, const 
       ++tally.ok;
     } else {
       const std::string failure =
-          fmt::format("{}: exit {}: {}", describeJob(plan, job), code, failureMessage(job, plan.outDir, code));
+          fmt::format("{}: exit {}: {}", describeJob(plan, job), code, failureMessage(job, plan, code, o.maxInputMiB));
       progress.finish();
       if (!o.quiet) fmt::print(stderr, "failed: {}\n", failure);
       tally.failures.push_back(failure);
@@ -187,7 +214,8 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "sweep", "Run one command over scenarios × parameters (here, or as job lists for GNU parallel and Slurm)");
   cmd->add_option("spec", o.spec, "The sweep file (YAML, see docs/sweeps.md)")->required();
-  cmd->add_option("-o,--out", o.out, "The output folder: jobs.csv, a folder per job, results.csv (default ./sweep-NAME)");
+  cmd->add_option("-o,--out", o.out,
+                  "The output folder: jobs.csv, a folder per job, results.csv (default ./sweep-NAME)");
   cmd->add_option("-j,--jobs", o.jobs, "Jobs at once here (0: one per core)")->check(CLI::Range(0, 4096));
   cmd->add_option("--emit", o.emit,
                   "Write the jobs for another engine and run nothing: parallel (jobs.txt for GNU parallel) or slurm "
@@ -196,9 +224,7 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
   cmd->add_option("--program", o.program, "The particles program the jobs run (default: this one, by its full path)");
   cmd->add_flag("--force", o.force, "Run every job again, even those whose records say they are done");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary; failures are still printed");
-  cmd->add_option("--max-input", o.maxInputMiB, "Refuse a sweep or scenario file larger than this, MiB")
-      ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))
-      ->capture_default_str();
+  addMaxInputOption(*cmd, o.maxInputMiB, "a sweep or scenario file (or a record)");
   cmd->footer(
       "Every job is a plain 'particles …' command line with its outputs in OUT/jobs/NNNNNN/ and a record\n"
       "there: a rerun skips what is done, so an interrupted sweep resumes. After running, the results\n"
@@ -216,8 +242,10 @@ int sweepCommand(const SweepOptions& o) {
   const scenario::SweepSpec spec = scenario::loadSweepFile(o.spec, o.maxInputMiB);
   const std::string program =
       o.program.empty() ? thisProgram() : std::filesystem::absolute(o.program).lexically_normal().string();
-  const std::filesystem::path out = o.out.empty() ? std::filesystem::path("sweep-" + spec.name) : std::filesystem::path(o.out);
+  const std::filesystem::path out =
+      o.out.empty() ? std::filesystem::path("sweep-" + spec.name) : std::filesystem::path(o.out);
   const SweepPlan plan = planSweep(spec, out, program, o.maxInputMiB);
+  if (!o.emit.empty()) checkListPaths(plan);
   writeJobTable(plan);
 
   if (!o.emit.empty()) {
@@ -256,6 +284,7 @@ int sweepCommand(const SweepOptions& o) {
   GatherOptions gather;
   gather.outDir = plan.outDir.string();
   gather.quiet = true;
+  gather.maxInputMiB = o.maxInputMiB;
   gatherCommand(gather);
 
   if (!o.quiet) {

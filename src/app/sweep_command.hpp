@@ -18,12 +18,12 @@ class App;
 namespace particles::app {
 
 struct SweepOptions {
-  std::string spec;          // the sweep file
-  std::string out;           // -o: the output folder; empty: ./sweep-<name>
-  int jobs = 0;              // --jobs: at once here; 0: one per core
-  std::string emit;          // --emit parallel | slurm: write the job lists, run nothing
-  std::string program;       // --program: the particles the jobs call; empty: this one
-  bool force = false;        // rerun finished jobs
+  std::string spec;     // the sweep file
+  std::string out;      // -o: the output folder; empty: ./sweep-<name>
+  int jobs = 0;         // --jobs: at once here; 0: one per core
+  std::string emit;     // --emit parallel | slurm: write the job lists, run nothing
+  std::string program;  // --program: the particles the jobs call; empty: this one
+  bool force = false;   // rerun finished jobs
   bool quiet = false;
   std::uintmax_t maxInputMiB = 64;
 };
@@ -33,6 +33,7 @@ struct GatherOptions {
   std::string output;  // -o: the CSV; empty: OUTDIR/results.csv
   std::string plot;    // --plot: the figure; empty: OUTDIR/results.svg when one parameter varies; "none": no figure
   bool quiet = false;
+  std::uintmax_t maxInputMiB = 64;  // --max-input: jobs.csv and each record are read within this
 };
 
 CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options);

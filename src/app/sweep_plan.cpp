@@ -4,11 +4,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 
 #include "app/cli.hpp"
 #include "app/csv_table.hpp"
+#include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
+#include "app/job_table.hpp"
 #include "output/output_error.hpp"
 #include "output/output_file.hpp"
 #include "render/frame_writer.hpp"
@@ -109,10 +112,6 @@ bool nextCombination(std::vector<size_t>& digit, const std::vector<scenario::Swe
   return false;
 }
 
-std::string jobFolder(size_t index) {
-  return fmt::format("jobs/{:06}", index);
-}
-
 }  // namespace
 
 std::string SweepPlan::commandLine(const SweepJob& job) const {
@@ -135,8 +134,9 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
       for (const auto& o : spec.options) {
         const std::string key = isShorthand(p.key) ? "simulation." + p.key : p.key;
         if (isShorthand(o.name) && key == "simulation." + o.name) {
-          failInSweep(spec, p.at, fmt::format("'{}' is varied here and also given in options ({}:{})", p.key,
-                                              spec.file, o.at.line));
+          failInSweep(
+              spec, p.at,
+              fmt::format("'{}' is varied here and also given in options ({}:{})", p.key, spec.file, o.at.line));
         }
       }
     }
@@ -144,9 +144,17 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
 
   // Every scenario loads with the options' --set overrides.
   std::vector<Override> fixed;
+  // The options' shorthands (--duration, --dt, --integrator) change the scenario as a parameter
+  // would: a split render counts its frames from the duration the job will run.
+  for (const auto& o : spec.options) {
+    if (isShorthand(o.name) && !o.flag) {
+      fixed.push_back({"simulation." + o.name, o.value,
+                       fmt::format("the sweep's options.{} ({}:{})", o.name, spec.file, o.at.line)});
+    }
+  }
   for (size_t k = 0; k < spec.sets.size(); ++k) {
-    fixed.push_back({spec.sets[k].first, spec.sets[k].second, fmt::format("the sweep's options.set ({}:{})", spec.file,
-                                                                          spec.setsAt[k].line)});
+    fixed.push_back({spec.sets[k].first, spec.sets[k].second,
+                     fmt::format("the sweep's options.set ({}:{})", spec.file, spec.setsAt[k].line)});
   }
   std::vector<std::string> texts;
   for (const auto& s : spec.scenarios) {
@@ -199,7 +207,11 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
 
   double fpsOption = 0;
   for (const auto& o : spec.options) {
-    if (o.name == "fps") fpsOption = std::stod(o.value);  // parsed as a number by the probe above
+    if (o.name != "fps") continue;
+    const auto [end, ec] = std::from_chars(o.value.data(), o.value.data() + o.value.size(), fpsOption);
+    if (ec != std::errc() || end != o.value.data() + o.value.size() || !(fpsOption > 0) || !std::isfinite(fpsOption)) {
+      failInSweep(spec, o.at, fmt::format("fps: expected a number of frames per second > 0, got '{}'", o.value));
+    }
   }
 
   // The jobs: scenarios outermost, then the groups in order, the last one varying fastest.
@@ -295,13 +307,11 @@ void writeJobTable(const SweepPlan& plan) {
   std::error_code ec;
   for (const SweepJob& job : plan.jobs) {
     std::filesystem::create_directories(plan.outDir / job.dir, ec);
-    if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", (plan.outDir / job.dir).string(), ec.message()));
+    if (ec)
+      throw output::OutputError(fmt::format("cannot create {}: {}", (plan.outDir / job.dir).string(), ec.message()));
   }
   output::OutputFile csv(plan.outDir / "jobs.csv");
-  std::vector<std::string> header = {"index", "stage", "scenario"};
-  header.insert(header.end(), plan.columns.begin(), plan.columns.end());
-  header.insert(header.end(), {"segment", "dir", "command"});
-  csv.write(csvRow(header));
+  csv.write(csvRow(jobTableHeader(plan.columns)));
   for (const SweepJob& job : plan.jobs) {
     std::vector<std::string> row = {std::to_string(job.index), job.stage, job.scenario};
     row.insert(row.end(), job.values.begin(), job.values.end());
@@ -313,13 +323,32 @@ void writeJobTable(const SweepPlan& plan) {
 
 namespace {
 
+// The job lists hold one line per job, `PROGRAM job OUT INDEX`: two paths and fixed words, quoted
+// by shellQuote. A control character in either path would need bash's $'…', which the shell GNU
+// parallel starts (often sh) may not read, so such a path is refused.
+void checkListPath(const std::string& what, const std::string& path) {
+  if (std::any_of(path.begin(), path.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
+    throw InputError(
+        fmt::format("{} '{}' holds a control character (a line break?): the job lists are lines of "
+                    "shell text, so give a path without one",
+                    what, shellQuote(path)));
+  }
+}
+
+std::string jobLine(const SweepPlan& plan, size_t index) {
+  return commandText({plan.program, "job", plan.outDir.string(), std::to_string(index)});
+}
+
 void writeLines(const std::filesystem::path& file, const SweepPlan& plan, size_t from, size_t to) {
   output::OutputFile out(file);
-  for (size_t i = from; i < to; ++i) out.write(plan.commandLine(plan.jobs[i]) + "\n");
+  for (size_t i = from; i < to; ++i) out.write(jobLine(plan, i) + "\n");
   out.commit();
 }
 
-void writeArrayScript(const std::filesystem::path& file, const SweepPlan& plan, const std::string& list, size_t count,
+// A Slurm array script: task i runs job first + i. Nothing of the sweep's values is in it, only
+// the program and the output folder, quoted; the task id comes from Slurm and is only ever a number
+// added to `first` by bash's arithmetic; `particles job` refuses an index past the end.
+void writeArrayScript(const std::filesystem::path& file, const SweepPlan& plan, size_t first, size_t count,
                       const std::string& what) {
   const std::string logs = (plan.outDir / "logs").string();
   std::error_code ec;
@@ -327,22 +356,28 @@ void writeArrayScript(const std::filesystem::path& file, const SweepPlan& plan, 
   if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", logs, ec.message()));
   std::string text = fmt::format(
       "#!/bin/bash\n"
-      "# particles sweep {name}: {what} as a Slurm job array, one job per task; task i runs line i + 1\n"
-      "# of {list} (written by `particles sweep --emit slurm`, docs/sweeps.md). Jobs that are done\n"
+      "# particles sweep {name}: {what} as a Slurm job array, one job per task; task i runs job {first} + i\n"
+      "# of {table} (written by `particles sweep --emit slurm`, docs/sweeps.md). Jobs that are done\n"
       "# are skipped by their records, so resubmitting resumes. Afterwards: particles gather {out}\n"
       "#SBATCH --job-name=particles-{name}\n"
       "#SBATCH --array=0-{last}\n"
       "#SBATCH --ntasks=1\n"
-      "#SBATCH --output={logs}/slurm-%A_%a.log\n",
-      fmt::arg("name", plan.spec.name), fmt::arg("what", what), fmt::arg("list", list),
-      fmt::arg("out", shellQuote(plan.outDir.string())), fmt::arg("last", count - 1), fmt::arg("logs", logs));
+      "{output}",
+      fmt::arg("name", plan.spec.name), fmt::arg("what", what), fmt::arg("first", first),
+      fmt::arg("table", (plan.outDir / "jobs.csv").string()), fmt::arg("out", shellQuote(plan.outDir.string())),
+      fmt::arg("last", count - 1),
+      // sbatch splits #SBATCH lines at spaces and reads % as a pattern: a log path with either
+      // (or a quote) is left to Slurm's default, slurm-JOB_TASK.out in the submitting folder.
+      fmt::arg("output",
+               logs.find_first_of(" \t\"'\\%") == std::string::npos
+                   ? fmt::format("#SBATCH --output={}/slurm-%A_%a.log\n", logs)
+                   : std::string("# logs: Slurm's default (the output folder's path has a space, quote or %)\n")));
   for (const std::string& line : plan.spec.slurm) text += "#SBATCH " + line + "\n";
   text += fmt::format(
       "set -eu\n"
-      "line=$(sed -n \"$((SLURM_ARRAY_TASK_ID + 1))p\" {list})\n"
-      "if [ -z \"$line\" ]; then echo \"no job $SLURM_ARRAY_TASK_ID in {list}\" >&2; exit 2; fi\n"
-      "eval \"exec $line\"\n",
-      fmt::arg("list", shellQuote(list)));
+      "exec {program} job {out} \"$(({first} + SLURM_ARRAY_TASK_ID))\"\n",
+      fmt::arg("program", shellQuote(plan.program)), fmt::arg("out", shellQuote(plan.outDir.string())),
+      fmt::arg("first", first));
   output::OutputFile out(file);
   out.write(text);
   out.commit();
@@ -352,7 +387,13 @@ void writeArrayScript(const std::filesystem::path& file, const SweepPlan& plan, 
 
 }  // namespace
 
+void checkListPaths(const SweepPlan& plan) {
+  checkListPath("the program's path", plan.program);
+  checkListPath("the output folder", plan.outDir.string());
+}
+
 std::string emitParallel(const SweepPlan& plan) {
+  checkListPaths(plan);
   const auto jobs = plan.outDir / "jobs.txt";
   writeLines(jobs, plan, 0, plan.firstStageCount);
   std::string how = fmt::format("parallel --joblog {} < {}", shellQuote((plan.outDir / "joblog.txt").string()),
@@ -366,28 +407,24 @@ std::string emitParallel(const SweepPlan& plan) {
 }
 
 std::string emitSlurm(const SweepPlan& plan) {
-  const auto jobs = plan.outDir / "jobs.txt";
-  writeLines(jobs, plan, 0, plan.firstStageCount);
+  checkListPaths(plan);
   const auto script = plan.outDir / "sweep.sbatch";
-  writeArrayScript(script, plan, jobs.string(), plan.firstStageCount,
-                   fmt::format("{} jobs", plan.firstStageCount));
+  writeArrayScript(script, plan, 0, plan.firstStageCount, fmt::format("{} jobs", plan.firstStageCount));
   if (plan.firstStageCount == plan.jobs.size()) return fmt::format("sbatch {}", shellQuote(script.string()));
 
-  const auto concat = plan.outDir / "concat.txt";
-  writeLines(concat, plan, plan.firstStageCount, plan.jobs.size());
   const auto concatScript = plan.outDir / "concat.sbatch";
-  writeArrayScript(concatScript, plan, concat.string(), plan.jobs.size() - plan.firstStageCount,
+  writeArrayScript(concatScript, plan, plan.firstStageCount, plan.jobs.size() - plan.firstStageCount,
                    "the joins of the split renders");
   const auto submit = plan.outDir / "submit.sh";
   {
     output::OutputFile out(submit);
-    out.write(fmt::format(
-        "#!/bin/bash\n"
-        "# Submits the segments, then the joins once every segment has succeeded (docs/sweeps.md).\n"
-        "set -eu\n"
-        "segments=$(sbatch --parsable \"$@\" {})\n"
-        "sbatch --dependency=afterok:\"${{segments%%;*}}\" \"$@\" {}\n",
-        shellQuote(script.string()), shellQuote(concatScript.string())));
+    out.write(
+        fmt::format("#!/bin/bash\n"
+                    "# Submits the segments, then the joins once every segment has succeeded (docs/sweeps.md).\n"
+                    "set -eu\n"
+                    "segments=$(sbatch --parsable \"$@\" {})\n"
+                    "sbatch --dependency=afterok:\"${{segments%%;*}}\" \"$@\" {}\n",
+                    shellQuote(script.string()), shellQuote(concatScript.string())));
     out.commit();
   }
   std::error_code ec;

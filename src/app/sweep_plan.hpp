@@ -1,6 +1,7 @@
 #pragma once
 // A sweep file turned into jobs (docs/sweeps.md): every job one plain `particles …` command line
-// with its outputs and record in its own folder under the output folder. Everything that can be
+// (kept in jobs.csv, run by `particles job OUT INDEX`, never by a shell) with its outputs and record
+// in its own folder under the output folder. Everything that can be
 // checked is checked here, before any job runs: each scenario loads with each parameter value,
 // the command accepts the options, a split render has frames for every segment.
 
@@ -15,23 +16,23 @@ namespace particles::app {
 
 struct SweepJob {
   size_t index = 0;
-  std::string stage;                // run | render | stability | segment | concat
-  std::string scenario;             // as the sweep file names it
-  std::vector<std::string> values;  // one per parameter column, as written in the sweep file
-  std::string segment;              // "k/K" for a segment of a split render, else empty
-  std::filesystem::path dir;        // the job's folder, relative to the output folder
-  std::vector<std::string> args;    // after the program: command, scenario, options, outputs, --record
-  std::vector<size_t> after;        // concat: the segment jobs it joins
-  std::filesystem::path record;     // absolute
+  std::string stage;                 // run | render | stability | segment | concat
+  std::string scenario;              // as the sweep file names it
+  std::vector<std::string> values;   // one per parameter column, as written in the sweep file
+  std::string segment;               // "k/K" for a segment of a split render, else empty
+  std::filesystem::path dir;         // the job's folder, relative to the output folder
+  std::vector<std::string> args;     // after the program: command, scenario, options, outputs, --record
+  std::vector<size_t> after;         // concat: the segment jobs it joins
+  std::filesystem::path record;      // absolute
   std::vector<std::string> outputs;  // absolute
 };
 
 struct SweepPlan {
   scenario::SweepSpec spec;
-  std::filesystem::path outDir;       // absolute
-  std::string program;                // the particles the jobs call, absolute
-  std::vector<std::string> columns;   // parameter names, in the sweep file's order
-  std::vector<SweepJob> jobs;         // the first `firstStageCount` run first; concat jobs after them
+  std::filesystem::path outDir;      // absolute
+  std::string program;               // the particles the jobs call, absolute
+  std::vector<std::string> columns;  // parameter names, in the sweep file's order
+  std::vector<SweepJob> jobs;        // the first `firstStageCount` run first; concat jobs after them
   size_t firstStageCount = 0;
 
   // `program args…` as one shell line.
@@ -46,11 +47,16 @@ SweepPlan planSweep(const scenario::SweepSpec& spec, const std::filesystem::path
 // the parameters, segment, dir, command. Throws output::OutputError.
 void writeJobTable(const SweepPlan& plan);
 
-// --emit parallel: jobs.txt (and concat.txt for split renders), one command line each, for
-// `parallel < jobs.txt`. Returns what to run, for the user.
+// Throws InputError when the program's or the output folder's path holds a control character,
+// which a job list (lines of shell text) cannot hold; checked before anything is written.
+void checkListPaths(const SweepPlan& plan);
+
+// --emit parallel: jobs.txt (and concat.txt for split renders), one line `PROGRAM job OUT INDEX`
+// per job, for `parallel < jobs.txt`. Returns what to run, for the user. Throws InputError when the
+// program's or the output folder's path holds a control character.
 std::string emitParallel(const SweepPlan& plan);
-// --emit slurm: sweep.sbatch (an array job over jobs.txt; concat.sbatch and submit.sh for split
-// renders). Returns what to run.
+// --emit slurm: sweep.sbatch (an array job whose task i runs `PROGRAM job OUT i`; concat.sbatch
+// and submit.sh for split renders). Returns what to run.
 std::string emitSlurm(const SweepPlan& plan);
 
 }  // namespace particles::app

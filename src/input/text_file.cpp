@@ -30,9 +30,11 @@ struct Descriptor {
 
 }  // namespace
 
-std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMiB) {
+std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMiB, Accept accept) {
   const std::uintmax_t limit = maxMiB * 1024 * 1024;
-  const Descriptor in{::open(file.c_str(), O_RDONLY | O_CLOEXEC)};
+  // Opening a FIFO for reading waits for a writer, unless non-blocking: then it returns at once.
+  const int flags = O_RDONLY | O_CLOEXEC | (accept == Accept::regularOnly ? O_NONBLOCK : 0);
+  const Descriptor in{::open(file.c_str(), flags)};
   if (in.fd < 0) {
     throw ReadError(errno == EISDIR ? ReadError::Reason::isDirectory : ReadError::Reason::cannotOpen,
                     fmt::format("cannot open: {}", std::strerror(errno)));
@@ -43,6 +45,15 @@ std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMi
   }
   if (S_ISDIR(info.st_mode)) throw ReadError(ReadError::Reason::isDirectory, "cannot read: it is a directory");
   const bool regular = S_ISREG(info.st_mode);
+  if (accept == Accept::regularOnly && !regular) {
+    const char* kind = S_ISFIFO(info.st_mode)   ? "a FIFO"
+                       : S_ISSOCK(info.st_mode) ? "a socket"
+                       : S_ISCHR(info.st_mode)  ? "a character device"
+                       : S_ISBLK(info.st_mode)  ? "a block device"
+                                                : "not a plain file";
+    throw ReadError(ReadError::Reason::notRegular,
+                    fmt::format("cannot read: it is {}, where a regular file was expected", kind));
+  }
   if (regular && std::uintmax_t(info.st_size) > limit) tooLarge(maxMiB);
 
   // A regular file's size is known (it may still grow while read: the limit holds anyway); other

@@ -18,7 +18,7 @@ namespace particles::input {
 // or directory"); reason() for callers that act on it.
 class ReadError : public std::runtime_error {
  public:
-  enum class Reason { cannotOpen, isDirectory, tooLarge, notText, readFailed };
+  enum class Reason { cannotOpen, isDirectory, notRegular, tooLarge, notText, readFailed };
   ReadError(Reason reason, const std::string& message) : std::runtime_error(message), reason_(reason) {}
   Reason reason() const { return reason_; }
 
@@ -26,8 +26,14 @@ class ReadError : public std::runtime_error {
   Reason reason_;
 };
 
+// Which files a reader takes. A scenario or a CSV may come from a pipe (`particles check
+// /dev/stdin`); a file the program wrote itself (a job record, a sweep's jobs.csv) is a regular
+// file, so anything else at its path (a FIFO, a device, a socket) was put there by someone else
+// and is refused without blocking: opened non-blocking, checked, never read.
+enum class Accept { anyFile, regularOnly };
+
 // The whole of `file`, at most maxMiB mebibytes and without NUL bytes; throws ReadError. The
 // message for a file past the limit names the option that raises it, `--max-input MIB`.
-std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMiB);
+std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMiB, Accept accept = Accept::anyFile);
 
 }  // namespace particles::input

@@ -4,10 +4,15 @@
 #include "scenario/sweep_spec.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <functional>
+#include <sstream>
 
 #include "core/integrators.hpp"
 #include "input/text_file.hpp"
@@ -41,10 +46,129 @@ std::optional<double> numberOf(const YAML::Node& node) {
   return std::nullopt;
 }
 
-// A number of a range, rounded to 12 significant digits so that 0.1 + 2 × 0.1 is written 0.3.
+// A number of a range, rounded to 12 significant digits so that 0.1 + 2 × 0.1 is written 0.3
+// (a subnormal number, which the rounded text may not read back as, stays as it is).
 double tidy(double x) {
-  return std::stod(fmt::format("{:.12g}", x));
+  const std::string text = fmt::format("{:.12g}", x);
+  double rounded = x;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), rounded);
+  return ec == std::errc() && end == text.data() + text.size() && std::isfinite(rounded) ? rounded : x;
 }
+
+// yaml-cpp's scanner keeps every token of a flow list (`[1, 2, 3]`) until the list ends, ~380
+// bytes each, so a 2 MB line of 10⁶ values took 380 MB before the first event. This lexical pass
+// counts the items of flow lists first, in constant memory: it follows quotes, comments and
+// brackets only as far as needed to count commas at flow depth, and refuses a list with more
+// than kMaxSweepJobs items at its opening bracket. (An unusual file may be counted high, never
+// low: the exact count is SweepShapeCheck's, on the parser's events.)
+void checkFlowListLengths(std::string_view text, const std::string& file) {
+  struct Flow {
+    int line, column;
+    std::uintmax_t commas;
+  };
+  std::vector<Flow> open;
+  int line = 1, column = 0;
+  char quote = 0;
+  char before = '\n';  // the last character that is not a space or tab
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      column = 0;
+    } else {
+      ++column;
+    }
+    if (quote) {
+      if (quote == '"' && c == '\\') {
+        ++i;
+        ++column;
+      } else if (c == quote) {
+        if (quote == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
+          ++i;
+          ++column;
+        } else {
+          quote = 0;
+          before = c;
+        }
+      }
+      continue;
+    }
+    const bool startsNode = std::string_view("\n[{,:-?").find(before) != std::string_view::npos;
+    if (c == '#' && (column == 1 || text[i - 1] == ' ' || text[i - 1] == '\t')) {
+      const size_t end = text.find('\n', i);
+      if (end == std::string_view::npos) break;
+      i = end - 1;
+      continue;
+    }
+    if ((c == '\'' || c == '"') && startsNode) {
+      quote = c;
+    } else if ((c == '[' || c == '{') && (startsNode || !open.empty())) {
+      open.push_back({line, column, 0});
+    } else if ((c == ']' || c == '}') && !open.empty()) {
+      open.pop_back();
+    } else if (c == ',' && !open.empty() && ++open.back().commas >= kMaxSweepJobs) {
+      throw ScenarioError(file, open.back().line, open.back().column, "",
+                          fmt::format("a list of more than {} items: a sweep makes at most {} jobs, so no list "
+                                      "needs more; split the sweep into several files",
+                                      kMaxSweepJobs, kMaxSweepJobs));
+    }
+    if (c != ' ' && c != '\t') before = c;
+  }
+}
+
+// The shape of a sweep file, checked on the parser's events before any node is built: no list
+// longer than kMaxSweepJobs (one parameter with more values makes more jobs than any sweep may),
+// at most kMaxSweepNodes nodes in all, and no aliases (`*name` repeats a node as often as it is
+// written, so a small file could stand for any number of values). A file past these is refused
+// at the node that passes, in the time of reading up to it and in constant memory, where building
+// its nodes first took a second and ~900 bytes per value.
+class SweepShapeCheck final : public YAML::EventHandler {
+ public:
+  explicit SweepShapeCheck(const std::string& file) : file_(file) {}
+
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override {
+    fail(m, "an alias (*name): a sweep file writes each value out; anchors and aliases are not read here");
+  }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { node(m); }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(m);
+    open_.push_back({m, 0, true});
+  }
+  void OnSequenceEnd() override { open_.pop_back(); }
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(m);
+    open_.push_back({m, 0, false});
+  }
+  void OnMapEnd() override { open_.pop_back(); }
+
+ private:
+  struct Open {
+    YAML::Mark at;
+    std::uintmax_t items;
+    bool sequence;
+  };
+  [[noreturn]] void fail(const YAML::Mark& m, const std::string& message) const {
+    throw ScenarioError(file_, m.line + 1, m.column + 1, "", message);
+  }
+  void node(const YAML::Mark& m) {
+    if (++nodes_ > kMaxSweepNodes) {
+      fail(m, fmt::format("more than {} values, keys and lists in one sweep file; split the sweep into several files",
+                          kMaxSweepNodes));
+    }
+    if (!open_.empty() && open_.back().sequence && ++open_.back().items > kMaxSweepJobs) {
+      fail(open_.back().at, fmt::format("a list of more than {} items: a sweep makes at most {} jobs, so no list "
+                                        "needs more; split the sweep into several files",
+                                        kMaxSweepJobs, kMaxSweepJobs));
+    }
+  }
+
+  const std::string& file_;
+  std::uintmax_t nodes_ = 0;
+  std::vector<Open> open_;
+};
 
 std::vector<SweepValue> readRange(const Value& v, bool& logSpacing) {
   const MapReader r(v, {"from", "to", "count", "spacing"});
@@ -119,8 +243,13 @@ SweepParameter readParameter(const Value& v, std::vector<std::string>& names) {
   p.name = p.key;
   if (p.scale) p.name += " scale";
   if (auto n = m.optional("name")) p.name = n->string();
-  if (p.name.find_first_of(",\"\n") != std::string::npos) {
+  if (p.name.find_first_of(",\"\n\r") != std::string::npos) {
     (m.optional("name") ? *m.optional("name") : key).fail("a parameter's name is a CSV column: no commas or quotes");
+  }
+  if (std::find(std::begin(kReservedColumns), std::end(kReservedColumns), p.name) != std::end(kReservedColumns)) {
+    (m.optional("name") ? *m.optional("name") : key)
+        .fail(fmt::format("'{}' names a column the sweep writes itself ({}); give the parameter another 'name'", p.name,
+                          fmt::join(kReservedColumns, ", ")));
   }
   if (std::find(names.begin(), names.end(), p.name) != names.end()) {
     (m.optional("name") ? *m.optional("name") : key)
@@ -134,7 +263,8 @@ std::string canonicalKey(const std::string& key) {
   return key == "dt" || key == "duration" || key == "integrator" ? "simulation." + key : key;
 }
 
-std::vector<SweepGroup> readParameters(const Value& v) {
+std::vector<SweepGroup> readParameters(const Value& v,
+                                       const std::function<void(const std::vector<SweepGroup>&)>& checkCount) {
   std::vector<SweepGroup> groups;
   std::vector<std::string> names, keys;
   // The same key varied twice would give one job two values for it.
@@ -161,16 +291,18 @@ std::vector<SweepGroup> readParameters(const Value& v) {
       for (const Value& member : members) add(g, member);
       for (size_t k = 1; k < g.parameters.size(); ++k) {
         if (g.parameters[k].values.size() != g.parameters[0].values.size()) {
-          members[k].fail(fmt::format("zipped parameters take one value each per job, so they need lists of one "
-                                      "length: '{}' has {}, '{}' has {}",
-                                      g.parameters[0].name, g.parameters[0].values.size(), g.parameters[k].name,
-                                      g.parameters[k].values.size()));
+          members[k].fail(
+              fmt::format("zipped parameters take one value each per job, so they need lists of one "
+                          "length: '{}' has {}, '{}' has {}",
+                          g.parameters[0].name, g.parameters[0].values.size(), g.parameters[k].name,
+                          g.parameters[k].values.size()));
         }
       }
     } else {
       add(g, item);
     }
     groups.push_back(std::move(g));
+    checkCount(groups);
   }
   return groups;
 }
@@ -191,11 +323,9 @@ void readOptions(const Value& v, SweepSpec& spec) {
     if (!keyNode.IsScalar()) key.fail("expected an option name, got a list or map as key");
     if (std::find(seen.begin(), seen.end(), name) != seen.end()) key.fail(fmt::format("duplicate key '{}'", name));
     seen.push_back(name);
-    const std::string bare = name.substr(name.find_first_not_of('-') == std::string::npos
-                                             ? 0
-                                             : name.find_first_not_of('-'));
-    if (std::find(std::begin(kSweepOwnedOptions), std::end(kSweepOwnedOptions), bare) !=
-        std::end(kSweepOwnedOptions)) {
+    const std::string bare =
+        name.substr(name.find_first_not_of('-') == std::string::npos ? 0 : name.find_first_not_of('-'));
+    if (std::find(std::begin(kSweepOwnedOptions), std::end(kSweepOwnedOptions), bare) != std::end(kSweepOwnedOptions)) {
       key.fail(fmt::format("'{}' is set by the sweep for each job (its outputs go under the output folder)", bare));
     }
     if (bare == "set" || value.isMap()) {
@@ -229,6 +359,25 @@ void readOptions(const Value& v, SweepSpec& spec) {
   }
 }
 
+// The jobs made by the scenarios, the split and `groups`, counted without overflow: stop as soon
+// as the product passes the limit. Checked after each group is read, so a file with too many jobs
+// is refused before the rest of its values are built.
+void checkJobCount(const SweepSpec& spec, const std::vector<SweepGroup>& groups) {
+  std::uintmax_t jobs = spec.scenarios.size() * std::uintmax_t(spec.split);
+  std::vector<std::string> factors = {
+      fmt::format("{} scenario{}", spec.scenarios.size(), spec.scenarios.size() == 1 ? "" : "s")};
+  for (const SweepGroup& g : groups) {
+    factors.push_back(fmt::format("{}", g.size()));
+    jobs = jobs > kMaxSweepJobs ? jobs : jobs * g.size();
+  }
+  if (spec.split > 1) factors.push_back(fmt::format("{} segments", spec.split));
+  if (jobs > kMaxSweepJobs) {
+    failInSweep(spec, spec.parametersAt,
+                fmt::format("{} make more than {} jobs; split the sweep into several files", fmt::join(factors, " × "),
+                            kMaxSweepJobs));
+  }
+}
+
 }  // namespace
 
 std::uintmax_t SweepSpec::combinations() const {
@@ -244,7 +393,15 @@ void failInSweep(const SweepSpec& spec, const SweepPosition& at, const std::stri
 SweepSpec loadSweepText(std::string_view text, const std::string& file) {
   YAML::Node root;
   try {
-    root = YAML::Load(std::string(text));
+    checkFlowListLengths(text, file);
+    const std::string whole(text);
+    {
+      std::istringstream in(whole);
+      YAML::Parser parser(in);
+      SweepShapeCheck shape(file);
+      parser.HandleNextDocument(shape);
+    }
+    root = YAML::Load(whole);
   } catch (const YAML::ParserException& e) {
     throw ScenarioError(file, e.mark.line + 1, e.mark.column + 1, "", fmt::format("YAML syntax error: {}", e.msg));
   } catch (const YAML::Exception& e) {
@@ -262,7 +419,8 @@ SweepSpec loadSweepText(std::string_view text, const std::string& file) {
   spec.name = std::filesystem::path(file).stem().string();
   if (auto n = m.optional("name")) {
     spec.name = n->string();
-    if (spec.name.find_first_of("/\\ \t\n") != std::string::npos) n->fail("a name is used in file names: no slashes or spaces");
+    if (spec.name.find_first_of("/\\ \t\n") != std::string::npos)
+      n->fail("a name is used in file names: no slashes or spaces");
   }
 
   const Value scenarios = m.required("scenarios");
@@ -282,42 +440,31 @@ SweepSpec loadSweepText(std::string_view text, const std::string& file) {
   }
   if (auto o = m.optional("options")) readOptions(*o, spec);
 
-  if (auto p = m.optional("parameters")) {
-    spec.parametersAt = positionOf(*p);
-    spec.groups = readParameters(*p);
-  } else {
-    spec.parametersAt = positionOf(top);
-  }
-
   if (auto s = m.optional("split")) {
     spec.split = int(s->integer(1, 1000));
     spec.splitAt = positionOf(*s);
     if (spec.command != "render" && spec.split > 1) s->fail("only a render can be split into segments");
   }
+
+  if (auto p = m.optional("parameters")) {
+    spec.parametersAt = positionOf(*p);
+    spec.groups = readParameters(*p, [&](const std::vector<SweepGroup>& groups) { checkJobCount(spec, groups); });
+  } else {
+    spec.parametersAt = positionOf(top);
+  }
   if (auto s = m.optional("slurm")) {
     for (const Value& line : s->items()) {
       const std::string option = line.string();
-      if (option.rfind("--", 0) != 0 || option.find('\n') != std::string::npos) {
+      const bool control = std::any_of(option.begin(), option.end(),
+                                       [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+      if (option.rfind("--", 0) != 0 || control) {
         line.fail(fmt::format("expected an sbatch option such as --time=00:10:00, got '{}'", option));
       }
       spec.slurm.push_back(option);
     }
   }
 
-  // The product, counted without overflow: stop as soon as it passes the limit.
-  std::uintmax_t jobs = spec.scenarios.size() * std::uintmax_t(spec.split);
-  std::vector<std::string> factors = {fmt::format("{} scenario{}", spec.scenarios.size(),
-                                                  spec.scenarios.size() == 1 ? "" : "s")};
-  for (const SweepGroup& g : spec.groups) {
-    factors.push_back(fmt::format("{}", g.size()));
-    jobs = jobs > kMaxSweepJobs ? jobs : jobs * g.size();
-  }
-  if (spec.split > 1) factors.push_back(fmt::format("{} segments", spec.split));
-  if (jobs > kMaxSweepJobs) {
-    failInSweep(spec, spec.parametersAt,
-                fmt::format("{} make more than {} jobs; split the sweep into several files", fmt::join(factors, " × "),
-                            kMaxSweepJobs));
-  }
+  checkJobCount(spec, spec.groups);
   return spec;
 }
 

@@ -43,8 +43,8 @@ struct SweepValue {
 struct SweepParameter {
   // `integrator`, `dt` or `duration` (the command's shorthands), or a --set key path.
   std::string key;
-  std::string name;    // the column in jobs.csv and results.csv; the key unless given
-  bool scale = false;  // values are factors on the scenario's own value at `key`
+  std::string name;         // the column in jobs.csv and results.csv; the key unless given
+  bool scale = false;       // values are factors on the scenario's own value at `key`
   bool logSpacing = false;  // from a log `range` (a figure then takes a log axis)
   std::vector<SweepValue> values;
   SweepPosition at;
@@ -94,6 +94,15 @@ struct SweepSpec {
 
 // The most jobs one sweep file may make (scenarios × combinations × split).
 inline constexpr std::uintmax_t kMaxSweepJobs = 100'000;
+// The most YAML nodes (values, keys, lists, maps) a sweep file may hold: three zipped parameters
+// of kMaxSweepJobs values each, and room for the rest. Counted before any node is built.
+inline constexpr std::uintmax_t kMaxSweepNodes = 3 * kMaxSweepJobs + 10'000;
+
+// The columns jobs.csv and results.csv write around the parameters' own (docs/sweeps.md): a
+// parameter named like one of them would make a second column of that name, which a reader
+// takes for the first, so such names are refused.
+inline constexpr std::string_view kReservedColumns[] = {"index",   "stage",  "scenario", "segment", "dir",
+                                                        "command", "status", "exit",     "seconds", "message"};
 
 // Reads and checks a sweep file: unknown keys, empty lists, zips of unlike lengths, a product over
 // kMaxSweepJobs, options the sweep itself sets. Throws ScenarioError naming file, line and key.

@@ -1,0 +1,73 @@
+// `particles job OUT INDEX`: see job_command.hpp.
+#include "app/job_command.hpp"
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <charconv>
+
+#include "app/cli.hpp"
+#include "app/cli_support.hpp"
+#include "app/exit_codes.hpp"
+#include "app/job_record.hpp"
+#include "app/job_table.hpp"
+
+namespace particles::app {
+
+namespace {
+
+// The command a stage's job runs.
+std::string commandOfStage(const std::string& stage) {
+  if (stage == "segment") return "render";
+  return stage;  // run, render, stability, concat (parseJobTable admits no other)
+}
+
+}  // namespace
+
+CLI::App* addRunJobCommand(CLI::App& app, RunJobOptions& o) {
+  CLI::App* cmd = app.add_subcommand("job", "Run one job of a sweep, by its index in OUT/jobs.csv");
+  cmd->add_option("outdir", o.outDir, "The sweep's output folder (with jobs.csv)")->required();
+  cmd->add_option("index", o.index, "The job's index: 0 for the first row of jobs.csv")->required();
+  cmd->add_flag("--force", o.force, "Run the job even when its record says it is done");
+  addMaxInputOption(*cmd, o.maxInputMiB, "a job table or record");
+  cmd->footer(
+      "The job lists that 'particles sweep --emit' writes are lines of this command: GNU parallel and Slurm\n"
+      "run them as they are. The job's record makes a rerun of a finished job a no-op.\n"
+      "Examples:\n"
+      "  particles job cloth-sweep 0\n"
+      "  SLURM_ARRAY_TASK_ID=3 bash cloth-sweep/sweep.sbatch   # what a Slurm array task runs\n");
+  return cmd;
+}
+
+int runJobCommand(const RunJobOptions& o) {
+  const JobTable table = readJobTable(o.outDir, o.maxInputMiB);
+  size_t index = 0;
+  const auto [end, ec] = std::from_chars(o.index.data(), o.index.data() + o.index.size(), index);
+  if (o.index.empty() || ec != std::errc() || end != o.index.data() + o.index.size()) {
+    throw InputError(fmt::format("job index '{}': expected a whole number from 0", o.index));
+  }
+  if (index >= table.rows.size()) {
+    throw InputError(fmt::format("no job {} in {}: it has {} (0 … {})", index, table.file, table.rows.size(),
+                                 table.rows.empty() ? std::string("none") : std::to_string(table.rows.size() - 1)));
+  }
+  const std::vector<std::string>& row = table.rows[index];
+  std::vector<std::string> args = *splitCommandText(row[table.commandColumn()]);  // checked by parseJobTable
+  args.erase(args.begin());                                                       // the program: this one runs the job
+  const std::string command = commandOfStage(row[JobTable::kStage]);
+  if (args.front() != command) {
+    throw InputError(fmt::format("{}:{}: job {} is a {} job, but its command runs '{}'", table.file,
+                                 table.rowLines[index], index, row[JobTable::kStage], args.front()));
+  }
+  if (o.force) args.push_back("--force");
+
+  Cli cli;
+  try {
+    cli.app.parse(std::vector<std::string>(args.rbegin(), args.rend()));
+  } catch (const CLI::ParseError& e) {
+    throw InputError(fmt::format("{}:{}: job {}'s command line: {}", table.file, table.rowLines[index], index,
+                                 e.get_exit_code() == 0 ? "--help and --version are not jobs" : e.what()));
+  }
+  return cli.dispatch(args);
+}
+
+}  // namespace particles::app
