@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <iterator>
 
@@ -17,7 +18,11 @@ double CsvRecorder::nominalTime(double t, double fps) {
   // A tick, to the rounding a run of steps accumulates (the runner's own tolerance, 1e-9 of a tick).
   const double ticks = t * fps;
   if (fps > 0 && std::abs(ticks) < 9e15 && std::abs(ticks - std::round(ticks)) <= 1e-9) return std::round(ticks) / fps;
-  return std::stod(fmt::format("{:.12g}", t));
+  // Twelve digits, read back; a subnormal time, which the text may not read back as, stays as it is.
+  const std::string text = fmt::format("{:.12g}", t);
+  double rounded = t;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), rounded);
+  return ec == std::errc() && end == text.data() + text.size() ? rounded : t;
 }
 
 std::unique_ptr<CsvRecorder> CsvRecorder::open(const System& system, double fps, const std::string& statsPath,
