@@ -93,3 +93,29 @@ TEST_CASE("text file: a NUL byte, a directory, a missing file") {
   CHECK(reasonOf(t.dir / "missing.yaml", 1, message) == ReadError::Reason::cannotOpen);
   CHECK(message == "cannot open: No such file or directory");
 }
+
+TEST_CASE("text file: regular files only, for files the program wrote itself: a FIFO or device is refused at once") {
+  using particles::input::Accept;
+  TempDir t;
+  const fs::path fifo = t.dir / "record.txt";
+  REQUIRE(::mkfifo(fifo.c_str(), 0644) == 0);
+  // With nobody writing, a blocking open would wait for ever: this must return at once.
+  try {
+    readTextFile(fifo, 1, Accept::regularOnly);
+    FAIL("a FIFO was read");
+  } catch (const ReadError& e) {
+    CHECK(e.reason() == ReadError::Reason::notRegular);
+    CHECK(std::string(e.what()) == "cannot read: it is a FIFO, where a regular file was expected");
+  }
+  try {
+    readTextFile("/dev/zero", 1, Accept::regularOnly);
+    FAIL("a device was read");
+  } catch (const ReadError& e) {
+    CHECK(e.reason() == ReadError::Reason::notRegular);
+    CHECK(std::string(e.what()).find("a character device") != std::string::npos);
+  }
+  CHECK(readTextFile(t.write("ok.txt", "version: 1\n"), 1, Accept::regularOnly) == "version: 1\n");
+  const fs::path link = t.dir / "link.txt";
+  fs::create_symlink(t.dir / "ok.txt", link);
+  CHECK(readTextFile(link, 1, Accept::regularOnly) == "version: 1\n");  // a link to a regular file is one
+}
