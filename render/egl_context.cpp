@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/errors.hpp"
+#include "render/frame_memory.hpp"
 
 namespace particles::render {
 
@@ -221,6 +222,10 @@ class OwnedContext {
 // OSMesa's by 59 at 4 samples, and at 1 and 16 samples a whole row of the cloth's rail, whose edge
 // lies on pixel centres; an EGL pbuffer (a window-system buffer too) still differed on the rail.
 // Upside down, every frame tried is the same bytes as OSMesa's (tests/test_render_backends.cpp).
+// The most glReadPixels is asked for at once: its scratch memory is this, not a frame (a 16384²
+// frame is 1 GiB), and a frame of 1280 × 720 (3.5 MiB) or 4K (32 MiB) is still read in one call.
+constexpr std::size_t kReadStripBytes = std::size_t(32) << 20;
+
 class EglContext final : public GlContext {
  public:
   EglContext(bool gpu, int width, int height);
@@ -235,9 +240,16 @@ class EglContext final : public GlContext {
 };
 
 EglContext::EglContext(bool gpu, int width, int height) : GlContext(width, height, true) {
-  const DisplayChoice choice = chooseDisplay(gpu);
-  context_ = std::make_unique<OwnedContext>(initialize(choice.display));
-  context_->makeCurrent();
+  // The renderbuffer, and the strip glReadPixels reads through (render/frame_memory.hpp).
+  reserveFrame(frameBytes(width, height) + std::min(frameBytes(width, height), kReadStripBytes));
+  DisplayChoice choice;
+  try {
+    choice = chooseDisplay(gpu);
+    context_ = std::make_unique<OwnedContext>(initialize(choice.display));
+    context_->makeCurrent();
+  } catch (const RenderError& e) {
+    throw RenderError(e.what() + reservationNote());
+  }
   loadFunctions(eglGetProcAddress, "eglGetProcAddress", GlBackend::egl, choice.device);
   if (choice.mesaChose && isSoftwareRenderer(info().renderer) == gpu) {
     throw RenderError(
@@ -248,6 +260,12 @@ EglContext::EglContext(bool gpu, int width, int height) : GlContext(width, heigh
                           "choose llvmpipe)",
                           info().renderer));
   }
+  GLint maxRenderbuffer = 0;
+  gl().glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &maxRenderbuffer);
+  checkGl(gl(), "glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE)");
+  const GlSizeLimit limits[] = {{"GL_MAX_RENDERBUFFER_SIZE", maxRenderbuffer, maxRenderbuffer}, viewportLimit()};
+  checkFrameSize(limits);
+  releaseReservation();
   makeFramebuffer();
   packInvert_ = hasExtension(glString(gl(), GL_EXTENSIONS).c_str(), "GL_MESA_pack_invert");
   if (packInvert_) gl().glPixelStorei(GL_PACK_INVERT_MESA, GL_TRUE);
@@ -261,22 +279,36 @@ void EglContext::makeFramebuffer() {
   GLuint colour = 0, framebuffer = 0;  // freed with the context
   g.glGenRenderbuffers(1, &colour);
   g.glBindRenderbuffer(GL_RENDERBUFFER, colour);
-  g.glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, image_.width, image_.height);
+  g.glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width_, height_);
   g.glGenFramebuffers(1, &framebuffer);
   g.glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   g.glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, colour);
-  const std::string what = fmt::format("a {}x{} RGBA8 framebuffer", image_.width, image_.height);
+  const std::string what = fmt::format("a {}x{} RGBA8 framebuffer", width_, height_);
   checkGl(g, what.c_str());
+  // Mesa reports a renderbuffer it could not allocate as an incomplete attachment, not as
+  // GL_OUT_OF_MEMORY.
   const GLenum status = g.glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status == GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT) {
+    throw OutOfMemory(fmt::format("{} could not be allocated ({} MiB; GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT)", what,
+                                  frameBytes(width_, height_) >> 20));
+  }
   if (status != GL_FRAMEBUFFER_COMPLETE) throw RenderError(fmt::format("{} is incomplete: 0x{:04x}", what, status));
 }
 
 void EglContext::readFrame() {
   // The picture's top row is GL window row height − 1 (flipsY); image rows go from the top. Rows
   // of 4-byte pixels need no packing beyond GL's default alignment of 4. glReadPixels waits for
-  // the drawing to finish.
-  gl().glReadPixels(0, 0, image_.width, image_.height, GL_RGBA, GL_UNSIGNED_BYTE, image_.rgba.data());
-  checkGl(gl(), "glReadPixels");
+  // the drawing to finish. Mesa reads through scratch memory the size of what is asked for, so a
+  // large frame is read in strips of rows (render/frame_memory.hpp); a 1280×720 frame is one.
+  const int stripRows = int(std::max<std::size_t>(1, kReadStripBytes / image_.stride()));
+  for (int y = 0; y < height_; y += stripRows) {
+    const int rows = std::min(stripRows, height_ - y);
+    // With GL_MESA_pack_invert GL rows y … y + rows − 1 come top first: image rows from
+    // height − y − rows. Without it they come as stored, to be swapped below.
+    const int imageRow = packInvert_ ? height_ - y - rows : y;
+    gl().glReadPixels(0, y, width_, rows, GL_RGBA, GL_UNSIGNED_BYTE, image_.pixel(0, imageRow));
+    checkGl(gl(), "glReadPixels");
+  }
   if (packInvert_) return;
   // A driver without GL_MESA_pack_invert (a GPU's): swap the rows here.
   for (int top = 0, bottom = image_.height - 1; top < bottom; ++top, --bottom) {

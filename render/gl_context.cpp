@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "render/errors.hpp"
+#include "render/frame_memory.hpp"
 #if PARTICLES_WITH_EGL
 #include "render/egl_context.hpp"
 #endif
@@ -20,9 +21,53 @@ void GlContext::loadFunctions(GlProcLookup lookup, const char* lookupName, GlBac
   info_.version = glString(gl_, GL_VERSION);
 }
 
+std::string frameSizeProblem(int width, int height, std::span<const GlSizeLimit> limits) {
+  for (const GlSizeLimit& limit : limits) {
+    if (limit.width <= 0 || limit.height <= 0) continue;  // not reported: nothing to check against
+    if (width > limit.width || height > limit.height) {
+      return fmt::format("a {}x{} frame is larger than this OpenGL draws: its {} is {}x{} pixels", width, height,
+                         limit.name, limit.width, limit.height);
+    }
+  }
+  return {};
+}
+
+GlSizeLimit GlContext::viewportLimit() const {
+  GLint dims[2] = {0, 0};
+  gl_.glGetIntegerv(GL_MAX_VIEWPORT_DIMS, dims);
+  checkGl(gl_, "glGetIntegerv(GL_MAX_VIEWPORT_DIMS)");
+  return {"GL_MAX_VIEWPORT_DIMS", dims[0], dims[1]};
+}
+
+void GlContext::reserveFrame(std::size_t glBytes) {
+  const std::size_t imageBytes = frameBytes(width_, height_);
+  const std::string what = fmt::format("a {}x{} frame ({} MiB for its image, {} MiB for the GL's buffers)", width_,
+                                       height_, imageBytes >> 20, glBytes >> 20);
+  MemoryReservation whole(imageBytes + glBytes, what);  // all of it at once first: one message for both
+  whole = {};
+  try {
+    image_ = Image(width_, height_);
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemory(what + ": its image could not be allocated");
+  }
+  reservation_ = MemoryReservation(glBytes, what);
+}
+
+std::string GlContext::reservationNote() const {
+  if (reservation_.bytes() == 0) return {};
+  return fmt::format(" (with {} MiB held for the {}x{} frame's buffers: too little memory left for the GL itself?)",
+                     reservation_.bytes() >> 20, width_, height_);
+}
+
+void GlContext::checkFrameSize(std::span<const GlSizeLimit> limits) const {
+  if (const std::string problem = frameSizeProblem(width_, height_, limits); !problem.empty()) {
+    throw FrameSizeError(fmt::format("{} ({})", problem, info_.renderer));
+  }
+}
+
 void GlContext::beginFrame(Rgb bg, bool transparent) {
   makeCurrent();
-  gl_.glViewport(0, 0, image_.width, image_.height);
+  gl_.glViewport(0, 0, width_, height_);
   gl_.glDisable(GL_DEPTH_TEST);
   gl_.glDisable(GL_CULL_FACE);
   gl_.glDisable(GL_DITHER);

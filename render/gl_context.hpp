@@ -6,15 +6,30 @@
 // picture. Every context uses the same state, the same llvmpipe by default and the same storage
 // order of rows (flipsY), so both backends give the same bytes.
 
+#include <cstddef>
 #include <memory>
+#include <span>
 #include <string>
 
+#include "render/frame_memory.hpp"
 #include "render/gl_backend.hpp"
 #include "render/gl_functions.hpp"
 #include "render/image.hpp"
 #include "render/theme.hpp"
 
 namespace particles::render {
+
+// One of the GL implementation's limits on a frame's size, in pixels, e.g. {"GL_MAX_VIEWPORT_DIMS",
+// 16384, 16384}.
+struct GlSizeLimit {
+  std::string name;
+  int width = 0, height = 0;
+};
+
+// Empty when a width × height frame is within every limit (one of 0 × 0, not reported, is none);
+// else which it exceeds, e.g. "a 16384x16384
+// frame is wider than GL_MAX_RENDERBUFFER_SIZE allows (8192 pixels)".
+std::string frameSizeProblem(int width, int height, std::span<const GlSizeLimit> limits);
 
 class GlContext {
  public:
@@ -44,12 +59,25 @@ class GlContext {
   const Image& finishFrame();
 
  protected:
-  // The backend makes its context current, then calls loadFunctions.
-  GlContext(int width, int height, bool flipsY) : image_(width, height), flipsY_(flipsY) {}
+  // The backend calls reserveFrame first, then makes its context current, calls loadFunctions and
+  // checkFrameSize, and releaseReservation right before it makes the frame's buffers.
+  GlContext(int width, int height, bool flipsY) : width_(width), height_(height), flipsY_(flipsY) {}
+  // Allocates the image and reserves the `glBytes` Mesa will allocate for the frame
+  // (render/frame_memory.hpp), before the context exists. Throws OutOfMemory.
+  void reserveFrame(std::size_t glBytes);
+  void releaseReservation() { reservation_ = {}; }
+  // For a failure to make the context while memory is held for the frame: " (with N MiB held for
+  // the frame's buffers: too little memory left for the GL itself?)", or nothing.
+  std::string reservationNote() const;
   // Looks the GL functions up in the now current context and records what it runs on.
   void loadFunctions(GlProcLookup lookup, const char* lookupName, GlBackend backend, std::string device);
+  // Throws FrameSizeError when the frame is larger than one of `limits`.
+  void checkFrameSize(std::span<const GlSizeLimit> limits) const;
+  // GL_MAX_VIEWPORT_DIMS of the current context.
+  GlSizeLimit viewportLimit() const;
 
-  Image image_;  // the frame, top row first
+  const int width_, height_;  // the frame's, in pixels
+  Image image_;               // the frame, top row first; empty until reserveFrame
 
  private:
   // Binds the context to this thread, really: a context the library believes current may not be,
@@ -60,6 +88,7 @@ class GlContext {
   virtual void readFrame() = 0;
 
   const bool flipsY_;
+  MemoryReservation reservation_;
   GlFunctions gl_;
   GlInfo info_;
 };

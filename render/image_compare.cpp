@@ -35,9 +35,13 @@ void setRgb(std::uint8_t* px, const std::uint8_t (&rgb)[3]) {
 }  // namespace
 
 std::string sizeMismatch(const Image& expected, const Image& actual) {
-  if (expected.width == actual.width && expected.height == actual.height) return {};
-  return fmt::format("sizes differ: {}×{} expected, {}×{} actual", expected.width, expected.height, actual.width,
-                     actual.height);
+  return sizeMismatch(expected.width, expected.height, actual.width, actual.height);
+}
+
+std::string sizeMismatch(int expectedWidth, int expectedHeight, int actualWidth, int actualHeight) {
+  if (expectedWidth == actualWidth && expectedHeight == actualHeight) return {};
+  return fmt::format("sizes differ: {}×{} expected, {}×{} actual", expectedWidth, expectedHeight, actualWidth,
+                     actualHeight);
 }
 
 ImageComparison compareImages(const Image& expected, const Image& actual, const CompareTolerance& tolerance) {

@@ -62,6 +62,8 @@ ImageComparison compareImages(const Image& expected, const Image& actual, const 
 
 // "320×240 expected, 640×480 actual" style message for a size mismatch; empty when the sizes match.
 std::string sizeMismatch(const Image& expected, const Image& actual);
+// The same from the sizes alone (a PNG's header, render/png_io.hpp's readPngSize).
+std::string sizeMismatch(int expectedWidth, int expectedHeight, int actualWidth, int actualHeight);
 
 // Colours of the diff picture.
 inline constexpr std::uint8_t kDiffHighlight[3] = {255, 0, 255};  // above the threshold: magenta, in no theme

@@ -51,6 +51,9 @@ struct OutputFormatDeleter {
     avformat_free_context(s);
   }
 };
+struct CodecParametersDeleter {
+  void operator()(AVCodecParameters* p) const { avcodec_parameters_free(&p); }
+};
 // An input context from avformat_open_input.
 struct InputFormatDeleter {
   void operator()(AVFormatContext* s) const { avformat_close_input(&s); }
@@ -63,5 +66,6 @@ using SwsPtr = std::unique_ptr<SwsContext, SwsDeleter>;
 using FilterGraphPtr = std::unique_ptr<AVFilterGraph, FilterGraphDeleter>;
 using OutputFormatPtr = std::unique_ptr<AVFormatContext, OutputFormatDeleter>;
 using InputFormatPtr = std::unique_ptr<AVFormatContext, InputFormatDeleter>;
+using CodecParametersPtr = std::unique_ptr<AVCodecParameters, CodecParametersDeleter>;
 
 }  // namespace particles::render::libav

@@ -3,7 +3,10 @@
 #include <GL/osmesa.h>
 #include <fmt/format.h>
 
+#include <cstdint>
+
 #include "render/errors.hpp"
+#include "render/frame_memory.hpp"
 
 namespace particles::render {
 
@@ -19,12 +22,16 @@ class OsMesaContext final : public GlContext {
     void operator()(osmesa_context* context) const { OSMesaDestroyContext(context); }
   };
   std::unique_ptr<osmesa_context, ContextDeleter> context_;
+  std::uint8_t probePixel_[4] = {};  // the 1 × 1 buffer the context is first made current with
 
   void makeCurrent() override;
   void readFrame() override;
 };
 
 OsMesaContext::OsMesaContext(int width, int height) : GlContext(width, height, false) {
+  // Mesa's colour buffer, which OSMesaMakeCurrent allocates and glFinish copies into ours: when
+  // its allocation failed, that copy was a SIGSEGV (render/frame_memory.hpp).
+  reserveFrame(frameBytes(width, height));
   const int attribs[] = {OSMESA_FORMAT,
                          OSMESA_RGBA,
                          OSMESA_DEPTH_BITS,
@@ -40,14 +47,25 @@ OsMesaContext::OsMesaContext(int width, int height) : GlContext(width, height, f
   if (!context_) {
     throw RenderError(
         "OSMesaCreateContextAttribs(OSMESA_RGBA, compatibility profile) failed: Mesa could not make an off-screen "
-        "OpenGL context (is libOSMesa's software rasteriser, llvmpipe or softpipe, installed?)");
+        "OpenGL context (is libOSMesa's software rasteriser, llvmpipe or softpipe, installed?)" +
+        reservationNote());
   }
-  makeCurrent();
+  // First current on a 1 × 1 buffer: the limits are asked for before Mesa allocates the frame's.
+  if (!OSMesaMakeCurrent(context_.get(), probePixel_, GL_UNSIGNED_BYTE, 1, 1)) {
+    throw RenderError("OSMesaMakeCurrent(1x1, GL_UNSIGNED_BYTE) failed");
+  }
   // Image row 0 must be the top of the picture: with OSMESA_Y_UP = 1 (the default) memory row 0 is
   // GL window row 0, and the shader puts the top of the view there (flipsY false). Mesa stores the
   // buffer the other way up (a window-system buffer) and copies it into ours at glFinish.
   OSMesaPixelStore(OSMESA_Y_UP, 1);
   loadFunctions(OSMesaGetProcAddress, "OSMesaGetProcAddress", GlBackend::osmesa, "off-screen buffer");
+  GLint maxWidth = 0, maxHeight = 0;
+  OSMesaGetIntegerv(OSMESA_MAX_WIDTH, &maxWidth);
+  OSMesaGetIntegerv(OSMESA_MAX_HEIGHT, &maxHeight);
+  const GlSizeLimit limits[] = {{"OSMESA_MAX_WIDTH × OSMESA_MAX_HEIGHT", maxWidth, maxHeight}, viewportLimit()};
+  checkFrameSize(limits);
+  releaseReservation();
+  makeCurrent();
 }
 
 void OsMesaContext::makeCurrent() {

@@ -14,9 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "render/errors.hpp"
-#include "render/render_options.hpp"
 #include "output/pending_output.hpp"
+#include "render/errors.hpp"
+#include "render/frame_memory.hpp"
+#include "render/render_options.hpp"
 
 namespace particles::render {
 
@@ -127,49 +128,71 @@ std::vector<png_bytep> rowPointers(Image& image) {
 // codes at most 258 bytes in about 2 bits, so n bytes of IDAT decompress to at most 1032·n.
 constexpr std::uintmax_t kMaxDeflateRatio = 1032;
 
-// Decodes a PNG whose signature the caller has checked, from the source `setSource` gives libpng
-// (a FILE* or bytes in memory) of `inputBytes` bytes (UINTMAX_MAX when unknown); `name` labels
-// messages.
-Image decodePng(const std::string& name, std::uintmax_t inputBytes, const std::function<void(png_structp)>& setSource) {
-  PngErrorSink sink;
-  PngReadPtr png(png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink, onPngError, onPngWarning));
-  if (!png) throw OutputError("png_create_read_struct failed for " + name);
-  PngInfoPtr info(png_create_info_struct(png.get()), PngInfoDeleter{png.get()});
-  if (!info) throw OutputError("png_create_info_struct failed for " + name);
-  setSource(png.get());
+// A PNG whose signature the caller has checked, opened on the source `setSource` gives libpng (a
+// FILE* or bytes in memory) of `inputBytes` bytes (UINTMAX_MAX when unknown), with its header read
+// and checked: nothing of the pixels is allocated yet. `name` labels messages.
+class PngDecoder {
+ public:
+  PngDecoder(const std::string& name, std::uintmax_t inputBytes, const std::function<void(png_structp)>& setSource)
+      : name_(name) {
+    png_.reset(png_create_read_struct(PNG_LIBPNG_VER_STRING, &sink_, onPngError, onPngWarning));
+    if (!png_) throw OutputError("png_create_read_struct failed for " + name);
+    info_ = PngInfoPtr(png_create_info_struct(png_.get()), PngInfoDeleter{png_.get()});
+    if (!info_) throw OutputError("png_create_info_struct failed for " + name);
+    setSource(png_.get());
+    if (!readHeader(png_.get(), info_.get(), &header_)) fail();
+    if (header_.rowBytes != size_t(header_.width) * 4) {
+      throw OutputError(name + ": unexpected PNG layout after conversion to RGBA8");
+    }
+    // Checked on the header, before any pixel is allocated: a 68-byte file claiming 20000 × 20000
+    // pixels would otherwise cost 1.6 GB first.
+    if (header_.width > png_uint_32(kMaxImageSide) || header_.height > png_uint_32(kMaxImageSide)) {
+      throw OutputError(name + ": its header claims " + std::to_string(header_.width) + "x" +
+                        std::to_string(header_.height) + " pixels; images are at most " +
+                        std::to_string(kMaxImageSide) + " pixels a side");
+    }
+    // A header that claims more pixels than the file could decompress to is refused before the
+    // image is allocated too: a 69-byte file claiming 16384 × 16384 would otherwise cost 1 GiB first
+    // (found by tests/fuzz/fuzz_png). Every stored row holds at least fileRowBytes − 1 bytes of
+    // pixels, interlaced or not.
+    const std::uintmax_t pixelBytes = std::uintmax_t(header_.height) * (std::max<size_t>(header_.fileRowBytes, 1) - 1);
+    if (inputBytes < std::numeric_limits<std::uintmax_t>::max() / kMaxDeflateRatio &&
+        pixelBytes > inputBytes * kMaxDeflateRatio) {
+      throw OutputError(name + ": its header claims " + std::to_string(header_.width) + "x" +
+                        std::to_string(header_.height) + " pixels, more than its " + std::to_string(inputBytes) +
+                        " bytes can hold");
+    }
+  }
 
-  PngHeader header;
-  if (!readHeader(png.get(), info.get(), &header)) {
-    throw OutputError("libpng could not read " + name + ": " + sink.message);
+  // libpng holds the address of sink_: the decoder stays where it was made.
+  PngDecoder(const PngDecoder&) = delete;
+  PngDecoder& operator=(const PngDecoder&) = delete;
+
+  PngSize size() const { return {int(header_.width), int(header_.height)}; }
+
+  // The pixels, as RGBA8. Throws OutOfMemory when the image cannot be allocated.
+  Image decode() {
+    Image image = allocateImage(int(header_.width), int(header_.height), "decoding " + name_);
+    std::vector<png_bytep> rows = rowPointers(image);
+    if (!readRows(png_.get(), rows.data())) fail();
+    return image;
   }
-  if (header.rowBytes != size_t(header.width) * 4) {
-    throw OutputError(name + ": unexpected PNG layout after conversion to RGBA8");
+
+ private:
+  std::string name_;
+  PngErrorSink sink_;
+  PngReadPtr png_;
+  PngInfoPtr info_{nullptr, PngInfoDeleter{nullptr}};
+  PngHeader header_;
+
+  [[noreturn]] void fail() const {
+    // libpng's own allocations (its row buffers) fail with "Out of memory" (png_malloc).
+    if (std::strstr(sink_.message, "Out of memory") != nullptr) {
+      throw OutOfMemory("libpng could not read " + name_ + ": " + sink_.message);
+    }
+    throw OutputError("libpng could not read " + name_ + ": " + sink_.message);
   }
-  // Checked on the header, before any pixel is allocated: a 68-byte file claiming 20000 × 20000
-  // pixels would otherwise cost 1.6 GB first.
-  if (header.width > png_uint_32(kMaxImageSide) || header.height > png_uint_32(kMaxImageSide)) {
-    throw OutputError(name + ": its header claims " + std::to_string(header.width) + "x" +
-                      std::to_string(header.height) + " pixels; images are at most " + std::to_string(kMaxImageSide) +
-                      " pixels a side");
-  }
-  // A header that claims more pixels than the file could decompress to is refused before the image
-  // is allocated too: a 69-byte file claiming 16384 × 16384 would otherwise cost 1 GiB first (found
-  // by tests/fuzz/fuzz_png). Every stored row holds at least fileRowBytes − 1 bytes of pixels,
-  // interlaced or not.
-  const std::uintmax_t pixelBytes = std::uintmax_t(header.height) * (std::max<size_t>(header.fileRowBytes, 1) - 1);
-  if (inputBytes < std::numeric_limits<std::uintmax_t>::max() / kMaxDeflateRatio &&
-      pixelBytes > inputBytes * kMaxDeflateRatio) {
-    throw OutputError(name + ": its header claims " + std::to_string(header.width) + "x" +
-                      std::to_string(header.height) + " pixels, more than its " + std::to_string(inputBytes) +
-                      " bytes can hold");
-  }
-  Image image(int(header.width), int(header.height));
-  std::vector<png_bytep> rows = rowPointers(image);
-  if (!readRows(png.get(), rows.data())) {
-    throw OutputError("libpng could not read " + name + ": " + sink.message);
-  }
-  return image;
-}
+};
 
 bool hasPngSignature(std::span<const std::uint8_t> bytes) {
   return bytes.size() >= 8 && png_sig_cmp(bytes.data(), 0, 8) == 0;
@@ -222,8 +245,11 @@ void writePng(const std::filesystem::path& path, const Image& image, const PngOp
   out.commit();
 }
 
-Image readPng(const std::filesystem::path& path) {
-  FilePtr file(std::fopen(path.c_str(), "rb"));
+namespace {
+
+// Opens `path` as a PNG and reads its header (PngDecoder); `file` keeps the stream open for it.
+PngDecoder openPng(const std::filesystem::path& path, FilePtr& file) {
+  file.reset(std::fopen(path.c_str(), "rb"));
   if (!file) throw OutputError("cannot open " + path.string() + ": " + std::strerror(errno));
   std::uint8_t signature[8];
   const std::size_t got = std::fread(signature, 1, 8, file.get());
@@ -231,14 +257,28 @@ Image readPng(const std::filesystem::path& path) {
   std::rewind(file.get());
   std::error_code ec;
   const std::uintmax_t size = std::filesystem::file_size(path, ec);  // unknown for a pipe: no check
-  return decodePng(path.string(), ec ? std::numeric_limits<std::uintmax_t>::max() : size,
-                   [&](png_structp png) { png_init_io(png, file.get()); });
+  std::FILE* stream = file.get();
+  return PngDecoder(path.string(), ec ? std::numeric_limits<std::uintmax_t>::max() : size,
+                    [&](png_structp png) { png_init_io(png, stream); });
+}
+
+}  // namespace
+
+Image readPng(const std::filesystem::path& path) {
+  FilePtr file;
+  return openPng(path, file).decode();
+}
+
+PngSize readPngSize(const std::filesystem::path& path) {
+  FilePtr file;
+  return openPng(path, file).size();
 }
 
 Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name) {
   if (!hasPngSignature(bytes)) throw OutputError(name + " is not a PNG file");
   MemoryReader reader{bytes};
-  return decodePng(name, bytes.size(), [&](png_structp png) { png_set_read_fn(png, &reader, readFromMemory); });
+  return PngDecoder(name, bytes.size(), [&](png_structp png) { png_set_read_fn(png, &reader, readFromMemory); })
+      .decode();
 }
 
 }  // namespace particles::render

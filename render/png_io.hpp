@@ -32,8 +32,17 @@ void writePng(const std::filesystem::path& path, const Image& image, const PngOp
 void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options);
 
 // Reads any 8-bit or 16-bit PNG as RGBA8 (grey, palette and 16-bit converted; alpha 255 if absent).
-// Throws OutputError naming the file and libpng's message.
+// Throws OutputError naming the file and libpng's message, OutOfMemory (render/errors.hpp) when the
+// pixels cannot be allocated.
 Image readPng(const std::filesystem::path& path);
+
+struct PngSize {
+  int width = 0, height = 0;
+  bool operator==(const PngSize&) const = default;
+};
+// The size of a PNG from its header, with readPng's checks on it, without decoding (or allocating)
+// its pixels: what an image of it would take, w · h · 4 bytes. Throws as readPng.
+PngSize readPngSize(const std::filesystem::path& path);
 // The same from the bytes of a PNG file in memory; `name` labels messages.
 Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name = "PNG data");
 

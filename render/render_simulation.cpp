@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/solver.hpp"
+#include "render/frame_memory.hpp"
 #include "render/renderer.hpp"
 
 namespace particles::render {
@@ -17,6 +18,8 @@ class FramePainter {
   FramePainter(const RenderJob& job, const RenderHooks& hooks)
       : renderer_(job.look, job.gl), camera_(job.camera), decorate_(hooks.decorate) {
     if (hooks.glReady) hooks.glReady(renderer_.gl());
+    // The copy drawn over, allocated with the frame (render/frame_memory.hpp) and reused.
+    if (decorate_) decorated_ = allocateImage(job.look.width, job.look.height, "the frame's decorated copy");
   }
   const Image& paint(const System& system) {
     const Image& image = renderer_.render(system.draw(), camera_);

@@ -1,5 +1,6 @@
 #include "render/renderer.hpp"
 
+#include "render/frame_memory.hpp"
 #include "render/frame_mesh.hpp"
 #include "render/gl_context.hpp"
 #include "render/shader_program.hpp"
@@ -41,7 +42,10 @@ struct Renderer::Impl {
       : options(o),
         colors(theme(o.themeName)),
         context(makeGlContext(gl, o.width, o.height)),
-        program(context->gl(), o.msaa, o.width, o.height, context->flipsY()) {}
+        program(context->gl(), o.msaa, o.width, o.height, context->flipsY()) {
+    // Allocated now, with the frame (render/frame_memory.hpp): later copies of the frame reuse it.
+    if (o.transparentBackground) straight = allocateImage(o.width, o.height, "the frame's unpremultiplied copy");
+  }
 };
 
 Renderer::Renderer(const RenderOptions& options, const GlRequest& gl) {

@@ -134,15 +134,15 @@ struct Scratch {
   // Runs `particles ARGS` as run() does, under guards that turn a hang or runaway memory into a
   // failed test instead of a stuck CI machine: address space capped at 2 GiB and a wall-clock
   // guard of 60 s after which the process is killed (code −1); no address-space cap under ASan.
-  // Reports what the run used.
-  Result runBounded(const std::string& args, Usage& usage) const {
+  // Reports what the run used. `addressSpace` sets another cap, in bytes.
+  Result runBounded(const std::string& args, Usage& usage, rlim_t addressSpace = rlim_t(2) << 30) const {
     const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
     REQUIRE_MESSAGE(fs::exists(exe), "the particles program is not built next to the tests: " << exe);
     const std::string command = "exec '" + exe.string() + "' " + args + " > stdout.txt 2> stderr.txt";
     const pid_t pid = ::fork();
     REQUIRE(pid >= 0);
     if (pid == 0) {
-      const rlimit memory{rlim_t(2) << 30, rlim_t(2) << 30};
+      const rlimit memory{addressSpace, addressSpace};
       if (::chdir(dir.c_str()) != 0 || (!kSanitized && ::setrlimit(RLIMIT_AS, &memory) != 0)) ::_exit(127);
       ::execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
       ::_exit(127);

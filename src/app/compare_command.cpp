@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <cstddef>
+#include <new>
 #include <stdexcept>
 
 #include "app/commands.hpp"
@@ -32,8 +34,9 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing when the frames match");
   cmd->footer(
-      "Exit codes: 0 the frames match, 1 they differ, 2 bad input (unreadable PNG, sizes differ),\n"
-      "3 the --diff picture could not be written. Defaults and how they were measured: golden/README.md.\n"
+      "Exit codes: 0 the frames match, 1 they differ, 2 bad input (unreadable PNG, sizes differ: read from\n"
+      "the headers, nothing decoded), 3 the --diff picture could not be written or memory ran out (two\n"
+      "16384x16384 frames decode to 2 GiB). Defaults and how they were measured: golden/README.md.\n"
       "Examples:\n"
       "  particles compare golden/cloth_t2.5.png cloth.png\n"
       "  particles compare golden/cloth_t2.5.png cloth.png --diff cloth_diff.png --threshold 16 --max-share 0.01\n");
@@ -41,13 +44,20 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
 }
 
 int compareCommand(const CompareOptions& o) {
+  // The sizes come from the two headers, before either frame is decoded: frames of different sizes
+  // are told apart without their pixels (a 16384² PNG decodes to 1 GiB).
   render::Image expected, actual;
   try {
+    const render::PngSize e = render::readPngSize(o.expected);
+    const render::PngSize a = render::readPngSize(o.actual);
+    const std::string mismatch = render::sizeMismatch(e.width, e.height, a.width, a.height);
+    if (!mismatch.empty()) throw InputError(fmt::format("{} and {}: {}", o.expected, o.actual, mismatch));
     expected = render::readPng(o.expected);
     actual = render::readPng(o.actual);
   } catch (const render::OutputError& e) {  // here an input that cannot be read: bad input
     throw InputError(e.what());
   }
+  // A file changed between its header and its pixels still has its size checked.
   const std::string mismatch = render::sizeMismatch(expected, actual);
   if (!mismatch.empty()) throw InputError(fmt::format("{} and {}: {}", o.expected, o.actual, mismatch));
   render::ImageComparison c;
@@ -74,6 +84,9 @@ int compareCommand(const CompareOptions& o) {
       render::writePng(o.diff, render::diffImage(expected, actual, o.threshold));  // appears only when complete
     } catch (const render::OutputError& e) {
       throw render::OutputError(std::string("--diff: ") + e.what());
+    } catch (const std::bad_alloc&) {
+      throw render::OutOfMemory(fmt::format("--diff {}: the {}×{} picture of the differences needs {} MiB more", o.diff,
+                                            c.width, c.height, (std::size_t(c.width) * c.height * 4) >> 20));
     }
     if (!o.quiet || !c.passed) fmt::print("  diff:    {}\n", o.diff);
   }

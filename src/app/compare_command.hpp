@@ -4,8 +4,9 @@
 //
 // Exit codes: 0 the frames match; 1 they differ (more than --max-share of the pixels have a
 // channel differing by more than --threshold): the counterpart of a simulation failure, "the
-// result is wrong"; 2 bad input (an unreadable PNG, sizes that do not match, bad options);
-// 3 the --diff picture could not be written.
+// result is wrong"; 2 bad input (an unreadable PNG, sizes that do not match, read from the two
+// headers before either is decoded, bad options); 3 the --diff picture could not be written, or
+// memory ran out (the frames decode to 4 bytes a pixel each, the --diff picture as much again).
 
 #include <string>
 

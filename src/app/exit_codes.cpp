@@ -4,6 +4,8 @@
 
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <typeinfo>
 
 #include "core/solver.hpp"
 #include "output/output_error.hpp"
@@ -39,6 +41,13 @@ int runReportingErrors(const ErrorContext& context, const std::function<int()>& 
     return report(kOutputFailed, error(e));
   } catch (const plot::FigureError& e) {
     return report(kOutputFailed, error(e));
+  } catch (const std::bad_alloc& e) {
+    // Before std::exception: a failed allocation is no bug and no result ("simulation failed",
+    // "frames differ"), but the machine's or the cap's limit, like a full disk. render::OutOfMemory
+    // says what needed the memory; a bare std::bad_alloc only that an allocation failed.
+    return report(kOutputFailed, typeid(e) == typeid(std::bad_alloc)
+                                     ? std::string("error: out of memory: an allocation failed (std::bad_alloc)")
+                                     : fmt::format("error: out of memory: {}", e.what()));
   } catch (const std::exception& e) {
     // Every expected failure has a type above; this is a bug, reported rather than aborted.
     return report(kSimulationFailed, fmt::format("particles: internal error: {}", e.what()));

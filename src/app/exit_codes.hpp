@@ -6,6 +6,8 @@
 //                               InputError, plot::CsvError           "error: …"
 //   3  an output failed         output::OutputError, render::RenderError,
 //                               plot::FigureError                    "error: …"
+//      memory ran out           std::bad_alloc (render::OutOfMemory says for what)
+//                                                                    "error: out of memory: …"
 //   1  anything else: a bug     "particles: internal error: …"
 // A command returns the code of an outcome that is not an error: kOk, compare's differing frames
 // (1), an interrupted render (128 + signal).

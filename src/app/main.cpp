@@ -1,6 +1,9 @@
 // The `particles` program (docs/physics.md §12): parses the command line (cli.hpp) and runs it.
 #include <malloc.h>
 
+#include <cstdio>
+#include <new>
+
 #include "app/cli.hpp"
 #include "app/exit_codes.hpp"
 
@@ -22,12 +25,19 @@ void keepHeapBetweenFrames() {
 
 int main(int argc, char** argv) {
   keepHeapBetweenFrames();
-  auto cli = std::make_unique<particles::app::Cli>();
   try {
-    cli->app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = cli->app.exit(e);  // prints help, the version or the error
-    return code == 0 ? particles::app::kOk : particles::app::kBadInput;
+    auto cli = std::make_unique<particles::app::Cli>();
+    try {
+      cli->app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+      const int code = cli->app.exit(e);  // prints help, the version or the error
+      return code == 0 ? particles::app::kOk : particles::app::kBadInput;
+    }
+    return cli->dispatch(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const std::bad_alloc&) {
+    // Memory ran out before a command ran (or after it reported): the options themselves, under a
+    // tight cap (`ulimit -v`). The same code and words as runReportingErrors', allocating nothing.
+    std::fputs("error: out of memory: an allocation failed (std::bad_alloc)\n", stderr);
+    return particles::app::kOutputFailed;
   }
-  return cli->dispatch(std::vector<std::string>(argv + 1, argv + argc));
 }

@@ -25,6 +25,7 @@
 #include "core/system.hpp"
 #include "plot/errors.hpp"
 #include "plot/text_overlay.hpp"
+#include "render/errors.hpp"
 #include "render/frame_writer.hpp"
 #include "render/render_options.hpp"
 #include "render/render_simulation.hpp"
@@ -267,12 +268,20 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
       }
     };
   }
+  // A frame larger than the GL draws is bad input: the size's, named as it was given.
+  const std::string sizeSource = options.size.empty()
+                                     ? fmt::format("the scenario's render size {}x{}", look.width, look.height)
+                                     : "--size " + options.size;
   const auto run = [&] {
-    return render::renderSimulation(s.system, s.simulation.integrator, s.simulation.dt, job, hooks);
+    try {
+      return render::renderSimulation(s.system, s.simulation.integrator, s.simulation.dt, job, hooks);
+    } catch (const render::FrameSizeError& e) {
+      throw InputError(fmt::format("{}: {}", sizeSource, e.what()));
+    }
   };
 
   if (kind == render::OutputKind::png) {
-    run();
+    refusedOptionsAreInputErrors(run);
     recorder->commit();
     if (!common.quiet) {
       fmt::print("{}: frame at t = {:.6g} s ({}×{}) → {}\n", s.name, s.system.time(), look.width, look.height,
