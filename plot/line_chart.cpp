@@ -45,18 +45,23 @@ bool drawable(double x, double y, AxisScale scale, AxisScale xScale) {
          (xScale != AxisScale::Log || x > 0);
 }
 
-// Runs of consecutive drawable points, in pixels. A point that cannot be drawn ends a run.
+// Runs of consecutive drawable points, in pixels. A point that cannot be drawn ends a run; so does
+// one whose pixel is not finite, which the axes' ranges should never give (cairo would refuse the
+// whole figure for it).
 std::vector<std::vector<Point>> pixelRuns(const Series& s, const XAxis& xAxis, const YAxis& yAxis, const Rect& plot) {
   std::vector<std::vector<Point>> runs;
   bool inRun = false;
   for (std::size_t i = 0; i < s.x.size(); ++i) {
-    if (!drawable(s.x[i], s.y[i], yAxis.scale, xAxis.scale)) {
+    const Point p = drawable(s.x[i], s.y[i], yAxis.scale, xAxis.scale)
+                        ? Point{xAxis.toPixel(s.x[i], plot), yAxis.toPixel(s.y[i], plot)}
+                        : Point{NAN, NAN};
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
       inRun = false;
       continue;
     }
     if (!inRun) runs.emplace_back();
     inRun = true;
-    runs.back().push_back({xAxis.toPixel(s.x[i], plot), yAxis.toPixel(s.y[i], plot)});
+    runs.back().push_back(p);
   }
   return runs;
 }
