@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "plot/charts.hpp"
@@ -171,7 +172,10 @@ void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& ch
     const double axisLo = l0 - 0.08 * (l1 - l0);
     const double usable = std::clamp((plot.w - widestLabel - kValueGapPx - kDotRadiusPx - 8) / plot.w, 0.5, 1.0);
     const double axisHi = axisLo + (l1 - axisLo) / usable;
-    axis.ticks = logTicksWithin(std::pow(10.0, axisLo), std::pow(10.0, axisHi), std::max(2, int(plot.w / 70)));
+    // Within the doubles: past them pow gives 0 or infinity, and the axis non-finite pixels.
+    const double from = std::max(std::pow(10.0, axisLo), std::numeric_limits<double>::denorm_min());
+    const double to = std::min(std::pow(10.0, axisHi), std::numeric_limits<double>::max());
+    axis.ticks = logTicksWithin(from, to, std::max(2, int(plot.w / 70)));
   }
   auto toPixel = [&](double v) { return axis.toPixel(v, plot); };
 

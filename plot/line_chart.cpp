@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "plot/charts.hpp"
+#include "plot/column_reduction.hpp"
 
 namespace particles::plot {
 
@@ -25,10 +26,6 @@ constexpr double kMarkerRadiusPx = 3.5;  // each point of a series with markers
 constexpr double kLegendInsetPx = 10;
 constexpr double kLegendRowPx = 20;
 constexpr double kLegendSwatchPx = 26;
-
-struct Point {
-  double x, y;
-};
 
 struct Range {
   double lo = std::numeric_limits<double>::infinity();
@@ -45,18 +42,23 @@ bool drawable(double x, double y, AxisScale scale, AxisScale xScale) {
          (xScale != AxisScale::Log || x > 0);
 }
 
-// Runs of consecutive drawable points, in pixels. A point that cannot be drawn ends a run.
+// Runs of consecutive drawable points, in pixels. A point that cannot be drawn ends a run; so does
+// one whose pixel is not finite, which the axes' ranges should never give (cairo would refuse the
+// whole figure for it).
 std::vector<std::vector<Point>> pixelRuns(const Series& s, const XAxis& xAxis, const YAxis& yAxis, const Rect& plot) {
   std::vector<std::vector<Point>> runs;
   bool inRun = false;
   for (std::size_t i = 0; i < s.x.size(); ++i) {
-    if (!drawable(s.x[i], s.y[i], yAxis.scale, xAxis.scale)) {
+    const Point p = drawable(s.x[i], s.y[i], yAxis.scale, xAxis.scale)
+                        ? Point{xAxis.toPixel(s.x[i], plot), yAxis.toPixel(s.y[i], plot)}
+                        : Point{NAN, NAN};
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
       inRun = false;
       continue;
     }
     if (!inRun) runs.emplace_back();
     inRun = true;
-    runs.back().push_back({xAxis.toPixel(s.x[i], plot), yAxis.toPixel(s.y[i], plot)});
+    runs.back().push_back(p);
   }
   return runs;
 }
@@ -144,8 +146,11 @@ void drawSeries(const Canvas& canvas, std::size_t index, const std::vector<std::
   const Rgb c = seriesColour(index);
   cairo_set_source_rgb(cr, c.r, c.g, c.b);
   bool anyLine = false;
-  for (const auto& run : runs) {
-    if (run.size() < 2) continue;
+  for (const auto& fullRun : runs) {
+    if (fullRun.size() < 2) continue;
+    // The line through at most 4 points per column (column_reduction.hpp); dots (below) and the
+    // legend's placement still see every point.
+    const std::vector<Point> run = reduceToColumns(fullRun, kReductionColumnPx);
     cairo_move_to(cr, run[0].x, run[0].y);
     for (std::size_t i = 1; i < run.size(); ++i) cairo_line_to(cr, run[i].x, run[i].y);
     anyLine = true;

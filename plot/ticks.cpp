@@ -104,6 +104,14 @@ AxisTicks linearTicks(double dataLo, double dataHi, int targetCount, bool widenT
       hi = c + 0.1 * std::fabs(c);
     }
   }
+  // Nor is a span below kMinLinearSpan: it is widened to that around its middle, so that the step,
+  // its power of ten and the ticks are normal doubles (issue 26: 5e-324 and -5e-324 once gave a
+  // zero step, an axis from 0 to 0 and non-finite pixels).
+  if (hi - lo < kMinLinearSpan) {
+    const double c = 0.5 * lo + 0.5 * hi;
+    lo = c - 0.5 * kMinLinearSpan;
+    hi = c + 0.5 * kMinLinearSpan;
+  }
   // Divided before subtracting: the span of data near ±1.8e308 overflows to infinity.
   const double intervals = std::max(1, targetCount - 1);
   double step = niceStep(hi / intervals - lo / intervals);
@@ -146,17 +154,21 @@ AxisTicks logTicks(double dataLo, double dataHi, int maxMajor) {
   // the last above zero (a subnormal).
   eHi = std::min(eHi, 308);
   eLo = std::max(std::min(eLo, eHi - 1), -323);
+  eHi = std::max(eHi, eLo + 1);  // at least one decade: data at 4.9e-324 alone spans none above -323
   // Label every k-th decade, k chosen so at most maxMajor labels fit; align to multiples of k.
   const int k = std::max(1, (eHi - eLo + std::max(1, maxMajor - 1) - 1) / std::max(1, maxMajor - 1));
+  // Aligned outward to multiples of k, but not past the decades a double holds (10^-324 is 0 and
+  // 10^309 infinite: an axis ending there gave non-finite pixels).
   const auto floorDiv = [](int a, int b) { return a >= 0 ? a / b : -((-a + b - 1) / b); };
-  eLo = floorDiv(eLo, k) * k;
-  eHi = -floorDiv(-eHi, k) * k;
+  eLo = std::max(floorDiv(eLo, k) * k, -323);
+  eHi = std::min(-floorDiv(-eHi, k) * k, 308);
   AxisTicks axis;
-  axis.lo = std::pow(10.0, eLo);
-  axis.hi = std::pow(10.0, eHi);
+  // Past those decades the axis reaches the data: 4.9e-324 (the smallest subnormal) and 1.8e308.
+  axis.lo = std::min(std::pow(10.0, eLo), lo);
+  axis.hi = std::max(std::pow(10.0, eHi), hi);
   for (int e = eLo; e <= eHi; ++e) {
     const double decade = std::pow(10.0, e);
-    if ((e - eLo) % k == 0) {
+    if (floorDiv(e, k) * k == e) {
       axis.major.push_back({decade, {"10", typesetMinus(std::to_string(e))}});
     } else {
       axis.minor.push_back(decade);
@@ -176,7 +188,7 @@ AxisTicks logTicksWithin(double lo, double hi, int maxMajor) {
   for (int e = eLo; e <= eHi; ++e) {
     for (int m = 1; m <= 9; ++m) {
       const double v = m * std::pow(10.0, e);
-      if (v >= lo * (1 - 1e-12) && v <= hi * (1 + 1e-12)) candidates.push_back({v, m});
+      if (std::isfinite(v) && v >= lo * (1 - 1e-12) && v <= hi * (1 + 1e-12)) candidates.push_back({v, m});
     }
   }
   const std::vector<std::vector<int>> mantissaSets = {{1, 2, 3, 4, 5, 6, 7, 8, 9}, {1, 2, 5}, {1}};
@@ -225,13 +237,18 @@ Label formatValue(double v, int significantDigits) {
   if (v == 0) return {"0", ""};
   if (!std::isfinite(v)) return {std::isnan(v) ? "NaN" : (v > 0 ? "\u221e" : "\u2212\u221e"), ""};
   const int digits = std::max(1, significantDigits);
-  // Round first: 9.996 with 3 digits is 10.0, whose exponent is one more than 9.996's.
-  const double rounded = std::stod(fmt::format("{:.{}e}", v, digits - 1));
-  const int e = decimalExponent(rounded);
+  // Round first: 9.996 with 3 digits is 10.0, whose exponent is one more than 9.996's. The mantissa
+  // and exponent are read from the digits, not the rounded value: 1.8e308 (the largest double to 2
+  // digits) is past the doubles, and std::stod throws for it and for subnormals.
+  const std::string rounded = fmt::format("{:.{}e}", v, digits - 1);  // "-1.00e+01"
+  const std::size_t mark = rounded.find('e');
+  const double mantissa = std::stod(rounded.substr(0, mark));
+  const int e = std::stoi(rounded.substr(mark + 1));
   if (e >= -4 && e < 5) {
-    return {typesetMinus(trimTrailingZeros(fmt::format("{:.{}f}", rounded, std::max(0, digits - 1 - e)))), ""};
+    return {typesetMinus(trimTrailingZeros(fmt::format("{:.{}f}", std::stod(rounded), std::max(0, digits - 1 - e)))),
+            ""};
   }
-  return scientific(rounded / std::pow(10.0, e), e, digits - 1);
+  return scientific(mantissa, e, digits - 1);
 }
 
 }  // namespace particles::plot

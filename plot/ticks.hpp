@@ -34,10 +34,15 @@ double axisFraction(double v, const AxisTicks& axis);
 // Smallest 1, 2 or 5 × 10^k that is ≥ rawStep (> 0).
 double niceStep(double rawStep);
 
+// The narrowest range a linear axis shows: a tenth of a step is then still a normal double
+// (≥ 2.2e-308), and so are the ticks and the powers of ten that label them.
+inline constexpr double kMinLinearSpan = 1e-300;
+
 // Ticks for data in [dataLo, dataHi] on a linear axis, about `targetCount` of them. With
 // widenToTicks the range grows outward to whole steps (for y axes); otherwise it stays the data
 // range (for a time axis that should start and end with the data). A constant value c gets the
-// range c ± 10 % (0 gets [0, 1]); a non-finite range falls back to [0, 1].
+// range c ± 10 % (0 gets [0, 1]); a range narrower than kMinLinearSpan (subnormal data) is widened
+// to it around its middle; a non-finite range falls back to [0, 1].
 AxisTicks linearTicks(double dataLo, double dataHi, int targetCount, bool widenToTicks);
 
 // Ticks for positive data in [dataLo, dataHi] on a log axis: the range is widened to whole decades

@@ -157,17 +157,13 @@ inline PathShape pathShape(const XmlElement& path) {
   return shape;
 }
 
-// The bounding box of an SVG path's points (every coordinate pair of its "d", Bézier control points
-// included: for a circle the box is symmetric about its centre).
-struct PathBounds {
-  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
-  double centreX() const { return (x0 + x1) / 2; }
-  double centreY() const { return (y0 + y1) / 2; }
+// Every coordinate pair of an SVG path's "d", in order (Bézier control points included).
+struct PathPoint {
+  double x, y;
 };
-inline PathBounds pathBounds(const XmlElement& path) {
-  PathBounds b;
+inline std::vector<PathPoint> pathPoints(const XmlElement& path) {
   const auto it = path.attributes.find("d");
-  if (it == path.attributes.end()) return b;
+  if (it == path.attributes.end()) return {};
   const std::string& d = it->second;
   std::vector<double> numbers;
   for (std::size_t i = 0; i < d.size();) {
@@ -180,11 +176,25 @@ inline PathBounds pathBounds(const XmlElement& path) {
       ++i;
     }
   }
-  for (std::size_t k = 0; k + 1 < numbers.size(); k += 2) {
-    b.x0 = std::min(b.x0, numbers[k]);
-    b.x1 = std::max(b.x1, numbers[k]);
-    b.y0 = std::min(b.y0, numbers[k + 1]);
-    b.y1 = std::max(b.y1, numbers[k + 1]);
+  std::vector<PathPoint> points;
+  for (std::size_t k = 0; k + 1 < numbers.size(); k += 2) points.push_back({numbers[k], numbers[k + 1]});
+  return points;
+}
+
+// The bounding box of an SVG path's points (Bézier control points included: for a circle the box
+// is symmetric about its centre).
+struct PathBounds {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  double centreX() const { return (x0 + x1) / 2; }
+  double centreY() const { return (y0 + y1) / 2; }
+};
+inline PathBounds pathBounds(const XmlElement& path) {
+  PathBounds b;
+  for (const PathPoint& p : pathPoints(path)) {
+    b.x0 = std::min(b.x0, p.x);
+    b.x1 = std::max(b.x1, p.x);
+    b.y0 = std::min(b.y0, p.y);
+    b.y1 = std::max(b.y1, p.y);
   }
   return b;
 }

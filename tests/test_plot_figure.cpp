@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 
 #include "plot/errors.hpp"
@@ -129,6 +130,32 @@ TEST_CASE("plot: empty, constant and all-non-positive data still make a well-for
   CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
   f.chart = DotChart{};
   CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
+}
+
+// gather's figure: markers on log or linear axes, fitted to a parameter and results that may lie
+// anywhere in the doubles (issue 26 row 17: such ranges were refused as an output failure).
+TEST_CASE("plot: marked series on log and linear axes at the ends of the doubles are drawn") {
+  const double tiny = std::numeric_limits<double>::denorm_min(), big = std::numeric_limits<double>::max();
+  const std::vector<std::vector<double>> columns = {
+      {tiny, 2 * tiny}, {tiny, 1e-300, 1e300, big}, {-tiny, tiny}, {-big, big}, {5, 5}, {1e-310, 1e-310}};
+  for (const auto& xs : columns) {
+    for (const auto& ys : columns) {
+      for (const AxisScale xScale : {AxisScale::Linear, AxisScale::Log}) {
+        for (const AxisScale yScale : {AxisScale::Linear, AxisScale::Log}) {
+          const std::size_t n = std::min(xs.size(), ys.size());
+          Series s{"rk4", std::vector<double>(xs.begin(), xs.begin() + long(n)),
+                   std::vector<double>(ys.begin(), ys.begin() + long(n)), true};
+          Figure f;
+          f.chart = LineChart{"x", {Panel{"y", yScale, {s}}}, xScale};
+          CAPTURE(xs.front());
+          CAPTURE(ys.front());
+          CAPTURE(int(xScale));
+          CAPTURE(int(yScale));
+          CHECK_NOTHROW(renderFigure(f, ImageFormat::Svg));
+        }
+      }
+    }
+  }
 }
 
 TEST_CASE("plot: dot chart draws one dot per positive value and a legend dot per group") {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "plot/errors.hpp"
@@ -277,6 +278,69 @@ TEST_CASE("plot stats figure: values up to the largest double give a figure, not
     CAPTURE(name);
     CHECK_NOTHROW(writeFigure(statsFigure(table), dir / name));
     CHECK(std::filesystem::file_size(dir / name) > 1000);
+  }
+}
+
+// Issue 26 row 17: rows 5e-324 and -5e-324 were refused as an output failure ("cannot draw figure:
+// invalid matrix", exit 3). Valid numbers at any scale are drawn, in every format, and the line is there.
+TEST_CASE("plot stats figure: subnormal, huge, single-valued and tiny log values are drawn in every format") {
+  TempDir dir;
+  const std::vector<std::string> tables = {
+      "0,5e-324,0,0,0,0\n0.1,-5e-324,0,0,0,0\n",                                         // the issue's rows
+      "0,5e-324,5e-324,5e-324,5e-324,5e-324\n0.1,5e-324,5e-324,5e-324,5e-324,5e-324\n",  // one subnormal value
+      "0,1e308,1,1,0,0\n0.1,-1e308,1,1,0,0\n",                                           // huge, in one column
+      "0,1e-310,2e-310,3e-310,5e-324,1e-323\n0.1,1e-310,2e-310,3e-310,1e-320,5e-324\n",  // log panels, tiny positives
+      "0,5e-324,0,0,1e-300,0\n1e-300,5e-324,0,0,1e300,0\n",                              // a log panel over 600 decades
+      "5e-324,1,1,1,0,0\n1e-323,2,1,1,0,0\n",                                            // a subnormal time axis
+      "0,7,7,7,7,7\n",                                                                   // one row
+  };
+  for (const std::string& rows : tables) {
+    CAPTURE(rows);
+    const Figure figure = statsFigure(readStatsCsv(writeText(dir, kHeader + "\n" + rows)));
+    for (const ImageFormat format : {ImageFormat::Svg, ImageFormat::Png, ImageFormat::Pdf}) {
+      CAPTURE(int(format));
+      std::vector<std::uint8_t> bytes;
+      CHECK_NOTHROW(bytes = renderFigure(figure, format));
+      CHECK(bytes.size() > 1000);
+    }
+    // Each panel's first line (a dot for one row) lies inside its panel's frame, one per panel;
+    // the legend's swatch, in the same colour, is the one 26 px wide.
+    const auto svg = parseXml(renderFigure(figure, ImageFormat::Svg));
+    const auto frames = plotFrames(svg);
+    REQUIRE(!frames.empty());
+    std::size_t drawn = 0;
+    for (const XmlElement& e : svg) {
+      if (e.name != "path") continue;
+      const PathBounds b = pathBounds(e);
+      const bool line = sameColour(styleProperty(e, "stroke"), seriesColour(0)) && b.x1 - b.x0 != 26;
+      const bool dot = sameColour(styleProperty(e, "fill"), seriesColour(0));
+      if (!line && !dot) continue;
+      CAPTURE(e.attributes.at("d").substr(0, 200));
+      CHECK(std::any_of(frames.begin(), frames.end(), [&](const PathBounds& f) {
+        return b.y0 >= f.y0 - 4 && b.y1 <= f.y1 + 4 && b.x0 >= f.x0 - 4 && b.x1 <= f.x1 + 4;
+      }));
+      ++drawn;
+    }
+    CHECK(drawn == frames.size());
+  }
+}
+
+// The stability figure's dot chart (and a reference given on the command line) at the ends of the
+// doubles: its fitted log axis once reached 10^-324 (0) or past 10^308 (infinity).
+TEST_CASE("plot stability figure: limits and references at the ends of the doubles are drawn") {
+  const double tiny = std::numeric_limits<double>::denorm_min(), big = std::numeric_limits<double>::max();
+  const std::vector<std::pair<double, double>> limits = {{tiny, tiny}, {tiny, 1e-320}, {1e308, big}, {tiny, big}};
+  for (const auto& [a, b] : limits) {
+    CAPTURE(a);
+    CAPTURE(b);
+    std::vector<StabilityRow> rows = {{"euler", 1, a, a, 1, 1, false, false}, {"rk4", 4, b, b, 1, 1, false, true}};
+    StabilityFigureNotes notes;
+    notes.references["euler"] = Reference{a, b};
+    const Figure figure = stabilityFigure(rows, notes);
+    for (const ImageFormat format : {ImageFormat::Svg, ImageFormat::Png, ImageFormat::Pdf}) {
+      CAPTURE(int(format));
+      CHECK_NOTHROW(renderFigure(figure, format));
+    }
   }
 }
 
