@@ -15,6 +15,7 @@
 #include "app/job_record.hpp"
 #include "app/sweep_command.hpp"
 #include "input/text_file.hpp"
+#include "output/distinct_files.hpp"
 #include "output/output_file.hpp"
 #include "plot/figure.hpp"
 
@@ -112,12 +113,15 @@ int gatherCommand(const GatherOptions& o) {
 
   std::vector<GatheredRow> rows;
   std::vector<std::string> keys;  // headline keys in order of first appearance
+  std::vector<output::NamedFile> inputs = {{"the job table", jobsFile}};
   for (size_t r = 1; r < table.size(); ++r) {
     if (table[r].size() != header.size()) {
       throw InputError(fmt::format("{}:{}: {} fields, the header has {}", jobsFile.string(), r + 1, table[r].size(),
                                    header.size()));
     }
-    GatheredRow row{table[r], readJobRecord(dir / table[r][dirCol] / "record.txt")};
+    const std::filesystem::path recordFile = dir / table[r][dirCol] / "record.txt";
+    inputs.push_back({"the record", recordFile});
+    GatheredRow row{table[r], readJobRecord(recordFile)};
     if (row.record) {
       for (const auto& [k, v] : row.record->headline) {
         if (std::find(keys.begin(), keys.end(), k) == keys.end()) keys.push_back(k);
@@ -129,6 +133,11 @@ int gatherCommand(const GatherOptions& o) {
   // results.csv
   size_t ok = 0, failed = 0, notRun = 0;
   const std::filesystem::path csvPath = o.output.empty() ? dir / "results.csv" : std::filesystem::path(o.output);
+  // The figure's path, should there be one; checked now with the rest, before anything is written.
+  const std::filesystem::path plotPath = o.plot == "none" ? std::filesystem::path()
+                                         : o.plot.empty() ? dir / "results.svg"
+                                                          : std::filesystem::path(o.plot);
+  output::requireDistinctFiles({{"-o", csvPath}, {"--plot", plotPath}}, inputs);
   {
     output::OutputFile csv(csvPath);
     std::vector<std::string> head = {"index", "stage", "scenario"};
@@ -243,7 +252,7 @@ int gatherCommand(const GatherOptions& o) {
                                  parameters[varying.front()]);
       figure.heightPx = int(std::max<size_t>(1, chart.panels.size())) * 300 + 140;
       figure.chart = std::move(chart);
-      figurePath = o.plot.empty() ? dir / "results.svg" : std::filesystem::path(o.plot);
+      figurePath = plotPath;
       plot::writeFigure(figure, figurePath);
     }
   }

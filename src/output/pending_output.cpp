@@ -53,11 +53,10 @@ bool isProcLink(const fs::path& link) {
   return ::statfs(folderOf(link).c_str(), &filesystem) == 0 && filesystem.f_type == PROC_SUPER_MAGIC;
 }
 
-// The file a write to `destination` lands in: symbolic links in its last component followed, as
-// open(2) follows them, so that the link's target gets the content and the link itself stays. A
-// relative link is relative to the folder holding it. Links in the folders on the way need no
-// help: the kernel follows those whatever we do with the last component. Stops at a link in
-// /proc, which is returned as it is.
+}  // namespace
+
+// Links in the folders on the way need no help: the kernel follows those whatever we do with the
+// last component.
 fs::path followLinks(const fs::path& destination) {
   fs::path path = destination;
   for (int hops = 0;; ++hops) {
@@ -74,8 +73,6 @@ fs::path followLinks(const fs::path& destination) {
     path = link.is_absolute() ? link : path.parent_path() / link;
   }
 }
-
-}  // namespace
 
 PendingOutput::PendingOutput(fs::path destination, Temporary temporary) : destination_(std::move(destination)) {
   if (destination_.empty()) throw OutputError("cannot write to an empty file name");

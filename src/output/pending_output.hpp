@@ -32,6 +32,12 @@ struct FileCloser {
 };
 using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
+// The file a write to `destination` lands in: symbolic links in its last component followed, as
+// open(2) follows them, so that the link's target gets the content and the link itself stays (a
+// relative link is relative to the folder holding it). Stops at a link in /proc (/dev/stdout: a
+// process's open file, not a name), which is returned as it is. Throws OutputError for a loop.
+std::filesystem::path followLinks(const std::filesystem::path& destination);
+
 class PendingOutput {
  public:
   enum class Temporary {

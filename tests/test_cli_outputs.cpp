@@ -1,0 +1,141 @@
+// Issue 26, through the real program: an output is never one of the command's inputs nor another
+// of its outputs (src/output/distinct_files.hpp), refused with exit 2 before any work and with every
+// file left as it was. Every run is guarded (Scratch::runBounded: killed after 60 s) so that a
+// hang fails the test instead of CI.
+#include <doctest/doctest.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cli_support.hpp"
+
+using namespace particles::test;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Every file of the folder (recursively) with its bytes, to check that a refused command touched
+// nothing.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    const std::string name = fs::relative(e.path(), dir).string();
+    files[name] = e.is_symlink()        ? "-> " + fs::read_symlink(e.path()).string()
+                  : e.is_regular_file() ? slurp(e.path())
+                                        : std::string("(not a file)");
+  }
+  return files;
+}
+
+struct Refusal {
+  std::string args;
+  std::string err;  // all of stderr
+};
+
+// Each command exits 2 with its message, leaving the folder byte for byte as it was.
+void checkRefused(const Scratch& s, const std::vector<Refusal>& refusals) {
+  const auto before = snapshot(s.dir);
+  for (const Refusal& r : refusals) {
+    CAPTURE(r.args);
+    Scratch::Usage usage;
+    const Result result = s.runBounded(r.args, usage);
+    CHECK(result.code == 2);
+    CHECK(result.err == r.err);
+    CHECK(snapshot(s.dir) == before);
+  }
+}
+
+std::string sameFile(const std::string& a, const std::string& b, const char* what) {
+  return "error: " + a + "' and " + b + "' name the same file; an output never replaces " + what + "\n";
+}
+
+}  // namespace
+
+TEST_CASE("issue 26 row 8: --record is never another output or the scenario") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  s.write("x.csv", "a previous run's stats\n");
+  s.write("f.png", "a previous frame\n");
+  s.write("x.svg", "a previous figure\n");
+  REQUIRE(s.run("render s.yaml -o a0.mp4 --frames 0:5 --quiet").code == 0);
+  REQUIRE(s.run("render s.yaml -o a1.mp4 --frames 5: --quiet").code == 0);
+  checkRefused(
+      s, {
+             {"run s.yaml --quiet --stats x.csv --record x.csv",
+              sameFile("--stats 'x.csv", "--record 'x.csv", "another output")},
+             {"run s.yaml --quiet --trace x.csv --record ./x.csv",
+              sameFile("--trace 'x.csv", "--record './x.csv", "another output")},
+             {"run s.yaml --quiet --record s.yaml", sameFile("--record 's.yaml", "the scenario 's.yaml", "an input")},
+             {"render s.yaml --quiet -o f.png --at 0.5 --record f.png",
+              sameFile("-o 'f.png", "--record 'f.png", "another output")},
+             {"stability s.yaml --quiet --integrators euler --max-dt 0.02 --csv x.csv --record x.csv",
+              sameFile("--csv 'x.csv", "--record 'x.csv", "another output")},
+             {"stability s.yaml --quiet --integrators euler --max-dt 0.02 --plot x.svg --record x.svg",
+              sameFile("--plot 'x.svg", "--record 'x.svg", "another output")},
+             {"concat a0.mp4 a1.mp4 -o j.mp4 --record a0.mp4",
+              sameFile("--record 'a0.mp4", "the segment 'a0.mp4", "an input")},
+             // The check this replaces compared --stats and --trace as text.
+             {"run s.yaml --quiet --stats x.csv --trace ./x.csv",
+              sameFile("--stats 'x.csv", "--trace './x.csv", "another output")},
+         });
+}
+
+TEST_CASE("issue 26 row 9: concat -o never names a segment, by its name, through .. or a link") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  REQUIRE(s.run("render s.yaml -o a0.mp4 --frames 0:5 --quiet").code == 0);
+  REQUIRE(s.run("render s.yaml -o a1.mp4 --frames 5: --quiet").code == 0);
+  fs::create_directory(s.dir / "d");
+  fs::create_symlink("a0.mp4", s.dir / "link.mp4");
+  checkRefused(
+      s, {
+             {"concat a0.mp4 a1.mp4 -o a0.mp4 --quiet", sameFile("-o 'a0.mp4", "the segment 'a0.mp4", "an input")},
+             {"concat a0.mp4 a1.mp4 -o ./d/../a1.mp4 --quiet",
+              sameFile("-o './d/../a1.mp4", "the segment 'a1.mp4", "an input")},
+             {"concat a0.mp4 a1.mp4 -o link.mp4 --quiet", sameFile("-o 'link.mp4", "the segment 'a0.mp4", "an input")},
+         });
+  // Joining a segment to itself reads it twice and writes elsewhere: allowed.
+  const Result twice = s.run("concat a0.mp4 a0.mp4 -o j.mp4 --quiet");
+  CHECK_MESSAGE(twice.code == 0, twice.err);
+}
+
+TEST_CASE("issue 26 row 13: compare --diff never replaces the frames it compares") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  REQUIRE(s.run("render s.yaml -o a.png --at 0.2 --quiet").code == 0);
+  REQUIRE(s.run("render s.yaml -o b.png --at 0.3 --quiet").code == 0);
+  fs::create_symlink("b.png", s.dir / "link.png");
+  checkRefused(
+      s,
+      {
+          {"compare a.png b.png --diff a.png", sameFile("--diff 'a.png", "the expected frame 'a.png", "an input")},
+          {"compare a.png b.png --diff link.png", sameFile("--diff 'link.png", "the actual frame 'b.png", "an input")},
+      });
+}
+
+TEST_CASE("issue 26 row 14: gather's outputs are never its job table, a record or each other; plot's never its CSV") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  s.write("sweep.yaml",
+          "scenarios: [s.yaml]\ncommand: run\noptions: {duration: 0.2}\n"
+          "parameters:\n  - {key: dt, values: [0.01, 0.02]}\n");
+  REQUIRE(s.run("sweep sweep.yaml -o out --emit parallel --quiet").code == 0);
+  const std::string dir0 = fs::path("out/jobs/000000").string(), dir1 = fs::path("out/jobs/000001").string();
+  REQUIRE(fs::is_directory(s.dir / dir1));
+  s.write(dir1 + "/record.txt", "# particles job record\nversion: x\nexit: 3\n");
+  REQUIRE(s.run("run s.yaml --quiet --duration 0.2 --stats s.svg").code == 0);  // a stats CSV named .svg
+  checkRefused(
+      s, {
+             {"gather out -o out/jobs.csv --quiet",
+              sameFile("-o 'out/jobs.csv", "the job table 'out/jobs.csv", "an input")},
+             {"gather out -o r.png --plot r.png --quiet", sameFile("-o 'r.png", "--plot 'r.png", "another output")},
+             {"gather out -o " + dir1 + "/record.txt --quiet",
+              sameFile("-o '" + dir1 + "/record.txt", "the record '" + dir1 + "/record.txt", "an input")},
+             // A record not written yet, by the name its job will write it under.
+             {"gather out -o out/jobs/../" + dir0.substr(4) + "/record.txt --quiet",
+              sameFile("-o 'out/jobs/../" + dir0.substr(4) + "/record.txt", "the record '" + dir0 + "/record.txt",
+                       "an input")},
+             {"plot s.svg -o s.svg --quiet", sameFile("-o 's.svg", "the CSV 's.svg", "an input")},
+         });
+}
