@@ -1,6 +1,7 @@
 // Issue 26, through the real program: an output is never one of the command's inputs nor another
 // of its outputs (src/output/distinct_files.hpp), refused with exit 2 before any work and with every
-// file left as it was. Every run is guarded (Scratch::runBounded: killed after 60 s) so that a
+// file left as it was; options whose outputs cannot be written (a figure's extension, a --record
+// folder, --diff not a PNG) refused up front. Every run is guarded (Scratch::runBounded: killed after 60 s) so that a
 // hang fails the test instead of CI.
 #include <doctest/doctest.h>
 
@@ -137,5 +138,34 @@ TEST_CASE("issue 26 row 14: gather's outputs are never its job table, a record o
               sameFile("-o 'out/jobs/../" + dir0.substr(4) + "/record.txt", "the record '" + dir0 + "/record.txt",
                        "an input")},
              {"plot s.svg -o s.svg --quiet", sameFile("-o 's.svg", "the CSV 's.svg", "an input")},
+         });
+}
+
+TEST_CASE("issue 26: a figure's extension, a --record folder and --diff's format are refused before any work") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  REQUIRE(s.run("run s.yaml --quiet --duration 0.2 --stats good.csv").code == 0);
+  REQUIRE(s.run("render s.yaml -o a.png --at 0.2 --quiet").code == 0);
+  s.write("sweep.yaml",
+          "scenarios: [s.yaml]\ncommand: run\noptions: {duration: 0.2}\n"
+          "parameters:\n  - {key: dt, values: [0.01, 0.02]}\n");
+  REQUIRE(s.run("sweep sweep.yaml -o out --emit parallel --quiet").code == 0);
+  fs::create_directory(s.dir / "folder");
+  checkRefused(
+      s, {
+             {"plot good.csv -o x.txt --quiet", "error: -o x.txt: a figure is .svg, .png or .pdf, not '.txt'\n"},
+             {"gather out --plot x.txt --quiet", "error: --plot x.txt: a figure is .svg, .png or .pdf, not '.txt'\n"},
+             // Before the study runs and its --csv is written.
+             {"stability s.yaml --quiet --integrators euler --csv dt.csv --plot x.txt",
+              "error: --plot x.txt: a figure is .svg, .png or .pdf, not '.txt'\n"},
+             // Before the run, so that no --stats is left behind.
+             {"run s.yaml --quiet --stats st.csv --record folder",
+              "error: --record folder: a directory; a record is a regular file\n"},
+             {"run s.yaml --quiet --stats st.csv --record missing/record.txt",
+              "error: --record missing/record.txt: no folder missing\n"},
+             {"render s.yaml --quiet -o x.mp4 --record missing/record.txt",
+              "error: --record missing/record.txt: no folder missing\n"},
+             {"compare a.png a.png --diff x.svg",
+              "error: --diff x.svg: the picture of the differences is a PNG; name it .png\n"},
          });
 }

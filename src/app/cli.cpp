@@ -282,8 +282,9 @@ int Cli::dispatch(const std::vector<std::string>& args) {
   }
   if (!job.record.empty()) files.outputs.push_back({"--record", job.record});
   // Before anything runs, and before a record is read or written: a --record that names another of
-  // the command's files is refused without writing it.
+  // the command's files, a folder or a missing folder is refused without writing it.
   const int refused = runReportingErrors(context, [&] {
+    if (!job.record.empty()) requireRecordPath(job.record);
     output::requireDistinctFiles(files.outputs, files.inputs);
     return kOk;
   });

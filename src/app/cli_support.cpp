@@ -4,8 +4,11 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 
 #include "core/system.hpp"
+#include "plot/errors.hpp"
+#include "plot/figure.hpp"
 
 namespace particles::app {
 
@@ -31,6 +34,15 @@ scenario::SceneLimits sceneLimitsOf(const CommonOptions& o) {
 scenario::Scenario loadScenario(const CommonOptions& o) {
   const auto overrides = overridesOf(o);
   return scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB, sceneLimitsOf(o));
+}
+
+void requireFigurePath(const std::string& option, const std::string& path) {
+  try {
+    plot::formatForPath(path);
+  } catch (const plot::FigureError&) {
+    throw InputError(fmt::format("{} {}: a figure is .svg, .png or .pdf, not '{}'", option, path,
+                                 std::filesystem::path(path).extension().string()));
+  }
 }
 
 std::string plural(size_t n, const char* one, const char* many) {

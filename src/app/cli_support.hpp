@@ -20,6 +20,10 @@ scenario::SceneLimits sceneLimitsOf(const CommonOptions& o);
 // Loads the scenario with the overrides. Throws scenario::ScenarioError for bad input.
 scenario::Scenario loadScenario(const CommonOptions& o);
 
+// Refuses (InputError, exit 2) a figure path that plot/ cannot write (.svg, .png or .pdf), so that
+// a typo is found before the work whose result the figure shows, not after.
+void requireFigurePath(const std::string& option, const std::string& path);
+
 std::string plural(size_t n, const char* one, const char* many);
 // "625 particles, 0 rigid bodies, 1200 springs, …" for messages.
 std::string contents(const scenario::Scenario& s);

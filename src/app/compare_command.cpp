@@ -4,6 +4,9 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
 #include <stdexcept>
 
 #include "app/commands.hpp"
@@ -32,7 +35,8 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing when the frames match");
   cmd->footer(
-      "Exit codes: 0 the frames match, 1 they differ, 2 bad input (unreadable PNG, sizes differ),\n"
+      "Exit codes: 0 the frames match, 1 they differ, 2 bad input (unreadable PNG, sizes differ, a --diff\n"
+      "that is not .png or is one of the frames),\n"
       "3 the --diff picture could not be written. Defaults and how they were measured: golden/README.md.\n"
       "Examples:\n"
       "  particles compare golden/cloth_t2.5.png cloth.png\n"
@@ -41,6 +45,12 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
 }
 
 int compareCommand(const CompareOptions& o) {
+  std::string diffExtension = std::filesystem::path(o.diff).extension().string();
+  std::transform(diffExtension.begin(), diffExtension.end(), diffExtension.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (!o.diff.empty() && diffExtension != ".png") {
+    throw InputError(fmt::format("--diff {}: the picture of the differences is a PNG; name it .png", o.diff));
+  }
   render::Image expected, actual;
   try {
     expected = render::readPng(o.expected);

@@ -5,7 +5,8 @@
 // Exit codes: 0 the frames match; 1 they differ (more than --max-share of the pixels have a
 // channel differing by more than --threshold): the counterpart of a simulation failure, "the
 // result is wrong"; 2 bad input (an unreadable PNG, sizes that do not match, bad options);
-// 3 the --diff picture could not be written.
+// 3 the --diff picture could not be written. A --diff not named .png, or naming one of the
+// frames, is refused before anything is read (exit 2).
 
 #include <string>
 

@@ -22,7 +22,8 @@ CLI::App* addConcatCommand(CLI::App& app, ConcatOptions& o) {
   cmd->add_option("-o,--output", o.output, "The joined video (.mp4)")->required();
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
   cmd->footer(
-      "Exit codes: 0 joined, 2 bad input (a segment unreadable, or unlike the first), 3 the output failed.\n"
+      "Exit codes: 0 joined, 2 bad input (a segment unreadable or unlike the first, or -o naming a segment),\n"
+      "3 the output failed.\n"
       "Examples:\n"
       "  particles render scenarios/cloth.yaml -o part0.mp4 --frames 0:300\n"
       "  particles render scenarios/cloth.yaml -o part1.mp4 --frames 300:\n"

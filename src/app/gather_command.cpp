@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 
+#include "app/cli_support.hpp"
 #include "app/csv_table.hpp"
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
@@ -85,6 +86,7 @@ CLI::App* addGatherCommand(CLI::App& app, GatherOptions& o) {
 }
 
 int gatherCommand(const GatherOptions& o) {
+  if (!o.plot.empty() && o.plot != "none") requireFigurePath("--plot", o.plot);
   const std::filesystem::path dir = o.outDir;
   const std::filesystem::path jobsFile = dir / "jobs.csv";
   std::string text;
