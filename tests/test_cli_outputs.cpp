@@ -1,9 +1,13 @@
 // Issue 26, through the real program: an output is never one of the command's inputs nor another
 // of its outputs (src/output/distinct_files.hpp), refused with exit 2 before any work and with every
 // file left as it was; options whose outputs cannot be written (a figure's extension, a --record
-// folder, --diff not a PNG) refused up front. Every run is guarded (Scratch::runBounded: killed after 60 s) so that a
+// folder, --diff not a PNG) refused up front; outputs at a FIFO that no process reads refused at
+// once instead of hanging in open(). Every run is guarded (Scratch::runBounded: killed after 60 s) so that a
 // hang fails the test instead of CI.
 #include <doctest/doctest.h>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <map>
 #include <string>
@@ -45,6 +49,12 @@ void checkRefused(const Scratch& s, const std::vector<Refusal>& refusals) {
     CHECK(result.err == r.err);
     CHECK(snapshot(s.dir) == before);
   }
+}
+
+struct stat lstatOf(const fs::path& path) {
+  struct stat st {};
+  REQUIRE_MESSAGE(::lstat(path.c_str(), &st) == 0, path << ": " << std::strerror(errno));
+  return st;
 }
 
 std::string sameFile(const std::string& a, const std::string& b, const char* what) {
@@ -168,4 +178,53 @@ TEST_CASE("issue 26: a figure's extension, a --record folder and --diff's format
              {"compare a.png a.png --diff x.svg",
               "error: --diff x.svg: the picture of the differences is a PNG; name it .png\n"},
          });
+}
+
+TEST_CASE("issue 26 row 15: an output at a FIFO nobody reads is refused at once, and stays a FIFO") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  REQUIRE(s.run("run s.yaml --quiet --duration 0.2 --stats good.csv").code == 0);
+  s.write("sweep.yaml",
+          "scenarios: [s.yaml]\ncommand: run\noptions: {duration: 0.2}\n"
+          "parameters:\n  - {key: dt, values: [0.01, 0.02]}\n");
+  fs::create_directory(s.dir / "out");
+  for (const char* fifo : {"k.mp4", "k.csv", "k.svg", "out/jobs.csv", "record.txt"}) {
+    REQUIRE(::mkfifo((s.dir / fifo).c_str(), 0600) == 0);
+  }
+  struct Case {
+    std::string args;
+    int code;
+    std::string err;
+  };
+  const Case cases[] = {
+      {"render s.yaml -o k.mp4 --quiet", 3, "error: cannot write k.mp4: it is a FIFO and no process is reading it\n"},
+      {"run s.yaml --quiet --stats k.csv", 3, "error: cannot write k.csv: it is a FIFO and no process is reading it\n"},
+      {"plot good.csv -o k.svg --quiet", 3, "error: cannot write k.svg: it is a FIFO and no process is reading it\n"},
+      {"sweep sweep.yaml -o out --emit parallel --quiet", 3,
+       "error: cannot write " + (s.dir / "out/jobs.csv").string() + ": it is a FIFO and no process is reading it\n"},
+      {"run s.yaml --quiet --record record.txt", 2,
+       "error: --record record.txt: not a regular file; a record is a regular file\n"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.args);
+    Scratch::Usage usage;
+    const Result r = s.runBounded(c.args, usage);  // the old program waited in open() until killed
+    CHECK(r.code == c.code);
+    CHECK(r.err == c.err);
+  }
+  for (const char* fifo : {"k.mp4", "k.csv", "k.svg", "out/jobs.csv", "record.txt"}) {
+    CAPTURE(fifo);
+    CHECK(S_ISFIFO(lstatOf(s.dir / fifo).st_mode));
+  }
+
+  // With a reader there, a FIFO is written as before: here the test holds the read end.
+  const int reader = ::open((s.dir / "k.csv").c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  REQUIRE(reader >= 0);
+  const Result r = s.run("run s.yaml --quiet --duration 0.2 --stats k.csv");
+  CHECK_MESSAGE(r.code == 0, r.err);
+  char buffer[4096];
+  const ssize_t n = ::read(reader, buffer, sizeof buffer);
+  ::close(reader);
+  REQUIRE(n > 0);
+  CHECK(std::string(buffer, size_t(n)) == slurp(s.dir / "good.csv"));
 }
