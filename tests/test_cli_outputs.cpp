@@ -2,15 +2,20 @@
 // of its outputs (src/output/distinct_files.hpp), refused with exit 2 before any work and with every
 // file left as it was; options whose outputs cannot be written (a figure's extension, a --record
 // folder, --diff not a PNG) refused up front; outputs at a FIFO that no process reads refused at
-// once instead of hanging in open(). Every run is guarded (Scratch::runBounded: killed after 60 s) so that a
-// hang fails the test instead of CI.
+// once instead of hanging in open(); and SIGTERM ending a render whose writes block. Every run is
+// guarded (Scratch::runBounded: killed after 60 s) so that a hang fails the test instead of CI.
 #include <doctest/doctest.h>
 #include <fcntl.h>
+#include <sys/ioctl.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <map>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli_support.hpp"
@@ -227,4 +232,61 @@ TEST_CASE("issue 26 row 15: an output at a FIFO nobody reads is refused at once,
   ::close(reader);
   REQUIRE(n > 0);
   CHECK(std::string(buffer, size_t(n)) == slurp(s.dir / "good.csv"));
+}
+
+// A render writing --trace into a FIFO whose reader holds it open but never reads: once the pipe
+// is full every write waits, and the old program, whose handler only set a flag that the blocked
+// frame loop never saw again, could be stopped by SIGKILL alone.
+TEST_CASE("issue 26 row 15: SIGTERM ends a render whose output blocks") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  const fs::path fifo = s.dir / "trace.csv";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const int held = ::open(fifo.c_str(), O_RDWR | O_CLOEXEC);  // a reader that never reads
+  REQUIRE(held >= 0);
+  const int capacity = ::fcntl(held, F_GETPIPE_SZ);
+  REQUIRE(capacity > 0);
+
+  const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    if (::chdir(s.dir.c_str()) != 0) ::_exit(127);
+    const int err = ::open("stderr.txt", O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (err < 0 || ::dup2(err, STDERR_FILENO) < 0) ::_exit(127);
+    ::execl(exe.c_str(), "particles", "render", "s.yaml", "-o", "x.mp4", "--quiet", "--fps", "1000", "--duration", "30",
+            "--trace", "trace.csv", static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // Hang guards only: the test waits for the pipe to fill, then for the exit.
+  const auto guard = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  int queued = 0, status = 0;
+  pid_t waited = 0;
+  while (queued < capacity && std::chrono::steady_clock::now() < guard &&
+         (waited = ::waitpid(pid, &status, WNOHANG)) == 0) {
+    REQUIRE(::ioctl(held, FIONREAD, &queued) == 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  REQUIRE_MESSAGE(waited == 0, "the render ended before its output blocked: " << slurp(s.dir / "stderr.txt"));
+  REQUIRE(queued == capacity);
+  ::kill(pid, SIGTERM);
+  while ((waited = ::waitpid(pid, &status, WNOHANG)) == 0 && std::chrono::steady_clock::now() < guard) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (waited == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  ::close(held);
+  CHECK_MESSAGE(waited == pid, "still running 60 s after SIGTERM");
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 128 + SIGTERM);
+  // Ended where it was blocked, by the grace period's alarm; or, had the frame loop seen the
+  // signal between two blocking writes, by the loop (and the alarm, should closing --trace block).
+  const std::string err = slurp(s.dir / "stderr.txt");
+  CHECK_MESSAGE((err.find("particles: not stopped within 3 s of the signal") != std::string::npos ||
+                 err.find("s.yaml: interrupted at frame") != std::string::npos),
+                err);
+  CHECK(S_ISFIFO(lstatOf(fifo).st_mode));
+  CHECK_FALSE(fs::exists(s.dir / "x.mp4"));
 }
