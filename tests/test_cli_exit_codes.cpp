@@ -76,9 +76,12 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
       {"render s.yaml -o out.mp4 --theme neon", 2, "error: --theme: expected dark or light, not 'neon'\n"},
       {"render s.yaml -o out.mp4 --size 65x48", 2,
        "error: MP4 (H.264, yuv420p) needs an even width and height; 65x48 is not (try 66x48, or write PNG frames)\n"},
-      {"run s.yaml --stats x.csv --trace x.csv", 2, "error: --stats and --trace name the same file 'x.csv'\n"},
+      {"run s.yaml --stats x.csv --trace x.csv", 2,
+       "error: --stats 'x.csv' and --trace 'x.csv' name the same file; an output never replaces another output\n"},
+      {"plot good.csv -o out.txt", 2, "error: -o out.txt: a figure is .svg, .png or .pdf, not '.txt'\n"},
       {"stability s.yaml --integrators leapfrog", 2,
-       "error: --integrators: unknown integrator 'leapfrog' (expected euler, midpoint, rk4, symplectic_euler, verlet or "
+       "error: --integrators: unknown integrator 'leapfrog' (expected euler, midpoint, rk4, symplectic_euler, verlet "
+       "or "
        "backward_euler)\n"},
       {"plot bad.csv -o out.svg", 2,
        "error: bad.csv:1:10: the header must be exactly 't,kinetic,potential,total,constraint_error,penetration'\n"},
@@ -87,8 +90,8 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
       {"run s.yaml --stats blocker/x.csv", 3, "error: cannot write blocker/x.csv: Not a directory\n"},
       {"render s.yaml -o blocker/frames/ --quiet", 3,
        "error: cannot create directory blocker/frames/: Not a directory\n"},
-      {"plot good.csv -o out.txt", 3, "error: cannot write figure out.txt: unknown format '.txt' (use .svg, .png or .pdf)\n"},
-      {"compare a.png a.png --quiet --diff blocker/d.png", 3, "error: --diff: cannot write blocker/d.png: Not a directory\n"},
+      {"compare a.png a.png --quiet --diff blocker/d.png", 3,
+       "error: --diff: cannot write blocker/d.png: Not a directory\n"},
   };
   checkCases(s, cases);
 }

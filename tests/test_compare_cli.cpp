@@ -169,11 +169,11 @@ TEST_CASE("compare cli: --diff writes the diff picture, whole or not at all (exi
   CHECK(r.code == 3);
   CHECK(contains(r.err, "--diff"));
   CHECK(contains(r.err, "no/such/dir/d.png"));
-  fs::create_directory(p.dir / "adir");
-  r = runParticles(p.dir, "compare expected.png actual.png --diff adir");
+  fs::create_directory(p.dir / "adir.png");
+  r = runParticles(p.dir, "compare expected.png actual.png --diff adir.png");
   CHECK(r.code == 3);
-  CHECK(p.dir.entries() == std::set<std::string>{"actual.png", "adir", "d.png", "expected.png"});
-  CHECK(fs::is_empty(p.dir / "adir"));
+  CHECK(p.dir.entries() == std::set<std::string>{"actual.png", "adir.png", "d.png", "expected.png"});
+  CHECK(fs::is_empty(p.dir / "adir.png"));
 }
 
 TEST_CASE("compare cli: --help documents the exit codes and the defaults") {

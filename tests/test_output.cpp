@@ -1,4 +1,5 @@
-// The output room (src/output/): what PendingOutput and OutputFile do with what is at the
+// The output room (src/output/): the rule that an output is never an input or another output
+// (distinct_files.hpp, issue 26); what PendingOutput and OutputFile do with what is at the
 // destination (nothing, a regular file, a device, a FIFO, a link, a directory, a socket), what is on
 // disk while writing, after commit, after discard and after a SIGKILL, and the removal of
 // temporaries left by killed runs. Issue 13: never clobber what is not ours.
@@ -19,6 +20,7 @@
 #include <thread>
 
 #include "cli_support.hpp"
+#include "output/distinct_files.hpp"
 #include "output/output_file.hpp"
 #include "output/partial_names.hpp"
 #include "output/pending_output.hpp"
@@ -430,4 +432,65 @@ TEST_CASE("output: stale temporaries are removed only by their exact pattern, de
   CHECK(slurp(s.dir / "notes.txt") == "keep");
   CHECK(removeStalePartials(s.dir, "x.mp4") == 0);
   CHECK(removeStalePartials(s.dir, "y.mp4") == 1);
+}
+
+// The rule of distinct_files.hpp. Each case is a pair a comparison of the names as given would
+// let through; all paths are absolute (the test does not chdir), `..` and links do the rest.
+TEST_CASE("output: an output that is an input or another output is refused, however it is named") {
+  Scratch s;
+  s.write("a.csv", "input");
+  fs::create_directory(s.dir / "d");
+  fs::create_directory(s.dir / "real");
+  fs::create_directory(s.dir / "real" / "inner");
+  s.write("real/x.csv", "x");
+  fs::create_symlink("a.csv", s.dir / "link.csv");
+  fs::create_symlink("real/inner", s.dir / "sub");  // sub/.. is real/, not the scratch folder
+  fs::create_hard_link(s.dir / "a.csv", s.dir / "hard.csv");
+  fs::create_symlink("new.csv", s.dir / "dangling.csv");
+  const fs::path a = s.dir / "a.csv";
+
+  auto refused = [](const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs) {
+    try {
+      requireDistinctFiles(outputs, inputs);
+    } catch (const SameFileError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+
+  SUBCASE("an existing file, through .., a link, a hard link or a linked folder's ..") {
+    for (const fs::path& other : {s.dir / "d" / ".." / "a.csv", s.dir / "." / "link.csv", s.dir / "hard.csv"}) {
+      CAPTURE(other);
+      CHECK(refused({{"--record", other}}, {{"the scenario", a}}) ==
+            "--record '" + other.string() + "' and the scenario '" + a.string() +
+                "' name the same file; an output never replaces an input");
+      CHECK(refused({{"--stats", a}, {"--trace", other}}, {}) ==
+            "--stats '" + a.string() + "' and --trace '" + other.string() +
+                "' name the same file; an output never replaces another output");
+    }
+    CHECK(!refused({{"-o", s.dir / "sub" / ".." / "x.csv"}}, {{"input", s.dir / "real" / "x.csv"}}).empty());
+    CHECK(refused({{"-o", s.dir / "sub" / ".." / "x.csv"}}, {{"input", s.dir / "x.csv"}}).empty());
+  }
+  SUBCASE("outputs that do not exist yet, by the name they would be created under") {
+    const fs::path made = s.dir / "new.csv";
+    for (const fs::path& other :
+         {s.dir / "d" / ".." / "new.csv", s.dir / "dangling.csv", s.dir / "real" / ".." / "new.csv"}) {
+      CAPTURE(other);
+      CHECK(!refused({{"--stats", made}, {"--record", other}}, {}).empty());
+    }
+    CHECK(!refused({{"-o", s.dir / "sub" / ".." / "y.csv"}, {"--plot", s.dir / "real" / "y.csv"}}, {}).empty());
+    CHECK(!refused({{"-o", s.dir / "frames/"}, {"--record", s.dir / "frames"}}, {}).empty());
+    // An input that is not there yet (a record a job has not written) is compared the same way.
+    CHECK(!refused({{"-o", s.dir / "d" / "r.txt"}}, {{"record", s.dir / "real" / ".." / "d" / "r.txt"}}).empty());
+  }
+  SUBCASE("different files, devices and options not given pass") {
+    CHECK(refused({{"--stats", a}, {"--trace", s.dir / "real" / "x.csv"}, {"--record", s.dir / "new.csv"}},
+                  {{"the scenario", s.dir / "d" / "s.yaml"}}) == "");
+    CHECK(refused({{"--stats", "/dev/null"}, {"--trace", "/dev/null"}}, {}) == "");
+    CHECK(refused({{"--stats", a}, {"--trace", ""}}, {{"the scenario", ""}}) == "");
+    CHECK(refused({{"-o", s.dir / "j.mp4"}}, {{"segment", a}, {"segment", s.dir / "link.csv"}}) == "");
+  }
+  CHECK(sameFile(s.dir / "link.csv", s.dir / "hard.csv"));
+  CHECK(!sameFile(s.dir / "link.csv", s.dir / "real" / "x.csv"));
+  CHECK(slurp(a) == "input");
 }

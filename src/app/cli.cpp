@@ -239,6 +239,26 @@ Cli::Cli() {
   runJobCmd = addRunJobCommand(app, runJob);
 }
 
+CommandFiles Cli::commandFiles() const {
+  const output::NamedFile scenario{"the scenario", common.scenario};
+  if (runCmd->parsed()) return {{{"--stats", run.stats}, {"--trace", run.trace}}, {scenario}};
+  if (renderCmd->parsed()) {
+    return {{{"-o", render.output}, {"--stats", render.stats}, {"--trace", render.trace}}, {scenario}};
+  }
+  if (stabilityCmd->parsed()) return {{{"--csv", stability.csv}, {"--plot", stability.plot}}, {scenario}};
+  if (plotCmd->parsed()) return {{{"-o", plot.output}}, {{"the CSV", plot.input}, {"--scenario", plot.scenario}}};
+  if (compareCmd->parsed()) {
+    return {{{"--diff", compare.diff}},
+            {{"the expected frame", compare.expected}, {"the actual frame", compare.actual}}};
+  }
+  if (concatCmd->parsed()) {
+    CommandFiles files{{{"-o", concat.output}}, {}};
+    for (const std::string& segment : concat.segments) files.inputs.push_back({"the segment", segment});
+    return files;
+  }
+  return {};
+}
+
 int Cli::dispatch(const std::vector<std::string>& args) {
   const ErrorContext context{.scenario = common.scenario};
   auto command = [&] {
@@ -254,15 +274,22 @@ int Cli::dispatch(const std::vector<std::string>& args) {
     if (runJobCmd->parsed()) return runJobCommand(runJob);
     return runCommand(common, run);
   };
+  CommandFiles files = commandFiles();
+  std::vector<std::string> outputs;  // what a job record lists, before --record joins them
+  for (const output::NamedFile& f : files.outputs) {
+    if (!f.path.empty()) outputs.push_back(f.path.string());
+  }
+  if (!job.record.empty()) files.outputs.push_back({"--record", job.record});
+  // Before anything runs, and before a record is read or written: a --record that names another of
+  // the command's files, a folder or a missing folder is refused without writing it.
+  const int refused = runReportingErrors(context, [&] {
+    if (!job.record.empty()) requireRecordPath(job.record);
+    output::requireDistinctFiles(files.outputs, files.inputs);
+    return kOk;
+  });
+  if (refused != kOk) return refused;
   if (job.record.empty()) return runReportingErrors(context, command);
-
   // A sweep's job: skipped when its record says it is done, recorded whatever its outcome.
-  std::vector<std::string> outputs;
-  if (runCmd->parsed()) outputs = {run.stats, run.trace};
-  if (renderCmd->parsed()) outputs = {render.output};
-  if (stabilityCmd->parsed()) outputs = {stability.csv, stability.plot};
-  if (concatCmd->parsed()) outputs = {concat.output};
-  std::erase(outputs, std::string());
   if (!concatCmd->parsed()) job.maxInputMiB = common.maxInputMiB;
   return runRecordedJob(job, args, outputs, context, command);
 }

@@ -14,8 +14,15 @@
 #include "app/job_command.hpp"
 #include "app/job_record.hpp"
 #include "app/sweep_command.hpp"
+#include "output/distinct_files.hpp"
 
 namespace particles::app {
+
+// The files a command writes and reads, as its command line names them (empty: an option not
+// given). Checked against each other before the command runs (output/distinct_files.hpp).
+struct CommandFiles {
+  std::vector<output::NamedFile> outputs, inputs;
+};
 
 struct Cli {
   Cli();
@@ -25,6 +32,9 @@ struct Cli {
   // Runs the parsed subcommand (with its job record, when it has --record) and returns the exit
   // code; errors are printed and mapped by runReportingErrors. `args` is argv without argv[0].
   int dispatch(const std::vector<std::string>& args);
+  // The parsed command's files, --record aside. gather has none here: its inputs are the records
+  // its job table lists, which it checks once it has read the table.
+  CommandFiles commandFiles() const;
 
   CLI::App app{"particles: 2D particle systems and rigid bodies after Witkin & Baraff", "particles"};
   CommonOptions common;

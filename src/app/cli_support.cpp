@@ -4,8 +4,11 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 
 #include "core/system.hpp"
+#include "plot/errors.hpp"
+#include "plot/figure.hpp"
 
 namespace particles::app {
 
@@ -37,6 +40,15 @@ void addMaxInputOption(CLI::App& command, std::uintmax_t& mebibytes, const std::
   command.add_option("--max-input", mebibytes, fmt::format("Refuse {} larger than this, MiB", what))
       ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))
       ->capture_default_str();
+}
+
+void requireFigurePath(const std::string& option, const std::string& path) {
+  try {
+    plot::formatForPath(path);
+  } catch (const plot::FigureError&) {
+    throw InputError(fmt::format("{} {}: a figure is .svg, .png or .pdf, not '{}'", option, path,
+                                 std::filesystem::path(path).extension().string()));
+  }
 }
 
 std::string plural(size_t n, const char* one, const char* many) {

@@ -22,6 +22,10 @@ scenario::SceneLimits sceneLimitsOf(const CommonOptions& o);
 // Loads the scenario with the overrides. Throws scenario::ScenarioError for bad input.
 scenario::Scenario loadScenario(const CommonOptions& o);
 
+// Refuses (InputError, exit 2) a figure path that plot/ cannot write (.svg, .png or .pdf), so that
+// a typo is found before the work whose result the figure shows, not after.
+void requireFigurePath(const std::string& option, const std::string& path);
+
 std::string plural(size_t n, const char* one, const char* many);
 
 // --max-input MIB, from 1 MiB to 1 TiB, its default shown: every command that reads files takes it.

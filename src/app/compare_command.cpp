@@ -4,7 +4,10 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cctype>
 #include <cstddef>
+#include <filesystem>
 #include <new>
 #include <stdexcept>
 
@@ -35,8 +38,9 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing when the frames match");
   cmd->footer(
       "Exit codes: 0 the frames match, 1 they differ, 2 bad input (unreadable PNG, sizes differ: read from\n"
-      "the headers, nothing decoded), 3 the --diff picture could not be written or memory ran out (two\n"
-      "16384x16384 frames decode to 2 GiB). Defaults and how they were measured: golden/README.md.\n"
+      "the headers, nothing decoded; a --diff that is not .png or is one of the frames), 3 the --diff picture\n"
+      "could not be written or memory ran out (two 16384x16384 frames decode to 2 GiB). Defaults and how they\n"
+      "were measured: golden/README.md.\n"
       "Examples:\n"
       "  particles compare golden/cloth_t2.5.png cloth.png\n"
       "  particles compare golden/cloth_t2.5.png cloth.png --diff cloth_diff.png --threshold 16 --max-share 0.01\n");
@@ -44,6 +48,12 @@ CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
 }
 
 int compareCommand(const CompareOptions& o) {
+  std::string diffExtension = std::filesystem::path(o.diff).extension().string();
+  std::transform(diffExtension.begin(), diffExtension.end(), diffExtension.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  if (!o.diff.empty() && diffExtension != ".png") {
+    throw InputError(fmt::format("--diff {}: the picture of the differences is a PNG; name it .png", o.diff));
+  }
   // The sizes come from the two headers, before either frame is decoded: frames of different sizes
   // are told apart without their pixels (a 16384² PNG decodes to 1 GiB).
   render::Image expected, actual;

@@ -5,8 +5,9 @@
 // Exit codes: 0 the frames match; 1 they differ (more than --max-share of the pixels have a
 // channel differing by more than --threshold): the counterpart of a simulation failure, "the
 // result is wrong"; 2 bad input (an unreadable PNG, sizes that do not match, read from the two
-// headers before either is decoded, bad options); 3 the --diff picture could not be written, or
-// memory ran out (the frames decode to 4 bytes a pixel each, the --diff picture as much again).
+// headers before either is decoded, bad options; a --diff not named .png, or naming one of the
+// frames, refused before anything is read); 3 the --diff picture could not be written, or memory
+// ran out (the frames decode to 4 bytes a pixel each, the --diff picture as much again).
 
 #include <string>
 

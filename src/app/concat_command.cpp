@@ -23,7 +23,8 @@ CLI::App* addConcatCommand(CLI::App& app, ConcatOptions& o) {
   cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
   cmd->footer(
       "Exit codes: 0 joined, 2 bad input (a segment unreadable, truncated or damaged: every packet is\n"
-      "decoded on its way; or unlike the first), 3 the output failed. Segments are opened one at a time.\n"
+      "decoded on its way; or unlike the first; or -o naming a segment), 3 the output failed. Segments are\n"
+      "opened one at a time.\n"
       "Examples:\n"
       "  particles render scenarios/cloth.yaml -o part0.mp4 --frames 0:300\n"
       "  particles render scenarios/cloth.yaml -o part1.mp4 --frames 300:\n"

@@ -3,8 +3,8 @@
 // (`particles render --frames A:B`) by stream copy (render/mp4_concat.hpp).
 //
 // Exit codes: 0 joined; 2 bad input (a segment that cannot be read or does not decode whole, or
-// segments that differ in size, frame rate, codec or codec header: the message names the file);
-// 3 the output could not be written.
+// segments that differ in size, frame rate, codec or codec header: the message names the file; -o
+// or --record naming a segment, refused before anything is read); 3 the output could not be written.
 
 #include <string>
 #include <vector>

@@ -28,9 +28,6 @@ double CsvRecorder::nominalTime(double t, double fps) {
 std::unique_ptr<CsvRecorder> CsvRecorder::open(const System& system, double fps, const std::string& statsPath,
                                                const std::string& tracePath,
                                                const std::vector<std::string>& traceOnly) {
-  if (!statsPath.empty() && statsPath == tracePath) {
-    throw InputError(fmt::format("--stats and --trace name the same file '{}'", statsPath));
-  }
   std::unique_ptr<CsvRecorder> owner(new CsvRecorder());
   CsvRecorder& r = *owner;
   r.fps_ = fps;

@@ -18,8 +18,9 @@ namespace particles::app {
 
 class CsvRecorder {
  public:
-  // Throws InputError when the options are inconsistent: the same file for both, or a
-  // --trace-only name nothing in the system has; OutputError when a file cannot be created.
+  // Throws InputError for a --trace-only name nothing in the system has; OutputError when a file
+  // cannot be created. That the two are not one file is the program's check, before the command
+  // runs (Cli::dispatch, output/distinct_files.hpp).
   // fps: the rate of the ticks (the scenario's, or render --fps).
   static std::unique_ptr<CsvRecorder> open(const System& system, double fps, const std::string& statsPath,
                                          const std::string& tracePath, const std::vector<std::string>& traceOnly);

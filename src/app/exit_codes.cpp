@@ -8,6 +8,7 @@
 #include <typeinfo>
 
 #include "core/solver.hpp"
+#include "output/distinct_files.hpp"
 #include "output/output_error.hpp"
 #include "plot/errors.hpp"
 #include "render/errors.hpp"
@@ -34,6 +35,8 @@ int runReportingErrors(const ErrorContext& context, const std::function<int()>& 
   } catch (const InputError& e) {
     return report(kBadInput, error(e));
   } catch (const plot::CsvError& e) {
+    return report(kBadInput, error(e));
+  } catch (const output::SameFileError& e) {  // an output that is an input or another output
     return report(kBadInput, error(e));
   } catch (const output::OutputError& e) {
     return report(kOutputFailed, error(e));

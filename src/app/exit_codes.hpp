@@ -3,7 +3,8 @@
 // them through runReportingErrors, the one place that prints an error and picks its code:
 //   1  the simulation failed    SimulationError, SimulationFailure   "SCENARIO: error: …"
 //   2  bad input or usage       scenario::ScenarioError              its own "FILE:LINE:COL: error: …"
-//                               InputError, plot::CsvError           "error: …"
+//                               InputError, plot::CsvError,
+//                               output::SameFileError                "error: …"
 //   3  an output failed         output::OutputError, render::RenderError,
 //                               plot::FigureError                    "error: …"
 //      memory ran out           std::bad_alloc (render::OutOfMemory says for what)

@@ -17,6 +17,7 @@
 #include "app/job_table.hpp"
 #include "app/sweep_command.hpp"
 #include "input/text_file.hpp"
+#include "output/distinct_files.hpp"
 #include "output/output_file.hpp"
 #include "plot/figure.hpp"
 
@@ -89,10 +90,23 @@ CLI::App* addGatherCommand(CLI::App& app, GatherOptions& o) {
 }
 
 int gatherCommand(const GatherOptions& o) {
+  if (!o.plot.empty() && o.plot != "none") requireFigurePath("--plot", o.plot);
   const std::filesystem::path dir = o.outDir;
   const JobTable table = readJobTable(dir, o.maxInputMiB);
   const std::vector<std::string>& parameters = table.parameters;
   const size_t stageCol = JobTable::kStage, scenarioCol = JobTable::kScenario, segmentCol = table.segmentColumn();
+
+  // The outputs are never the table or a record (output/distinct_files.hpp): checked before
+  // anything is read further or written.
+  const std::filesystem::path csvPath = o.output.empty() ? dir / "results.csv" : std::filesystem::path(o.output);
+  const std::filesystem::path plotPath = o.plot == "none" ? std::filesystem::path()
+                                         : o.plot.empty() ? dir / "results.svg"
+                                                          : std::filesystem::path(o.plot);
+  {
+    std::vector<output::NamedFile> inputs = {{"the job table", dir / "jobs.csv"}};
+    for (const auto& job : table.rows) inputs.push_back({"the record", dir / job[table.dirColumn()] / "record.txt"});
+    output::requireDistinctFiles({{"-o", csvPath}, {"--plot", plotPath}}, inputs);
+  }
 
   std::vector<GatheredRow> rows;
   std::vector<std::string> keys;                     // headline keys in order of first appearance
@@ -118,7 +132,6 @@ int gatherCommand(const GatherOptions& o) {
 
   // results.csv
   size_t ok = 0, failed = 0, notRun = 0;
-  const std::filesystem::path csvPath = o.output.empty() ? dir / "results.csv" : std::filesystem::path(o.output);
   {
     output::OutputFile csv(csvPath);
     std::vector<std::string> head = {"index", "stage", "scenario"};
@@ -231,7 +244,7 @@ int gatherCommand(const GatherOptions& o) {
                                  parameters[varying.front()]);
       figure.heightPx = int(std::max<size_t>(1, chart.panels.size())) * 300 + 140;
       figure.chart = std::move(chart);
-      figurePath = o.plot.empty() ? dir / "results.svg" : std::filesystem::path(o.plot);
+      figurePath = plotPath;
       plot::writeFigure(figure, figurePath);
     }
   }

@@ -310,6 +310,19 @@ bool jobDone(const std::optional<JobRecord>& r, const std::string& command, std:
   return true;
 }
 
+void requireRecordPath(const std::filesystem::path& record) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(record, ec);  // links followed, as the write follows them
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw InputError(fmt::format("--record {}: {}; a record is a regular file", record.string(),
+                                 std::filesystem::is_directory(status) ? "a directory" : "not a regular file"));
+  }
+  const std::filesystem::path folder = record.has_parent_path() ? record.parent_path() : ".";
+  if (!std::filesystem::is_directory(folder, ec)) {
+    throw InputError(fmt::format("--record {}: no folder {}", record.string(), folder.string()));
+  }
+}
+
 int runRecordedJob(const JobOptions& options, const std::vector<std::string>& args,
                    const std::vector<std::string>& outputs, const ErrorContext& context,
                    const std::function<int()>& command) {

@@ -75,6 +75,10 @@ bool jobDone(const std::optional<JobRecord>& record, const std::string& command,
 // The version jobs are recorded with.
 std::string programVersion();
 
+// Refuses (InputError) a --record that could not be written, before the job runs: a path that is
+// a directory, a FIFO or anything else not a regular file, or one in a folder that does not exist.
+void requireRecordPath(const std::filesystem::path& record);
+
 // Runs `command` as a recorded job (see the top of this file) and returns its exit code.
 int runRecordedJob(const JobOptions& options, const std::vector<std::string>& args,
                    const std::vector<std::string>& outputs, const ErrorContext& context,

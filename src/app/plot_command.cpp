@@ -41,6 +41,7 @@ plot::StatsFigureContext contextOf(const PlotOptions& options) {
 }  // namespace
 
 int plotCommand(const PlotOptions& options) {
+  requireFigurePath("-o", options.output);
   const plot::StatsTable table = plot::readStatsCsv(options.input, options.maxInputMiB);  // throws CsvError (exit 2)
   plot::Figure figure = plot::statsFigure(table, contextOf(options));
   if (!options.title.empty()) figure.title = options.title;

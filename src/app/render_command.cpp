@@ -9,6 +9,7 @@
 // SIGINT/SIGTERM) as its hooks and reports the outcome. Outputs appear only when complete, and a
 // signal or any failure removes them (exit 128 + signal, or the codes of exit_codes.hpp).
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,9 +19,9 @@
 #include <utility>
 
 #include "app/cli_support.hpp"
-#include "app/job_record.hpp"
 #include "app/csv_recorder.hpp"
 #include "app/gl_options.hpp"
+#include "app/job_record.hpp"
 #include "core/solver.hpp"
 #include "core/system.hpp"
 #include "plot/errors.hpp"
@@ -35,8 +36,26 @@ namespace particles::app {
 
 namespace {
 
+// SIGINT and SIGTERM stop a video render between frames: the handler sets a flag the frame loop
+// polls (render/frame_writer.hpp), and the render removes what it wrote. A render can also be
+// stuck where no loop polls: writing to a pipe or FIFO whose reader has stopped reading (a write
+// restarts after the handler returns), or a filesystem that hangs. So the first signal also starts
+// a grace period; a render that has not stopped by its end exits at once from the alarm's handler
+// with the same code. Its output is an anonymous temporary that vanishes with the process (a named
+// one, or a PNG sequence's staging folder, is left for the next run to remove, as after SIGKILL).
+constexpr unsigned kStopGraceSeconds = 3;  // several frames of the largest renders we make; in the message
+
 volatile std::sig_atomic_t stopSignal = 0;
-extern "C" void onStopSignal(int signal) { stopSignal = signal; }
+extern "C" void onStopSignal(int signal) {
+  if (stopSignal == 0) ::alarm(kStopGraceSeconds);
+  stopSignal = signal;
+}
+extern "C" void onStopGraceOver(int) {
+  static const char message[] =
+      "particles: not stopped within 3 s of the signal (blocked writing an output?); ended at once\n";
+  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, sizeof message - 1);
+  ::_exit(128 + stopSignal);
+}
 
 std::optional<render::Length> parseRadius(const std::string& text) {
   // "4px" (pixels, also a bare number) or "0.02m" (world units).
@@ -71,15 +90,24 @@ auto hudOverlay(const scenario::Scenario& s, const render::RenderOptions& look) 
 struct SignalGuard {
   SignalGuard() {
     stopSignal = 0;
+    previousAlarm = std::signal(SIGALRM, onStopGraceOver);
     previousInt = std::signal(SIGINT, onStopSignal);
     previousTerm = std::signal(SIGTERM, onStopSignal);
   }
   ~SignalGuard() {
     std::signal(SIGINT, previousInt);
     std::signal(SIGTERM, previousTerm);
+    // Once stopping, the grace period keeps running: it bounds what the command still does on its
+    // way out too, such as closing a --trace FIFO whose last buffered lines wait for a reader.
+    if (stopSignal != 0) return;
+    ::alarm(0);
+    std::signal(SIGALRM, previousAlarm);
   }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
   void (*previousInt)(int);
   void (*previousTerm)(int);
+  void (*previousAlarm)(int);
 };
 
 // The look of the frames: the scenario's render block, then the command line. Throws InputError.

@@ -110,6 +110,7 @@ std::string dtText(double dt, bool atMax) {
 }  // namespace
 
 int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& options) {
+  if (!options.plot.empty()) requireFigurePath("--plot", options.plot);
   const scenario::Scenario s = loadScenario(common);
   const std::vector<Integrator> integrators = parseIntegrators(options.integrators);
   const auto references = parseReferences(options.references, integrators);

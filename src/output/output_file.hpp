@@ -1,7 +1,8 @@
 #pragma once
 // A text output file (the CSVs) written through PendingOutput: it appears whole on commit() or
 // not at all, replaces a regular file only then, writes a device or FIFO (/dev/null, a named
-// pipe) in place, follows a symbolic link to its target, and refuses a directory or socket.
+// pipe) in place, follows a symbolic link to its target, and refuses a directory, a socket or a
+// FIFO that no process is reading.
 // Failures throw OutputError (exit code 3).
 
 #include <filesystem>

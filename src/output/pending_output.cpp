@@ -53,11 +53,10 @@ bool isProcLink(const fs::path& link) {
   return ::statfs(folderOf(link).c_str(), &filesystem) == 0 && filesystem.f_type == PROC_SUPER_MAGIC;
 }
 
-// The file a write to `destination` lands in: symbolic links in its last component followed, as
-// open(2) follows them, so that the link's target gets the content and the link itself stays. A
-// relative link is relative to the folder holding it. Links in the folders on the way need no
-// help: the kernel follows those whatever we do with the last component. Stops at a link in
-// /proc, which is returned as it is.
+}  // namespace
+
+// Links in the folders on the way need no help: the kernel follows those whatever we do with the
+// last component.
 fs::path followLinks(const fs::path& destination) {
   fs::path path = destination;
   for (int hops = 0;; ++hops) {
@@ -75,20 +74,29 @@ fs::path followLinks(const fs::path& destination) {
   }
 }
 
-}  // namespace
-
 PendingOutput::PendingOutput(fs::path destination, Temporary temporary) : destination_(std::move(destination)) {
   if (destination_.empty()) throw OutputError("cannot write to an empty file name");
   target_ = followLinks(destination_);
   struct stat st {};
   if (::lstat(target_.c_str(), &st) == 0) {
-    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) || S_ISFIFO(st.st_mode)) {
+    if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) {
       openInPlace(0);
+      return;
+    }
+    if (S_ISFIFO(st.st_mode)) {
+      // Opening a FIFO to write waits for a reader, and the wait restarts after a signal whose
+      // handler returns (render's SIGINT/SIGTERM): with nobody reading the command would hang for
+      // good. O_NONBLOCK makes it fail at once (ENXIO) instead; openInPlace clears it again, so
+      // writes to a reader that is there block as writes to any pipe do.
+      openInPlace(O_NONBLOCK);
       return;
     }
     if (S_ISLNK(st.st_mode)) {  // a process's open file (followLinks stops only at those)
       // Appended to: a regular file behind it gets our lines after what it holds, not over them.
-      openInPlace(O_APPEND);
+      // A pipe behind it (`particles … | head`) is a FIFO to open(), refused when nobody reads.
+      struct stat behind {};
+      const bool pipe = ::stat(target_.c_str(), &behind) == 0 && S_ISFIFO(behind.st_mode);
+      openInPlace(O_APPEND | (pipe ? O_NONBLOCK : 0));
       return;
     }
     if (!S_ISREG(st.st_mode)) fail(fmt::format("it is {}", fileKind(st.st_mode)));
@@ -108,7 +116,13 @@ PendingOutput::~PendingOutput() {
 void PendingOutput::openInPlace(int flags) {
   // No O_CREAT, no O_TRUNC: the device or FIFO is used as it is, never made or emptied by us.
   fd_ = ::open(target_.c_str(), O_WRONLY | O_CLOEXEC | O_NOCTTY | flags);
+  if (fd_ < 0 && errno == ENXIO && (flags & O_NONBLOCK)) fail("it is a FIFO and no process is reading it");
   if (fd_ < 0) fail(errnoText(errno));
+  if ((flags & O_NONBLOCK) && ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) & ~O_NONBLOCK) != 0) {
+    const int error = errno;
+    discard();
+    fail("fcntl: " + errnoText(error));
+  }
   route_ = Route::inPlace;
   reopenablePath_ = target_;
 }

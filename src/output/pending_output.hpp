@@ -10,7 +10,9 @@
 //    "<destination>.partial-<pid>-<n>" (partial_names.hpp); such names left by killed runs are
 //    removed by the next output of the same name into that folder.
 //  - a character or block device or a FIFO (/dev/null, a terminal, a named pipe): written in
-//    place, opened as it is. Nothing is replaced or removed, on success or failure.
+//    place, opened as it is. Nothing is replaced or removed, on success or failure. A FIFO that no
+//    process is reading is refused at once (OutputError) rather than waited on: a command must
+//    never hang in open(), where no signal handler of ours can stop it.
 //  - a process's open file, a link in /proc (/dev/stdout, /dev/fd/N): written in place too, and
 //    appended to, so stdout redirected to a file keeps what was printed before.
 //  - a directory or a socket (or any other kind of file): refused with OutputError naming it.
@@ -32,6 +34,12 @@ struct FileCloser {
 };
 using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
 
+// The file a write to `destination` lands in: symbolic links in its last component followed, as
+// open(2) follows them, so that the link's target gets the content and the link itself stays (a
+// relative link is relative to the folder holding it). Stops at a link in /proc (/dev/stdout: a
+// process's open file, not a name), which is returned as it is. Throws OutputError for a loop.
+std::filesystem::path followLinks(const std::filesystem::path& destination);
+
 class PendingOutput {
  public:
   enum class Temporary {
@@ -40,8 +48,8 @@ class PendingOutput {
   };
   enum class Route { anonymous, named, inPlace };
 
-  // Opens the file to write (see above). A FIFO blocks here until a reader opens it, as any
-  // writer to a FIFO does. Throws OutputError naming the destination and the reason.
+  // Opens the file to write (see above). Never waits: a FIFO without a reader is refused. Throws
+  // OutputError naming the destination and the reason.
   explicit PendingOutput(std::filesystem::path destination, Temporary temporary = Temporary::anonymousWherePossible);
   ~PendingOutput();  // discard() unless committed
   PendingOutput(const PendingOutput&) = delete;
