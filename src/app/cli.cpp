@@ -2,10 +2,10 @@
 // run; render_, stability_, plot_, compare_, concat_, sweep_, gather_ and schema_command.cpp);
 // errors become exit codes and messages in exit_codes.cpp only.
 #include "app/cli.hpp"
-#include "app/cli_support.hpp"
 
 #include <fmt/format.h>
 
+#include "app/cli_support.hpp"
 #include "app/exit_codes.hpp"
 #include "app/gl_options.hpp"
 #include "app/job_record.hpp"
