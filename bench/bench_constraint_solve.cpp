@@ -33,14 +33,15 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <tuple>
 #include <memory>
 #include <numbers>
+#include <tuple>
 #include <utility>
 
+#include "core/constraints/rod_constraint.hpp"
 #include "core/forces/gravity_force.hpp"
 #include "core/integrators.hpp"
-#include "core/constraints/rod_constraint.hpp"
+#include "core/integrators/rk4.hpp"
 #include "core/system.hpp"
 
 namespace {

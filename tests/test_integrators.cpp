@@ -1,15 +1,17 @@
 // Integrators by numbers: convergence orders, exactness on free fall, energy behaviour.
 #include <doctest/doctest.h>
 
+#include <Eigen/LU>
 #include <cmath>
 #include <utility>
-
-#include <Eigen/LU>
 
 #include "core/constraints/horizontal_line_constraint.hpp"
 #include "core/constraints/rod_constraint.hpp"
 #include "core/forces/drag_force.hpp"
 #include "core/integrators/backward_euler.hpp"
+#include "core/integrators/explicit_euler.hpp"
+#include "core/integrators/midpoint.hpp"
+#include "core/integrators/rk4.hpp"
 #include "core/integrators/symplectic_euler.hpp"
 #include "core/integrators/verlet.hpp"
 #include "support.hpp"

@@ -15,6 +15,7 @@
 #include "output/output_error.hpp"
 #include "output/output_file.hpp"
 #include "render/frame_writer.hpp"
+#include "scenario/scaled_value.hpp"
 #include "scenario/scenario.hpp"
 
 namespace particles::app {

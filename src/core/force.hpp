@@ -26,6 +26,9 @@ class Force {
   virtual double energyScale(const Model& model, const StateView& s) const = 0;
   // How many elements this object holds (springs in a spring set; 1 for most forces), for summaries.
   virtual size_t count() const { return 1; }
+  // True for a set of springs between points (count() of them, each with a rest length): the
+  // summaries' spring count adds up these.
+  virtual bool isSpringSet() const { return false; }
   // The largest current length over rest length of the force's elastic elements (springs), or 0
   // when it has none: the stability study's "overstretched" criterion.
   virtual double maxStretchRatio(const StateView&) const { return 0.0; }

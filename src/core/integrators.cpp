@@ -3,6 +3,9 @@
 #include <array>
 
 #include "core/integrators/backward_euler.hpp"
+#include "core/integrators/explicit_euler.hpp"
+#include "core/integrators/midpoint.hpp"
+#include "core/integrators/rk4.hpp"
 #include "core/integrators/symplectic_euler.hpp"
 #include "core/integrators/verlet.hpp"
 #include "core/system.hpp"
@@ -88,30 +91,6 @@ std::span<const Integrator> allIntegrators() { return kAll; }
 int derivEvalsPerStep(Integrator integrator) { return entry(integrator).evalsPerStep; }
 bool projectsConstraints(Integrator integrator) { return entry(integrator).projects; }
 std::string_view integratorSummary(Integrator integrator) { return entry(integrator).summary; }
-
-void integrateEuler(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-  f(y, t, w.k1);
-  y += h * w.k1;
-}
-
-void integrateMidpoint(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-  f(y, t, w.k1);
-  w.tmp = y + (0.5 * h) * w.k1;
-  f(w.tmp, t + 0.5 * h, w.k2);
-  y += h * w.k2;
-}
-
-void integrateRk4(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-  // The k's here are derivatives; the h of the formula above is applied when they are combined.
-  f(y, t, w.k1);
-  w.tmp = y + (0.5 * h) * w.k1;
-  f(w.tmp, t + 0.5 * h, w.k2);
-  w.tmp = y + (0.5 * h) * w.k2;
-  f(w.tmp, t + 0.5 * h, w.k3);
-  w.tmp = y + h * w.k3;
-  f(w.tmp, t + h, w.k4);
-  y += (h / 6.0) * (w.k1 + 2.0 * w.k2 + 2.0 * w.k3 + w.k4);
-}
 
 void integrate(Integrator integrator, System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
   entry(integrator).step(system, y, t, h, w);

@@ -1,14 +1,10 @@
 #pragma once
 // The integrators (docs/physics.md §3) and their registry. One step advances the flat state y from
 // t to t + h; every integrator reaches the system only through derivEval (and, for the implicit
-// one, the force Jacobians). The report's three explicit methods, over a derivative f(y, t):
-//   Euler     y₁ = y₀ + h f(y₀, t₀)                                     global error O(h)
-//   Midpoint  y₁ = y₀ + h f(y₀ + h/2 f(y₀, t₀), t₀ + h/2)               global error O(h²)
-//   RK4       k1 = h f(y₀, t₀),         k2 = h f(y₀ + k1/2, t₀ + h/2),
-//             k3 = h f(y₀ + k2/2, t₀ + h/2), k4 = h f(y₀ + k3, t₀ + h),
-//             y₁ = y₀ + k1/6 + k2/3 + k3/3 + k4/6                       global error O(h⁴)
-// and, each in its own file pair under integrators/ with its formula at the top, the ones that
-// treat positions and velocities apart: symplectic Euler, velocity Verlet and backward Euler.
+// one, the force Jacobians). Each is a file pair under integrators/ with its formula at the top:
+// the report's three explicit methods over a derivative f(y, t) (explicit_euler, midpoint, rk4),
+// and the ones that treat positions and velocities apart (symplectic_euler, verlet,
+// backward_euler).
 //
 // A new integrator: its file pair, an enum value below, and one row in the table of integrators.cpp.
 
@@ -91,9 +87,6 @@ struct IntegratorScratch {
   int cgIterations = 0;  // of the last step, for benchmarks
 };
 
-void integrateEuler(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
-void integrateMidpoint(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
-void integrateRk4(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
 // One step of the named integrator on the system's state y at time t.
 void integrate(Integrator integrator, System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <charconv>
 #include <map>
 
 #include "core/grid.hpp"
@@ -133,3 +134,32 @@ void checkSceneBudget(const Value& root, const SceneLimits& limits) {
 }
 
 }  // namespace particles::scenario::detail
+
+namespace particles::scenario {
+
+void applyLimitOption(SceneLimits& limits, std::string_view text) {
+  const std::string origin = fmt::format("--limit {}", text);
+  std::vector<std::string_view> names;
+  for (const SceneLimitName& l : kSceneLimitNames) names.push_back(l.name);
+  auto bad = [&](const std::string& why) { throw ScenarioError("command line", 0, 0, "", why, origin); };
+  const size_t eq = text.find('=');
+  if (eq == std::string_view::npos) bad(fmt::format("expected NAME=N with NAME one of {}", fmt::join(names, ", ")));
+  const std::string_view name = text.substr(0, eq), number = text.substr(eq + 1);
+  long long n = 0;
+  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), n);
+  if (ec != std::errc() || end != number.data() + number.size() || n < 1 || n > kMaxSceneLimit) {
+    bad(fmt::format("expected a whole number from 1 to {} after '=', got '{}'", kMaxSceneLimit,
+                    number.size() > 40 ? std::string(number.substr(0, 40)) + "…" : std::string(number)));
+  }
+  for (const SceneLimitName& l : kSceneLimitNames) {
+    if (l.name == name) {
+      limits.*l.member = n;
+      return;
+    }
+  }
+  bad(fmt::format("unknown limit '{}'; expected one of {}",
+                  name.size() > 40 ? std::string(name.substr(0, 40)) + "…" : std::string(name),
+                  fmt::join(names, ", ")));
+}
+
+}  // namespace particles::scenario

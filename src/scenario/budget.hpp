@@ -1,6 +1,7 @@
 #pragma once
 // The scene budget (SceneLimits): what a scenario file would build, counted from its YAML tree
-// before anything is built. Internal to the scenario loader.
+// before anything is built. Internal to the scenario loader; SceneLimits and `--limit`
+// (applyLimitOption, defined in budget.cpp) are in scenario.hpp.
 
 #include "scenario/scenario.hpp"
 #include "scenario/yaml_reader.hpp"

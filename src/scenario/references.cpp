@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <optional>
 
+#include "scenario/scenario.hpp"
+
 namespace particles::scenario::detail {
 
 namespace {
@@ -241,3 +243,17 @@ long long countPoints(const YAML::Node& value, const std::map<std::string, GridI
 }
 
 }  // namespace particles::scenario::detail
+
+namespace particles::scenario {
+
+std::string pointName(const Model& model, int point) {
+  const int n = model.layout.numParticles;
+  if (point < n) {
+    const std::string& name = model.particleNames[size_t(point)];
+    return name.empty() ? fmt::format("#{}", point) : name;
+  }
+  const std::string& name = model.bodyNames[size_t(point - n)];
+  return name.empty() ? fmt::format("body#{}", point - n) : name;
+}
+
+}  // namespace particles::scenario

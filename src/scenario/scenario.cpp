@@ -4,22 +4,18 @@
 #include "scenario/scenario.hpp"
 
 #include <fmt/format.h>
-#include <yaml-cpp/eventhandler.h>
-#include <yaml-cpp/parser.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <array>
-#include <charconv>
 #include <cmath>
-#include <sstream>
 
-#include "core/grid.hpp"
 #include "core/forces/damped_spring_force.hpp"
+#include "core/grid.hpp"
 #include "core/kind.hpp"
 #include "input/text_file.hpp"
 #include "scenario/budget.hpp"
 #include "scenario/entry_args.hpp"
+#include "scenario/key_paths.hpp"
 #include "scenario/references.hpp"
 #include "scenario/yaml_reader.hpp"
 
@@ -250,177 +246,15 @@ class Loader {
   detail::PointBook book_;
 };
 
-// A key path `a.b[2].c` (or `a.b.2.c`) as segments; numbers are list indices.
-struct PathSegment {
-  std::string key;
-  bool isIndex = false;
-  size_t index = 0;
-};
-
-std::vector<PathSegment> splitPath(const Override& o, const std::string& file) {
-  auto bad = [&](const std::string& why) {
-    throw ScenarioError(file, 0, 0, o.path, fmt::format("cannot use this key path: {}", why), o.origin);
-  };
-  auto indexSegment = [&](const std::string& digits) {
-    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) {
-      bad(fmt::format("'{}' is not a list index", digits));
-    }
-    size_t index = 0;
-    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
-    if (ec != std::errc() || end != digits.data() + digits.size()) {
-      bad(fmt::format("list index {} is too large", digits.size() > 40 ? digits.substr(0, 40) + "…" : digits));
-    }
-    return PathSegment{digits, true, index};
-  };
-  std::vector<PathSegment> out;
-  std::string key;
-  size_t i = 0;
-  const std::string& p = o.path;
-  auto flushKey = [&] {
-    if (key.empty()) bad("empty key");
-    if (key.find_first_not_of("0123456789") == std::string::npos) {
-      out.push_back(indexSegment(key));
-    } else {
-      out.push_back({key, false, 0});
-    }
-    key.clear();
-  };
-  while (i < p.size()) {
-    const char c = p[i];
-    if (c == '.') {
-      if (!key.empty())
-        flushKey();
-      else if (out.empty() || !out.back().isIndex)
-        bad("empty key");
-      ++i;
-    } else if (c == '[') {
-      if (!key.empty()) flushKey();
-      const size_t close = p.find(']', i);
-      if (close == std::string::npos) bad("unclosed '['");
-      out.push_back(indexSegment(p.substr(i + 1, close - i - 1)));
-      i = close + 1;
-    } else {
-      key += c;
-      ++i;
-    }
-  }
-  if (!key.empty()) flushKey();
-  if (out.empty()) bad("empty key path");
-  return out;
-}
-
-// Replaces or creates the node at o.path; returns the canonical key path (`forces[1].ks`).
-std::string applyOverride(YAML::Node root, const Override& o, const std::string& file) {
-  const std::vector<PathSegment> segments = splitPath(o, file);
-  YAML::Node value;
-  try {
-    value = YAML::Load(o.value);
-  } catch (const YAML::Exception& e) {
-    throw ScenarioError(file, 0, 0, o.path, fmt::format("cannot read the value '{}': {}", o.value, e.msg), o.origin);
-  }
-  if (o.value.empty() || value.IsNull()) {
-    throw ScenarioError(file, 0, 0, o.path, "expected a value after '='", o.origin);
-  }
-  std::string canonical;
-  YAML::Node cur = root;
-  for (size_t k = 0; k < segments.size(); ++k) {
-    const PathSegment& s = segments[k];
-    const bool last = k + 1 == segments.size();
-    auto fail = [&](const std::string& why) {
-      throw ScenarioError(file, 0, 0, canonical.empty() ? o.path : canonical, why, o.origin);
-    };
-    if (s.isIndex) {
-      if (!cur.IsSequence()) fail(fmt::format("cannot index [{}]: this is not a list", s.index));
-      if (s.index >= cur.size())
-        fail(fmt::format("index {} is out of range: the list has {} entries", s.index, cur.size()));
-      canonical += fmt::format("[{}]", s.index);
-      if (last) {
-        cur[s.index] = value;
-      } else {
-        YAML::Node next = cur[s.index];
-        cur.reset(next);
-      }
-    } else {
-      if (!(cur.IsMap() || cur.IsNull() || !cur.IsDefined())) {
-        fail(fmt::format("cannot set key '{}': this is not a map", s.key));
-      }
-      canonical += canonical.empty() ? s.key : "." + s.key;
-      if (last) {
-        cur[s.key] = value;
-      } else {
-        YAML::Node next = cur[s.key];
-        cur.reset(next);
-      }
-    }
-  }
-  return canonical;
-}
-
-// Where each document's first node starts, for the first two documents at most.
-class DocumentMarks final : public YAML::EventHandler {
- public:
-  std::vector<YAML::Mark> starts;
-
-  void OnDocumentStart(const YAML::Mark&) override { wanted_ = true; }
-  void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
-  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
-  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { node(m); }
-  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
-    node(m);
-  }
-  void OnSequenceEnd() override {}
-  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
-    node(m);
-  }
-  void OnMapEnd() override {}
-
- private:
-  void node(const YAML::Mark& m) {
-    if (wanted_) starts.push_back(m);
-    wanted_ = false;
-  }
-  bool wanted_ = false;
-};
-
-// The file's one document. yaml-cpp 0.7's LoadAll never returns on some malformed input (a lone
-// ',': the parser reports document after document without reading on, yaml-cpp issue 1040), so the
-// documents are counted through the event parser, two at most, and the first is loaded alone.
-YAML::Node loadOneDocument(const std::string& text, const std::string& file) {
-  try {
-    std::istringstream in(text);
-    YAML::Parser parser(in);
-    DocumentMarks marks;
-    for (int i = 0; i < 2 && parser.HandleNextDocument(marks); ++i) {
-    }
-    if (marks.starts.size() > 1) {
-      const YAML::Mark first = marks.starts[0], second = marks.starts[1];
-      const bool movedOn = second.pos > first.pos;
-      throw ScenarioError(file, second.line + 1, second.column + 1, "",
-                          movedOn ? "the file holds more than one YAML document; expected one scenario"
-                                  : "YAML syntax error: cannot read on from here (a stray ',' or bracket?)");
-    }
-    YAML::Node root = YAML::Load(text);
-    if (marks.starts.empty() || root.IsNull()) {
-      throw ScenarioError(file, 1, 1, "", "the file is empty; expected a scenario (a map with at least 'name')");
-    }
-    return root;
-  } catch (const YAML::ParserException& e) {
-    throw ScenarioError(file, e.mark.line + 1, e.mark.column + 1, "", fmt::format("YAML syntax error: {}", e.msg));
-  } catch (const YAML::Exception& e) {
-    throw ScenarioError(file, 0, 0, "", fmt::format("cannot read YAML: {}", e.msg));
-  }
-}
-
 Scenario loadDocument(const std::string& text, const std::string& file, std::span<const Override> overrides,
                       const SceneLimits& limits) {
-  YAML::Node root = loadOneDocument(text, file);
+  YAML::Node root = detail::loadOneDocument(text, file);
   if (!root.IsMap()) {
     const YAML::Mark m = root.Mark();
     throw ScenarioError(file, m.line + 1, m.column + 1, "", "expected a scenario (a map of keys such as 'name')");
   }
   detail::Source source{file, {}};
-  for (const Override& o : overrides) source.overridden.emplace_back(applyOverride(root, o, file), o.origin);
+  for (const Override& o : overrides) source.overridden.emplace_back(detail::applyOverride(root, o, file), o.origin);
   try {
     return Loader(std::move(source), limits).load(root);
   } catch (const YAML::Exception& e) {
@@ -437,58 +271,6 @@ long SimulationSettings::steps() const {
   // The tolerance keeps 10 s / 0.01 s at 1000 steps despite rounding in the division.
   return std::max(1L, long(std::ceil(duration / dt - 1e-9)));
 }
-
-Override parseOverride(std::string_view text) {
-  const std::string origin = fmt::format("--set {}", text);
-  const size_t eq = text.find('=');
-  if (eq == std::string_view::npos || eq == 0) {
-    throw ScenarioError(
-        "command line", 0, 0, "",
-        fmt::format("expected --set path.to.key=value, as in --set simulation.dt=0.005; got '{}'", text));
-  }
-  return Override{std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), origin};
-}
-
-void applyLimitOption(SceneLimits& limits, std::string_view text) {
-  const std::string origin = fmt::format("--limit {}", text);
-  std::vector<std::string_view> names;
-  for (const SceneLimitName& l : kSceneLimitNames) names.push_back(l.name);
-  auto bad = [&](const std::string& why) { throw ScenarioError("command line", 0, 0, "", why, origin); };
-  const size_t eq = text.find('=');
-  if (eq == std::string_view::npos) bad(fmt::format("expected NAME=N with NAME one of {}", fmt::join(names, ", ")));
-  const std::string_view name = text.substr(0, eq), number = text.substr(eq + 1);
-  long long n = 0;
-  const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), n);
-  if (ec != std::errc() || end != number.data() + number.size() || n < 1 || n > kMaxSceneLimit) {
-    bad(fmt::format("expected a whole number from 1 to {} after '=', got '{}'", kMaxSceneLimit,
-                    number.size() > 40 ? std::string(number.substr(0, 40)) + "…" : std::string(number)));
-  }
-  for (const SceneLimitName& l : kSceneLimitNames) {
-    if (l.name == name) {
-      limits.*l.member = n;
-      return;
-    }
-  }
-  bad(fmt::format("unknown limit '{}'; expected one of {}",
-                  name.size() > 40 ? std::string(name.substr(0, 40)) + "…" : std::string(name), fmt::join(names, ", ")));
-}
-
-ScenarioError::ScenarioError(std::string file, int line, int column, std::string keyPath, std::string message,
-                             std::string origin)
-    : std::runtime_error([&] {
-        std::string where = file;
-        if (line > 0) where += fmt::format(":{}:{}", line, column);
-        std::string key = keyPath;
-        if (!origin.empty()) key += key.empty() ? fmt::format("({})", origin) : fmt::format(" (from {})", origin);
-        return key.empty() ? fmt::format("{}: error: {}", where, message)
-                           : fmt::format("{}: error: {}: {}", where, key, message);
-      }()),
-      file_(std::move(file)),
-      line_(line),
-      column_(column),
-      keyPath_(std::move(keyPath)),
-      message_(std::move(message)),
-      origin_(std::move(origin)) {}
 
 Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides,
                           const SceneLimits& limits) {
@@ -508,69 +290,16 @@ Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Ove
   return loadDocument(readScenarioText(file, maxInputMiB), file.string(), overrides, limits);
 }
 
-namespace {
-
-// `node` with every number times `factor`, in YAML flow form; throws `fail` at anything else.
-template <class Fail>
-std::string scaledFlow(const YAML::Node& node, double factor, const Fail& fail) {
-  if (node.IsSequence()) {
-    std::vector<std::string> items;
-    for (const YAML::Node& item : node) items.push_back(scaledFlow(item, factor, fail));
-    return fmt::format("[{}]", fmt::join(items, ", "));
-  }
-  double x = 0.0;
-  if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, x) || !std::isfinite(x)) {
-    fail(node.IsMap() ? std::string("holds a map, not numbers") : fmt::format("holds '{}', not a number",
-                                                                              node.IsScalar() ? node.Scalar() : ""));
-  }
-  return detail::formatNumber(x * factor);
-}
-
-}  // namespace
-
-std::string scaledValueAt(std::string_view text, const std::string& file, const std::string& path, double factor) {
-  const Override o{path, "", ""};
-  const std::vector<PathSegment> segments = splitPath(o, file);
-  YAML::Node cur = loadOneDocument(std::string(text), file);
-  std::string canonical;
-  for (const PathSegment& s : segments) {
-    canonical += s.isIndex ? fmt::format("[{}]", s.index) : (canonical.empty() ? s.key : "." + s.key);
-    const bool present = s.isIndex ? cur.IsSequence() && s.index < cur.size() : cur.IsMap() && cur[s.key].IsDefined();
-    if (!present) {
-      throw ScenarioError(file, 0, 0, canonical,
-                          "not in the file: a scaled parameter multiplies the value the scenario writes there");
-    }
-    YAML::Node next = s.isIndex ? cur[s.index] : cur[s.key];
-    cur.reset(next);
-  }
-  const YAML::Mark m = cur.Mark();
-  return scaledFlow(cur, factor, [&](const std::string& why) {
-    throw ScenarioError(file, m.is_null() ? 0 : m.line + 1, m.is_null() ? 0 : m.column + 1, canonical,
-                        fmt::format("cannot scale it: it {}", why));
-  });
-}
-
-std::string pointName(const Model& model, int point) {
-  const int n = model.layout.numParticles;
-  if (point < n) {
-    const std::string& name = model.particleNames[size_t(point)];
-    return name.empty() ? fmt::format("#{}", point) : name;
-  }
-  const std::string& name = model.bodyNames[size_t(point - n)];
-  return name.empty() ? fmt::format("body#{}", point - n) : name;
-}
-
 size_t springCount(const System& system) {
   size_t n = 0;
-  for (const auto& f : system.forces()) {
-    if (f->kind() == "spring") n += f->count();
-  }
+  for (const auto& f : system.forces()) n += f->isSpringSet() ? f->count() : 0;
   return n;
 }
 
 size_t mouseScriptCount(const System& system) {
+  // A time-dependent force is a script moving a target: the mouse is the one such kind.
   size_t n = 0;
-  for (const auto& f : system.forces()) n += f->kind() == "mouse" ? f->count() : 0;
+  for (const auto& f : system.forces()) n += f->isTimeDependent() ? f->count() : 0;
   return n;
 }
 

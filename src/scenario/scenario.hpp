@@ -8,13 +8,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/integrators.hpp"
 #include "core/system.hpp"
+#include "scenario/scenario_error.hpp"
 
 namespace particles::scenario {
 
@@ -81,25 +81,6 @@ struct Override {
 // Parses `path=value` as given to --set; throws ScenarioError when there is no `=` or no path.
 Override parseOverride(std::string_view text);
 
-class ScenarioError : public std::runtime_error {
- public:
-  // line, column: 1-based; 0 when the error has no position (an unreadable file, a --set value).
-  // origin: the command-line option the offending value came from, or empty.
-  ScenarioError(std::string file, int line, int column, std::string keyPath, std::string message,
-                std::string origin = {});
-  const std::string& file() const { return file_; }
-  int line() const { return line_; }
-  int column() const { return column_; }
-  const std::string& keyPath() const { return keyPath_; }
-  const std::string& message() const { return message_; }
-  const std::string& origin() const { return origin_; }
-
- private:
-  std::string file_;
-  int line_, column_;
-  std::string keyPath_, message_, origin_;
-};
-
 struct Scenario {
   std::string name;
   std::string description;
@@ -117,11 +98,6 @@ std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t m
 // The same from text in memory; `file` only labels messages.
 Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides = {},
                           const SceneLimits& limits = {});
-
-// The value at key path `path` (as --set writes it) of a scenario's text with every number in it
-// multiplied by `factor`, as YAML flow text: a sweep's `scale` parameter. Throws ScenarioError
-// naming the scenario file when the path is not in the file or holds anything but numbers.
-std::string scaledValueAt(std::string_view text, const std::string& file, const std::string& path, double factor);
 
 // How a reference spells point `point` of the system (docs/physics.md §12 --trace): the particle's or
 // body's name, `cloth[3][4]` for a grid particle, `#index` for an unnamed particle and `body#j`

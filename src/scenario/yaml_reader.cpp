@@ -1,12 +1,15 @@
 #include "scenario/yaml_reader.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <sstream>
 
-#include "scenario/scenario.hpp"
+#include "scenario/scenario_error.hpp"
 
 namespace particles::scenario::detail {
 
@@ -38,7 +41,63 @@ size_t editDistance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+// Where each document's first node starts, for the first two documents at most.
+class DocumentMarks final : public YAML::EventHandler {
+ public:
+  std::vector<YAML::Mark> starts;
+
+  void OnDocumentStart(const YAML::Mark&) override { wanted_ = true; }
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
+  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { node(m); }
+  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(m);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
+    node(m);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void node(const YAML::Mark& m) {
+    if (wanted_) starts.push_back(m);
+    wanted_ = false;
+  }
+  bool wanted_ = false;
+};
+
 }  // namespace
+
+// The file's one document. yaml-cpp 0.7's LoadAll never returns on some malformed input (a lone
+// ',': the parser reports document after document without reading on, yaml-cpp issue 1040), so the
+// documents are counted through the event parser, two at most, and the first is loaded alone.
+YAML::Node loadOneDocument(const std::string& text, const std::string& file) {
+  try {
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentMarks marks;
+    for (int i = 0; i < 2 && parser.HandleNextDocument(marks); ++i) {
+    }
+    if (marks.starts.size() > 1) {
+      const YAML::Mark first = marks.starts[0], second = marks.starts[1];
+      const bool movedOn = second.pos > first.pos;
+      throw ScenarioError(file, second.line + 1, second.column + 1, "",
+                          movedOn ? "the file holds more than one YAML document; expected one scenario"
+                                  : "YAML syntax error: cannot read on from here (a stray ',' or bracket?)");
+    }
+    YAML::Node root = YAML::Load(text);
+    if (marks.starts.empty() || root.IsNull()) {
+      throw ScenarioError(file, 1, 1, "", "the file is empty; expected a scenario (a map with at least 'name')");
+    }
+    return root;
+  } catch (const YAML::ParserException& e) {
+    throw ScenarioError(file, e.mark.line + 1, e.mark.column + 1, "", fmt::format("YAML syntax error: {}", e.msg));
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(file, 0, 0, "", fmt::format("cannot read YAML: {}", e.msg));
+  }
+}
 
 std::string formatNumber(double x) {
   return fmt::format("{}", x);

@@ -1,7 +1,8 @@
 #pragma once
-// Typed, validating access to a yaml-cpp tree (internal to the scenario loader). A Value is a node
-// together with its key path (`forces[2].ks`) and position, so that every failure can name the
-// file, line, column and key, and say what was expected and what was found.
+// Reading YAML (internal to the scenario loader): a file's one document, and typed, validating
+// access to its tree. A Value is a node together with its key path (`forces[2].ks`) and position,
+// so that every failure can name the file, line, column and key, and say what was expected and
+// what was found.
 
 #include <yaml-cpp/yaml.h>
 
@@ -16,6 +17,11 @@
 #include "core/state.hpp"
 
 namespace particles::scenario::detail {
+
+// The one document of a scenario's text, which must not be empty; throws ScenarioError at the
+// second document or at a syntax error. Works around yaml-cpp 0.7's LoadAll, which never returns
+// on some malformed input (yaml-cpp issue 1040).
+YAML::Node loadOneDocument(const std::string& text, const std::string& file);
 
 // Where the tree came from: the file, and the key paths that --set replaced (errors in those name
 // the option instead of a line of the file).

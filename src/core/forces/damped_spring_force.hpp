@@ -39,6 +39,7 @@ class DampedSpringForce final : public Force {
 
   std::string_view kind() const override { return "spring"; }
   size_t count() const override { return size(); }
+  bool isSpringSet() const override { return true; }
   double maxStretchRatio(const StateView& s) const override;
   void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;

@@ -1,0 +1,126 @@
+#include "scenario/key_paths.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+
+namespace particles::scenario {
+
+namespace detail {
+
+std::vector<PathSegment> splitPath(const Override& o, const std::string& file) {
+  auto bad = [&](const std::string& why) {
+    throw ScenarioError(file, 0, 0, o.path, fmt::format("cannot use this key path: {}", why), o.origin);
+  };
+  auto indexSegment = [&](const std::string& digits) {
+    if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) {
+      bad(fmt::format("'{}' is not a list index", digits));
+    }
+    size_t index = 0;
+    const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
+    if (ec != std::errc() || end != digits.data() + digits.size()) {
+      bad(fmt::format("list index {} is too large", digits.size() > 40 ? digits.substr(0, 40) + "…" : digits));
+    }
+    return PathSegment{digits, true, index};
+  };
+  std::vector<PathSegment> out;
+  std::string key;
+  size_t i = 0;
+  const std::string& p = o.path;
+  auto flushKey = [&] {
+    if (key.empty()) bad("empty key");
+    if (key.find_first_not_of("0123456789") == std::string::npos) {
+      out.push_back(indexSegment(key));
+    } else {
+      out.push_back({key, false, 0});
+    }
+    key.clear();
+  };
+  while (i < p.size()) {
+    const char c = p[i];
+    if (c == '.') {
+      if (!key.empty())
+        flushKey();
+      else if (out.empty() || !out.back().isIndex)
+        bad("empty key");
+      ++i;
+    } else if (c == '[') {
+      if (!key.empty()) flushKey();
+      const size_t close = p.find(']', i);
+      if (close == std::string::npos) bad("unclosed '['");
+      out.push_back(indexSegment(p.substr(i + 1, close - i - 1)));
+      i = close + 1;
+    } else {
+      key += c;
+      ++i;
+    }
+  }
+  if (!key.empty()) flushKey();
+  if (out.empty()) bad("empty key path");
+  return out;
+}
+
+void appendSegment(std::string& canonical, const PathSegment& s) {
+  canonical += s.isIndex ? fmt::format("[{}]", s.index) : (canonical.empty() ? s.key : "." + s.key);
+}
+
+std::string applyOverride(YAML::Node root, const Override& o, const std::string& file) {
+  const std::vector<PathSegment> segments = splitPath(o, file);
+  YAML::Node value;
+  try {
+    value = YAML::Load(o.value);
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(file, 0, 0, o.path, fmt::format("cannot read the value '{}': {}", o.value, e.msg), o.origin);
+  }
+  if (o.value.empty() || value.IsNull()) {
+    throw ScenarioError(file, 0, 0, o.path, "expected a value after '='", o.origin);
+  }
+  std::string canonical;
+  YAML::Node cur = root;
+  for (size_t k = 0; k < segments.size(); ++k) {
+    const PathSegment& s = segments[k];
+    const bool last = k + 1 == segments.size();
+    auto fail = [&](const std::string& why) {
+      throw ScenarioError(file, 0, 0, canonical.empty() ? o.path : canonical, why, o.origin);
+    };
+    if (s.isIndex) {
+      if (!cur.IsSequence()) fail(fmt::format("cannot index [{}]: this is not a list", s.index));
+      if (s.index >= cur.size())
+        fail(fmt::format("index {} is out of range: the list has {} entries", s.index, cur.size()));
+      appendSegment(canonical, s);
+      if (last) {
+        cur[s.index] = value;
+      } else {
+        YAML::Node next = cur[s.index];
+        cur.reset(next);
+      }
+    } else {
+      if (!(cur.IsMap() || cur.IsNull() || !cur.IsDefined())) {
+        fail(fmt::format("cannot set key '{}': this is not a map", s.key));
+      }
+      appendSegment(canonical, s);
+      if (last) {
+        cur[s.key] = value;
+      } else {
+        YAML::Node next = cur[s.key];
+        cur.reset(next);
+      }
+    }
+  }
+  return canonical;
+}
+
+}  // namespace detail
+
+Override parseOverride(std::string_view text) {
+  const std::string origin = fmt::format("--set {}", text);
+  const size_t eq = text.find('=');
+  if (eq == std::string_view::npos || eq == 0) {
+    throw ScenarioError(
+        "command line", 0, 0, "",
+        fmt::format("expected --set path.to.key=value, as in --set simulation.dt=0.005; got '{}'", text));
+  }
+  return Override{std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), origin};
+}
+
+}  // namespace particles::scenario
