@@ -19,7 +19,7 @@
 #include "cli_support.hpp"
 #include "render/gl_backend.hpp"
 #include "render/gl_context.hpp"
-#include "render/video_probe.hpp"
+#include "support/video_probe.hpp"
 
 using namespace particles::test;
 
@@ -176,7 +176,7 @@ TEST_CASE("issue 26 row 10: concat refuses a segment that does not decode whole,
   const Result whole = s.run("concat a.mp4 b.mp4 -o joined.mp4");
   REQUIRE_MESSAGE(whole.code == 0, whole.err);
   CHECK(whole.out == "2 segments, 14 frames, 1.4 s → joined.mp4\n");
-  CHECK(particles::render::probeVideo(s.dir / "joined.mp4").frames == 14);
+  CHECK(particles::test::probeVideo(s.dir / "joined.mp4").frames == 14);
   fs::remove(s.dir / "joined.mp4");
 
   for (const char* args : {"b.mp4 cut.mp4", "cut.mp4 b.mp4", "cut.mp4", "b.mp4 head.mp4", "head.mp4"}) {
@@ -201,5 +201,5 @@ TEST_CASE("issue 26 row 11: concat opens one segment at a time: 2000 segments jo
   REQUIRE_MESSAGE(r.code == 0, r.err);
   CHECK(r.out == "2000 segments, 4000 frames, 400 s → joined.mp4\n");
   if (!kSanitized) CHECK(usage.peakMiB < kMaxPeakMiB);  // every segment open at once: 780 MiB
-  CHECK(particles::render::probeVideo(s.dir / "joined.mp4").frames == 4000);
+  CHECK(particles::test::probeVideo(s.dir / "joined.mp4").frames == 4000);
 }

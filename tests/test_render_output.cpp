@@ -19,12 +19,14 @@
 #include "render/png_io.hpp"
 #include "render/png_sequence_writer.hpp"
 #include "render/renderer.hpp"
-#include "render/video_probe.hpp"
 #include "render_support.hpp"
+#include "support/video_probe.hpp"
 
 using namespace particles;
 using namespace particles::render;
+using particles::test::probeVideo;
 using particles::test::ScratchDir;
+using particles::test::VideoInfo;
 
 namespace {
 
