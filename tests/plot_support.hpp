@@ -212,6 +212,16 @@ inline std::vector<PathBounds> plotFrames(const std::vector<XmlElement>& svg) {
   return frames;
 }
 
+// Glyphs whose origin lies in `box`: cairo draws text as one <use> element per glyph (spaces too),
+// at the glyph's origin on the baseline.
+inline long glyphsIn(const std::vector<XmlElement>& svg, const PathBounds& box) {
+  return std::count_if(svg.begin(), svg.end(), [&](const XmlElement& e) {
+    if (e.name != "use" || !e.attributes.count("x") || !e.attributes.count("y")) return false;
+    const double x = std::stod(e.attributes.at("x")), y = std::stod(e.attributes.at("y"));
+    return x >= box.x0 && x <= box.x1 && y >= box.y0 && y <= box.y1;
+  });
+}
+
 // An RGB24 image decoded from PNG bytes.
 struct Pixels {
   int width = 0, height = 0;
@@ -228,6 +238,12 @@ struct Pixels {
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) n += luminance(x, y) < 128;
     return n;
+  }
+  // Whether the pixel is colour `c`, to within 8 levels of 255 in each channel.
+  bool is(int x, int y, plot::Rgb c) const {
+    const std::uint32_t p = at(x, y);
+    return std::fabs(((p >> 16) & 0xff) - 255 * c.r) <= 8 && std::fabs(((p >> 8) & 0xff) - 255 * c.g) <= 8 &&
+           std::fabs((p & 0xff) - 255 * c.b) <= 8;
   }
   // Pixels in the rectangle that are not pure white.
   int inkedPixels(int x0, int y0, int x1, int y1) const {

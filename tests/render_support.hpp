@@ -13,7 +13,7 @@
 #include "core/system.hpp"
 #include "render/image.hpp"
 #include "render/renderer.hpp"
-#include "render/video_probe.hpp"
+#include "support/video_probe.hpp"
 
 namespace particles::test {
 
@@ -78,7 +78,7 @@ inline bool sameRgb(const std::uint8_t* px, render::Rgb c) {
 }
 
 // What every decoded video is checked for: its codec, size and frame count.
-inline void checkVideo(const render::VideoInfo& info, const std::string& codec, int width, int height, long frames) {
+inline void checkVideo(const VideoInfo& info, const std::string& codec, int width, int height, long frames) {
   CHECK(info.codec == codec);
   CHECK(info.width == width);
   CHECK(info.height == height);

@@ -1,6 +1,7 @@
 // The rooms of docs/architecture.md, checked on the sources: every `#include "room/…"` points
 // along an allowed arrow (program → scenario, render, plot → core; render, plot, program →
-// output), and the core includes no library for files, YAML, GL, images or video.
+// output; the tests' support → render, core, output, and no room → the tests' support), and the
+// core includes no library for files, YAML, GL, images or video.
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -33,6 +34,8 @@ const std::vector<Room>& rooms() {
       {"render", kSource / "render", {"core", "output"}},
       {"plot", kSource / "plot", {"output", "input"}},
       {"app", kSource / "src/app", {"core", "scenario", "render", "plot", "output", "input"}},
+      // What only the tests use (particles_test_support): no room above may include it.
+      {"support", kSource / "tests/support", {"core", "render", "output"}},
   };
   return all;
 }

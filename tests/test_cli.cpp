@@ -55,8 +55,38 @@ TEST_CASE("cli: --version and --help") {
   CHECK(r.out.find("particles 0.") != std::string::npos);
   r = s.run("--help");
   CHECK(r.code == 0);
-  CHECK(r.out.find("check") != std::string::npos);
-  CHECK(r.out.find("run") != std::string::npos);
+  // The Subcommands section lists every command once, by its name, and only those: one line each,
+  // "  NAME   summary", up to the blank line that ends it.
+  const std::vector<std::string> commands = {"check", "run",    "render", "stability", "compare", "concat",
+                                             "plot",  "schema", "sweep",  "gather",    "job"};
+  std::vector<std::string> listed;
+  std::istringstream help(r.out);
+  std::string line;
+  while (std::getline(help, line) && line != "Subcommands:") {
+  }
+  while (std::getline(help, line) && !line.empty()) {
+    CAPTURE(line);
+    CHECK(line.starts_with("  "));
+    std::istringstream words(line);
+    std::string name, summary;
+    words >> name;
+    std::getline(words >> std::ws, summary);
+    CHECK_FALSE(summary.empty());
+    listed.push_back(name);
+  }
+  CAPTURE(r.out);
+  const auto sortedNames = [](std::vector<std::string> names) {
+    std::sort(names.begin(), names.end());
+    return fmt::format("{}", fmt::join(names, " "));
+  };
+  CHECK(sortedNames(listed) == sortedNames(commands));
+  // Each name listed is a command: its own help, under its own name.
+  for (const std::string& command : listed) {
+    CAPTURE(command);
+    const Result own = s.run(command + " --help");
+    CHECK(own.code == 0);
+    CHECK(own.out.find("Usage: particles " + command + " ") != std::string::npos);
+  }
   CHECK(r.out.find("Exit codes") != std::string::npos);
   for (const char* command : {"check", "run"}) {
     CAPTURE(command);

@@ -19,7 +19,8 @@
 #include "cli_support.hpp"
 #include "render/gl_backend.hpp"
 #include "render/gl_context.hpp"
-#include "render/video_probe.hpp"
+#include "skip.hpp"
+#include "support/video_probe.hpp"
 
 using namespace particles::test;
 
@@ -88,7 +89,7 @@ void checkOutOfMemory(const Result& r) {
 }  // namespace
 
 TEST_CASE("issue 26 row 16: a 16384² render under a 2 GiB cap ends in exit 3 (or 2), not SIGSEGV, on every backend") {
-  if (kSanitized) return;  // no cap: the frame would be drawn
+  if (kSanitized) return particles::test::skipTest("no address-space cap under ASan: the frame would be drawn");
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   for (const auto backend : {particles::render::GlBackend::egl, particles::render::GlBackend::osmesa}) {
@@ -146,7 +147,7 @@ TEST_CASE("issue 26 row 12: compare tells sizes apart from the PNG headers, and 
 }
 
 TEST_CASE("issue 26 row 12: a simulation that runs out of memory is exit 3, not 'simulation failed'") {
-  if (kSanitized) return;
+  if (kSanitized) return particles::test::skipTest("no address-space cap under AddressSanitizer");
   Scratch s;
   // A million particles and two million springs: ~580 MiB to run, over a 640 MiB cap with the
   // program's ~420 MiB of libraries.
@@ -176,7 +177,7 @@ TEST_CASE("issue 26 row 10: concat refuses a segment that does not decode whole,
   const Result whole = s.run("concat a.mp4 b.mp4 -o joined.mp4");
   REQUIRE_MESSAGE(whole.code == 0, whole.err);
   CHECK(whole.out == "2 segments, 14 frames, 1.4 s → joined.mp4\n");
-  CHECK(particles::render::probeVideo(s.dir / "joined.mp4").frames == 14);
+  CHECK(particles::test::probeVideo(s.dir / "joined.mp4").frames == 14);
   fs::remove(s.dir / "joined.mp4");
 
   for (const char* args : {"b.mp4 cut.mp4", "cut.mp4 b.mp4", "cut.mp4", "b.mp4 head.mp4", "head.mp4"}) {
@@ -201,5 +202,5 @@ TEST_CASE("issue 26 row 11: concat opens one segment at a time: 2000 segments jo
   REQUIRE_MESSAGE(r.code == 0, r.err);
   CHECK(r.out == "2000 segments, 4000 frames, 400 s → joined.mp4\n");
   if (!kSanitized) CHECK(usage.peakMiB < kMaxPeakMiB);  // every segment open at once: 780 MiB
-  CHECK(particles::render::probeVideo(s.dir / "joined.mp4").frames == 4000);
+  CHECK(particles::test::probeVideo(s.dir / "joined.mp4").frames == 4000);
 }

@@ -12,8 +12,8 @@
 
 #include "cli_support.hpp"
 #include "render/png_io.hpp"
-#include "render/video_probe.hpp"
 #include "render_support.hpp"
+#include "support/video_probe.hpp"
 
 using namespace particles::test;
 namespace fs = std::filesystem;
@@ -37,14 +37,14 @@ TEST_CASE("cli render: an MP4 with fps × duration H.264 frames") {
   s.write("s.yaml", kSwing);
   const Result r = s.run("render s.yaml -o swing.mp4 --quiet");
   REQUIRE_MESSAGE(r.code == 0, r.err);
-  const auto info = particles::render::probeVideo(s.dir / "swing.mp4");
+  const auto info = particles::test::probeVideo(s.dir / "swing.mp4");
   checkVideo(info, "h264", 160, 120, 10);
   CHECK(info.pixelFormat == "yuv420p");
   CHECK(info.durationSeconds == doctest::Approx(1.0).epsilon(0.1));
   CHECK(outputs(s) == std::vector<std::string>{"swing.mp4"});
   // Command-line size and fps win over the scenario's.
   REQUIRE(s.run("render s.yaml -o big.mp4 --size 320x240 --fps 20 --quiet").code == 0);
-  const auto big = particles::render::probeVideo(s.dir / "big.mp4");
+  const auto big = particles::test::probeVideo(s.dir / "big.mp4");
   CHECK(big.width == 320);
   CHECK(big.frames == 20);
 }
@@ -319,12 +319,12 @@ TEST_CASE("cli concat: two MP4 segments of a split render join into one 120-fram
   const std::string common = " --set simulation.duration=2 --size 160x120 --quiet";
   REQUIRE(s.run("render '" + cloth + "' -o a.mp4 --frames 0:60" + common).code == 0);
   REQUIRE(s.run("render '" + cloth + "' -o b.mp4 --frames 60:120" + common).code == 0);
-  CHECK(particles::render::probeVideo(s.dir / "a.mp4").frames == 60);
+  CHECK(particles::test::probeVideo(s.dir / "a.mp4").frames == 60);
   const Result joined = s.run("concat a.mp4 b.mp4 -o all.mp4");
   REQUIRE_MESSAGE(joined.code == 0, joined.err);
   CHECK(joined.out == "2 segments, 120 frames, 2 s → all.mp4\n");
   CHECK(joined.err.empty());
-  const auto info = particles::render::probeVideo(s.dir / "all.mp4");  // decodes every frame
+  const auto info = particles::test::probeVideo(s.dir / "all.mp4");  // decodes every frame
   CHECK(info.codec == "h264");
   CHECK(info.frames == 120);
   CHECK(info.fps == doctest::Approx(60.0));
@@ -374,5 +374,5 @@ TEST_CASE("cli render --frames and concat: bad ranges and unlike segments are re
   CHECK(!fs::exists(s.dir / "joined.avi"));
   // One segment is a (trivial) join.
   CHECK(s.run("concat small.mp4 -o one.mp4 --quiet").code == 0);
-  CHECK(particles::render::probeVideo(s.dir / "one.mp4").frames == 5);
+  CHECK(particles::test::probeVideo(s.dir / "one.mp4").frames == 5);
 }

@@ -11,8 +11,8 @@
 #include "cli_support.hpp"
 #include "render/frame_writer.hpp"
 #include "render/png_io.hpp"
-#include "render/video_probe.hpp"
 #include "render_support.hpp"
+#include "support/video_probe.hpp"
 
 using namespace particles::test;
 namespace fs = std::filesystem;
@@ -55,7 +55,7 @@ TEST_CASE("cli render -o x.gif: the scenario's fps up to 30, delays in whole cen
   s.write("s.yaml", kSwingScenario);  // 1 s at 10 fps
   Result r = s.run("render s.yaml -o swing.gif --quiet");
   REQUIRE_MESSAGE(r.code == 0, r.err);
-  const auto info = particles::render::probeVideo(s.dir / "swing.gif");
+  const auto info = particles::test::probeVideo(s.dir / "swing.gif");
   checkVideo(info, "gif", 160, 120, 10);
   CHECK(info.durationSeconds == doctest::Approx(1.0).epsilon(1e-9));
   CHECK(probeEntries(s.dir / "swing.gif", "stream=nb_read_frames", "-count_frames") == std::vector<std::string>{"10"});
@@ -72,7 +72,7 @@ TEST_CASE("cli render -o x.gif: the scenario's fps up to 30, delays in whole cen
     CAPTURE(i);
     CHECK(delays[i] == (i % 3 == 1 ? 4 : 3));
   }
-  CHECK(particles::render::probeVideo(s.dir / "thirty.gif").frames == 30);
+  CHECK(particles::test::probeVideo(s.dir / "thirty.gif").frames == 30);
 
   // --fps is taken as given up to 50 (2 cs a frame) ...
   r = s.run("render s.yaml -o fifty.gif --set render.fps=60 --fps 50 --quiet");
@@ -88,7 +88,7 @@ TEST_CASE("cli render -o x.webm: VP9 frames, keyframes as --keyint asks, --crf i
   s.write("s.yaml", kSwingScenario);
   Result r = s.run("render s.yaml -o swing.webm --quiet");
   REQUIRE_MESSAGE(r.code == 0, r.err);
-  const auto info = particles::render::probeVideo(s.dir / "swing.webm");
+  const auto info = particles::test::probeVideo(s.dir / "swing.webm");
   checkVideo(info, "vp9", 160, 120, 10);
   CHECK(info.pixelFormat == "yuv420p");
   CHECK(info.durationSeconds == doctest::Approx(1.0).epsilon(0.01));
@@ -135,7 +135,7 @@ TEST_CASE("cli render --background transparent: RGBA PNGs and VP9 alpha; refused
 
   r = s.run("render s.yaml -o clear.webm --background transparent --quiet");
   REQUIRE_MESSAGE(r.code == 0, r.err);
-  const auto alpha = particles::render::probeVideo(s.dir / "clear.webm", 0, "libvpx-vp9");
+  const auto alpha = particles::test::probeVideo(s.dir / "clear.webm", 0, "libvpx-vp9");
   CHECK(alpha.alphaMode == "1");
   CHECK(alpha.decodedPixelFormat == "yuva420p");
   CHECK(alpha.frames == 10);

@@ -11,7 +11,7 @@
 using namespace particles;
 using namespace particles::test;
 
-TEST_CASE("collider geometry") {
+TEST_CASE("a point inside a half-plane or a disk has a contact with its depth and outward normal, outside none") {
   const HalfPlaneCollider ground(Vec2(0, 2), -1.5);  // normal is normalised
   CHECK(ground.normal() == Vec2(0, 1));
   CHECK_FALSE(ground.contact(Vec2(3, -1.4)).has_value());
@@ -29,7 +29,7 @@ TEST_CASE("collider geometry") {
   CHECK(disk.contact(Vec2(1, 1))->normal == Vec2(0, 1));  // the centre has a defined way out
 }
 
-TEST_CASE("penalty force and its energy") {
+TEST_CASE("a particle 0.2 m into a half-plane feels k d² along the normal and stores k d³ / 3") {
   SystemBuilder b;
   b.addParticle(particleAt(0, -0.2));
   b.addCollider(std::make_unique<HalfPlaneCollider>(Vec2(0, 1), 0.0, PenaltyParams{1000.0, 0.0}));

@@ -26,7 +26,7 @@
 #include "output/pending_output.hpp"
 #include "render/frame_writer.hpp"
 #include "render/png_io.hpp"
-#include "render/video_probe.hpp"
+#include "support/video_probe.hpp"
 
 using namespace particles::output;
 using particles::test::Scratch;
@@ -308,7 +308,7 @@ TEST_CASE("output: a symbolic link is followed to its target, and stays a link")
   auto writer = particles::render::openFrameWriter(s.dir / "links" / "video.mp4", options);
   for (int i = 0; i < 3; ++i) writer->write(particles::render::Image(64, 48));
   writer->finish();
-  CHECK(particles::render::probeVideo(s.dir / "files" / "video.mp4").frames == 3);
+  CHECK(particles::test::probeVideo(s.dir / "files" / "video.mp4").frames == 3);
   CHECK(S_ISLNK(lstatOf(s.dir / "links" / "video.mp4").st_mode));
   CHECK(entries(s.dir / "files") == std::set<std::string>{"target.csv", "video.mp4"});
 }

@@ -18,7 +18,10 @@
 
 using namespace particles::plot;
 using particles::test::decodePng;
+using particles::test::glyphsIn;
 using particles::test::parseXml;
+using particles::test::PathBounds;
+using particles::test::pathBounds;
 using particles::test::pathShape;
 using particles::test::plotFrames;
 using particles::test::sameColour;
@@ -117,19 +120,90 @@ TEST_CASE("plot: a log axis leaves out non-positive points and breaks the line t
   CHECK(std::max(pathShape(linear[0]).vertices, pathShape(linear[1]).vertices) == 7);
 }
 
-TEST_CASE("plot: empty, constant and all-non-positive data still make a well-formed figure") {
+TEST_CASE("plot: empty, constant and all-non-positive data make a panel each, with a line or \"no data\" in it") {
   Figure f;
   f.chart = LineChart{
       "t [s]",
       {Panel{"empty", AxisScale::Linear, {}}, Panel{"constant", AxisScale::Linear, {{"c", {0, 1, 2}, {3, 3, 3}}}},
        Panel{"zero", AxisScale::Linear, {{"z", {0, 1}, {0, 0}}}},
        Panel{"log of nothing", AxisScale::Log, {{"n", {0, 1}, {0, -2}}}}}};
-  for (ImageFormat format : {ImageFormat::Svg, ImageFormat::Png}) CHECK_FALSE(renderFigure(f, format).empty());
-  CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
-  f.chart = LineChart{};
-  CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
-  f.chart = DotChart{};
-  CHECK_NOTHROW(parseXml(renderFigure(f, ImageFormat::Svg)));
+  const auto svg = svgOf(f);
+  // Four frames of one width (plotFrames keeps them top to bottom), stacked without overlapping.
+  const auto frames = plotFrames(svg);
+  REQUIRE(frames.size() == 4);
+  for (std::size_t k = 1; k < frames.size(); ++k) {
+    CAPTURE(k);
+    CHECK(frames[k].x0 == frames[0].x0);
+    CHECK(frames[k].x1 == frames[0].x1);
+    CHECK(frames[k].y0 > frames[k - 1].y1);
+  }
+  // "no data" (7 glyphs, the space one) in the middle of the panels with nothing to draw, and
+  // nowhere else; a line in the others: the constant across the middle of its range (2.5 … 3.5),
+  // the zeros on the bottom edge from t = 0 to 1 (of 0 … 2). The legend's swatches are 26 px wide.
+  const long noDataGlyphs = std::string("no data").size();
+  const auto middle = [](const PathBounds& frame) {
+    return PathBounds{frame.centreX() - 50, frame.centreY() - 10, frame.centreX() + 50, frame.centreY() + 10};
+  };
+  const auto lines = [&](const PathBounds& frame) {
+    std::vector<PathBounds> inside;
+    for (const XmlElement& e : pathsIn(svg, "stroke", 0)) {
+      const PathBounds b = pathBounds(e);
+      if (b.x1 - b.x0 != 26 && b.x0 >= frame.x0 - 1 && b.x1 <= frame.x1 + 1 && b.y0 >= frame.y0 - 1 &&
+          b.y1 <= frame.y1 + 1) {
+        inside.push_back(b);
+      }
+    }
+    return inside;
+  };
+  CHECK(glyphsIn(svg, middle(frames[0])) == noDataGlyphs);
+  CHECK(glyphsIn(svg, middle(frames[3])) == noDataGlyphs);
+  CHECK(glyphsIn(svg, middle(frames[1])) == 0);
+  CHECK(glyphsIn(svg, middle(frames[2])) == 0);
+  CHECK(lines(frames[0]).empty());
+  CHECK(lines(frames[3]).empty());
+  const auto constant = lines(frames[1]);
+  REQUIRE(constant.size() == 1);
+  // Within a pixel: frames are stroked on half pixels, lines at the data's pixel coordinates.
+  CHECK(std::abs(constant[0].x0 - frames[1].x0) <= 1);
+  CHECK(std::abs(constant[0].x1 - frames[1].x1) <= 1);
+  CHECK(std::abs(constant[0].centreY() - frames[1].centreY()) <= 1);
+  const auto zeros = lines(frames[2]);
+  REQUIRE(zeros.size() == 1);
+  CHECK(std::abs(zeros[0].x0 - frames[2].x0) <= 1);
+  CHECK(std::abs(zeros[0].x1 - frames[2].centreX()) <= 1);
+  CHECK(std::abs(zeros[0].centreY() - frames[2].y1) <= 1);
+
+  // The PNG has the SVG's layout: the figure's size, the constant's line in the series' colour
+  // where the SVG has it, white above it, "no data" dark in the empty panel's middle and nothing
+  // dark in the zeros' middle.
+  const auto png = decodePng(renderFigure(f, ImageFormat::Png));
+  REQUIRE(png.width == 1200);
+  REQUIRE(png.height == 800);
+  const int lineY = int(constant[0].centreY());
+  for (const double share : {0.1, 0.5, 0.9}) {
+    const int x = int(frames[1].x0 + share * (frames[1].x1 - frames[1].x0));
+    CAPTURE(x);
+    CHECK(png.is(x, lineY, seriesColour(0)));
+    CHECK(png.inkedPixels(x, lineY - 20, x + 1, lineY - 5) == 0);
+  }
+  const PathBounds text = middle(frames[0]);
+  CHECK(png.darkPixels(int(text.x0), int(text.y0), int(text.x1), int(text.y1)) > 20);
+  const PathBounds empty = middle(frames[2]);
+  CHECK(png.darkPixels(int(empty.x0), int(empty.y0), int(empty.x1), int(empty.y1)) == 0);
+  // The PDF's page is the figure at 96 px per inch: 900 × 600 pt (cairo writes the page dictionary
+  // uncompressed).
+  const auto pdf = renderFigure(f, ImageFormat::Pdf);
+  CHECK(std::string(pdf.begin(), pdf.end()).find("/MediaBox [ 0 0 900 600 ]") != std::string::npos);
+
+  // No panels at all, or a dot chart of nothing: one frame saying "no data".
+  using Chart = std::variant<LineChart, DotChart>;
+  for (const Chart& chart : {Chart{LineChart{}}, Chart{DotChart{}}}) {
+    f.chart = chart;
+    const auto nothing = svgOf(f);
+    const auto frame = plotFrames(nothing);
+    REQUIRE(frame.size() == 1);
+    CHECK(glyphsIn(nothing, middle(frame[0])) == noDataGlyphs);
+  }
 }
 
 // gather's figure: markers on log or linear axes, fitted to a parameter and results that may lie

@@ -16,6 +16,7 @@
 #include "render/renderer.hpp"
 #include "render_support.hpp"
 #include "scenario/scenario.hpp"
+#include "skip.hpp"
 
 using namespace particles;
 using namespace particles::render;
@@ -108,10 +109,8 @@ TEST_CASE("GL backends: every backend built draws the demos' frames to the same 
 }
 
 TEST_CASE("GL backends: renderers of both take turns in one thread, each drawing in its own buffer") {
-  if (builtBackends().size() < 2) {
-    MESSAGE("skipped: " << glBuildDescription());
-    return;
-  }
+  if (builtBackends().size() < 2)
+    return particles::test::skipTest("needs both backends, this build has " + glBuildDescription());
   const System system = particles::test::fallingParticles();
   const Drawing a = system.draw();
   Drawing b = a;
@@ -179,7 +178,8 @@ TEST_CASE("GL backends: names, the backends of this build and the requests it re
 }
 
 TEST_CASE("GL backends: a GPU request draws on hardware, or fails saying there is none") {
-  if (!glBackendBuilt(GlBackend::egl)) return;
+  if (!glBackendBuilt(GlBackend::egl))
+    return particles::test::skipTest("needs EGL, this build has " + glBuildDescription());
   for (GlBackend backend : {GlBackend::egl, GlBackend::automatic}) {
     try {
       Renderer renderer(particles::test::smallRenderOptions(), {backend, true});
@@ -260,7 +260,8 @@ TEST_CASE("cli render --gl, PARTICLES_GL: unknown names and missing backends are
 }
 
 TEST_CASE("cli render --gpu: without a GPU, a clear error, exit 3 and no output") {
-  if (!glBackendBuilt(GlBackend::egl)) return;
+  if (!glBackendBuilt(GlBackend::egl))
+    return particles::test::skipTest("needs EGL, this build has " + glBuildDescription());
   Scratch s;
   s.write("s.yaml", particles::test::kSwingScenario);
   for (const char* output : {"g.png --at 0.5", "g.mp4", "frames/"}) {
@@ -278,7 +279,8 @@ TEST_CASE("cli render --gpu: without a GPU, a clear error, exit 3 and no output"
 }
 
 TEST_CASE("cli render: EGL that cannot start fails --gl egl with exit 3, and auto falls back to OSMesa") {
-  if (!glBackendBuilt(GlBackend::egl)) return;
+  if (!glBackendBuilt(GlBackend::egl))
+    return particles::test::skipTest("needs EGL, this build has " + glBuildDescription());
   Scratch s;
   s.write("s.yaml", particles::test::kSwingScenario);
   // GLVND's libEGL finds no vendor library (Mesa's) to load: EGL offers no platform at all.

@@ -19,12 +19,14 @@
 #include "render/png_io.hpp"
 #include "render/png_sequence_writer.hpp"
 #include "render/renderer.hpp"
-#include "render/video_probe.hpp"
 #include "render_support.hpp"
+#include "support/video_probe.hpp"
 
 using namespace particles;
 using namespace particles::render;
+using particles::test::probeVideo;
 using particles::test::ScratchDir;
+using particles::test::VideoInfo;
 
 namespace {
 
@@ -100,7 +102,7 @@ void checkLastFrame(const VideoInfo& info, const std::vector<Image>& rendered, d
 
 }  // namespace
 
-TEST_CASE("frame counts and output kinds") {
+TEST_CASE("a run renders duration × fps frames, and an output's kind and a frame's index are read from their names") {
   CHECK(frameCount(10.0, 60) == 600);
   CHECK(frameCount(0.5, 24) == 12);
   CHECK(frameCount(0.001, 30) == 1);

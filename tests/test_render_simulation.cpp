@@ -19,13 +19,15 @@
 #include "render/frame_writer.hpp"
 #include "render/png_io.hpp"
 #include "render/render_simulation.hpp"
-#include "render/video_probe.hpp"
 #include "render_support.hpp"
 #include "scenario/scenario.hpp"
+#include "support/video_probe.hpp"
 
 using namespace particles;
 using namespace particles::render;
+using particles::test::probeVideo;
 using particles::test::ScratchDir;
+using particles::test::VideoInfo;
 
 namespace {
 

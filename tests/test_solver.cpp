@@ -46,14 +46,55 @@ TEST_CASE("an absurd dt on a stiff spring gives the explosion error, not NaNs") 
   }
 }
 
-TEST_CASE("a sane long run does not trip the explosion guard") {
-  // 10 s of free fall: kinetic energy grows to ~500× the scale, far below the 1e6 factor.
-  SystemBuilder b;
-  b.addParticle(particleAt(0, 0));
-  b.emplaceForce<GravityForce>(Vec2(0, -9.81));
-  System sys = b.build();
-  Solver solver(Integrator::Rk4);
-  CHECK_NOTHROW(advance(sys, solver, 0.01, 1000));
+namespace {
+
+// Global order of each integrator, from the formulas atop integrators.hpp and integrators/*.hpp.
+// A new integrator is a compile error here (-Wswitch) until its order is stated.
+int globalOrder(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::Euler:
+    case Integrator::SymplecticEuler:
+    case Integrator::BackwardEuler: return 1;
+    case Integrator::Midpoint:
+    case Integrator::Verlet: return 2;
+    case Integrator::Rk4: return 4;
+  }
+  return 0;
+}
+
+}  // namespace
+
+TEST_CASE("10 s of free fall follow the exact parabola to each integrator's order, without tripping the guard") {
+  // Kinetic energy grows to ~500× the scale, far below the guard's 1e6 factor. The exact answer:
+  //   x = v0x t,   y = v0y t − ½ g t²,   vy = v0y − g t.
+  // Every integrator's velocity update is exact for a constant acceleration (v₁ = v₀ + h a), so vy
+  // is exact up to round-off. For y, a method's local error is its first Taylor term it misses:
+  // second and higher order ones miss h³ y‴/6 or beyond, and y‴ = 0: only round-off remains. A
+  // first-order one misses ±h² y″/2 = ∓½ g h² per step (explicit Euler moves with v₀, symplectic
+  // and backward Euler with v₁), and nothing further since y‴ = 0: over t / h steps exactly
+  // |Δy| = ½ g t h = 0.4905 m here. Round-off: 1000 steps of ε·|y| ≈ 2.2e-16 · 490 m ≈ 1e-10 m; 1e-9 allows 10×.
+  constexpr double g = 9.81, h = 0.01, v0x = 3.0, v0y = 4.0, roundOff = 1e-9;
+  constexpr long steps = 1000;
+  for (Integrator integrator : allIntegrators()) {
+    CAPTURE(integratorName(integrator));
+    SystemBuilder b;
+    ParticleSpec p = particleAt(0, 0);
+    p.vel = Vec2(v0x, v0y);
+    b.addParticle(p);
+    b.emplaceForce<GravityForce>(Vec2(0, -g));
+    System sys = b.build();
+    Solver solver(integrator);
+    REQUIRE_NOTHROW(advance(sys, solver, h, steps));
+    const double t = sys.time();
+    REQUIRE(t == doctest::Approx(10.0).epsilon(1e-12));
+    const double expectedYError = globalOrder(integrator) == 1 ? 0.5 * g * t * h : 0.0;
+    const double yError = sys.view().pos(0).y() - (v0y * t - 0.5 * g * t * t);
+    CAPTURE(yError);
+    CHECK(std::abs(std::abs(yError) - expectedYError) < roundOff);
+    CHECK(std::abs(sys.view().pos(0).x() - v0x * t) < roundOff);
+    CHECK(std::abs(sys.view().vel(0).x() - v0x) < roundOff);
+    CHECK(std::abs(sys.view().vel(0).y() - (v0y - g * t)) < roundOff);
+  }
 }
 
 namespace {

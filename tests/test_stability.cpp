@@ -9,7 +9,7 @@
 using namespace particles;
 using namespace particles::test;
 
-TEST_CASE("two-significant-digit rounding") {
+TEST_CASE("stable steps are rounded down to two significant digits, to the double nearest the decimal") {
   CHECK(roundDownTwoDigits(0.0137) == doctest::Approx(0.013));
   CHECK(roundDownTwoDigits(0.013) == doctest::Approx(0.013));
   CHECK(roundDownTwoDigits(2.83) == doctest::Approx(2.8));

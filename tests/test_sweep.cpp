@@ -11,7 +11,7 @@
 #include <map>
 
 #include "cli_support.hpp"
-#include "render/video_probe.hpp"
+#include "support/video_probe.hpp"
 
 namespace {
 
@@ -303,7 +303,7 @@ TEST_CASE("sweep: a render split into segments, joined by concat into one video"
     CAPTURE(i);
     CHECK(results[size_t(i)].at("stage") == "concat");
     CHECK(results[size_t(i)].at("status") == "ok");
-    const auto info = particles::render::probeVideo(s.dir / "out/jobs" / jobDir(i) / "video.mp4");
+    const auto info = particles::test::probeVideo(s.dir / "out/jobs" / jobDir(i) / "video.mp4");
     CHECK(info.codec == "h264");
     CHECK(info.frames == 10);
     CHECK(info.fps == doctest::Approx(10));

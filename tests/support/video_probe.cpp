@@ -1,4 +1,4 @@
-#include "render/video_probe.hpp"
+#include "support/video_probe.hpp"
 
 #include "render/errors.hpp"
 #include "render/libav_util.hpp"
@@ -7,9 +7,12 @@ extern "C" {
 #include <libavutil/pixdesc.h>
 }
 
-namespace particles::render {
+namespace particles::test {
 
-using libav::check;
+using render::Image;
+using render::OutputError;
+using render::libav::check;
+namespace libav = render::libav;
 
 namespace {
 
@@ -102,4 +105,4 @@ VideoInfo probeVideo(const std::filesystem::path& path, long sampleFrame, const 
   return info;
 }
 
-}  // namespace particles::render
+}  // namespace particles::test
