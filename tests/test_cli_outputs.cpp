@@ -130,7 +130,7 @@ TEST_CASE("issue 26 row 13: compare --diff never replaces the frames it compares
       });
 }
 
-TEST_CASE("issue 26 row 14: gather's outputs are never its job table, a record or each other; plot's never its CSV") {
+TEST_CASE("issue 26 row 14: gather's outputs are never its job table, a record or each other, plot's never its CSV") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   s.write("sweep.yaml",

@@ -235,7 +235,7 @@ TEST_CASE("cli render --hud: text in the top-left corner, the rest of the frame 
   CHECK(changedElsewhere == 0);
 }
 
-TEST_CASE("cli render --keyint: a keyframe at least every 2 s by default, or as asked; bad values refused") {
+TEST_CASE("cli render --keyint: a keyframe at least every 2 s by default, or as asked, bad values refused") {
   Scratch s;
   // A still picture for 7 s at 10 fps: x264 adds keyframes of its own at scene cuts, and a still
   // picture has none, so every keyframe here is the interval's. x264 puts one at most keyint

@@ -113,7 +113,7 @@ TEST_CASE("cli render -o x.webm: VP9 frames, keyframes as --keyint asks, --crf i
   CHECK(outputs(s) == std::vector<std::string>{"fine.webm", "keys.webm", "swing.webm"});
 }
 
-TEST_CASE("cli render --background transparent: RGBA PNGs and VP9 alpha; refused for MP4, GIF and --hud") {
+TEST_CASE("cli render --background transparent: RGBA PNGs and VP9 alpha, refused for MP4, GIF and --hud") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   particles::render::setLibavVerbose(false);  // libvpx's decoder announces itself at "info"

@@ -178,7 +178,7 @@ TEST_CASE("the frame pipeline consumes every frame in order through a few reused
   for (long i = 0; i < 200; ++i) CHECK(consumed[std::size_t(i)] == i);
 }
 
-TEST_CASE("a failing fill leaves the pipeline usable; a failing consumer stops it") {
+TEST_CASE("a failing fill leaves the pipeline usable, a failing consumer stops it") {
   std::vector<long> consumed;
   {
     FramePipeline pipeline(

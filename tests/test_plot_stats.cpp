@@ -164,7 +164,7 @@ TEST_CASE("plot stats figure: energy, then constraint error on a log axis and pe
   CHECK_THROWS_AS(statsFigure(table), FigureError);
 }
 
-TEST_CASE("plot stats figure: the title names the scenario, integrator and dt; mouse intervals become bands") {
+TEST_CASE("plot stats figure: the title names the scenario, integrator and dt, mouse intervals become bands") {
   StatsTable table;
   for (int i = 0; i <= 60; ++i) {
     table.t.push_back(i);

@@ -388,7 +388,7 @@ TEST_CASE("a transparent background: alpha 0 where nothing is drawn, 255 on a pa
   }
 }
 
-TEST_CASE("a transparent frame survives an RGBA PNG round trip; an opaque one is written as RGB") {
+TEST_CASE("a transparent frame survives an RGBA PNG round trip, an opaque one is written as RGB") {
   ScratchDir dir;
   const Image clear = renderedFalling(true).frame;
   writePng(dir / "clear.png", clear, {.compressionLevel = 6, .alpha = true});
@@ -429,7 +429,7 @@ TEST_CASE("a GIF decodes with fps × duration frames, each close to its source, 
   CHECK_FALSE(std::filesystem::exists(dir / "fast.gif"));
 }
 
-TEST_CASE("a WebM decodes as VP9 with fps × duration frames; with alpha, libvpx decodes its alpha plane") {
+TEST_CASE("a WebM decodes as VP9 with fps × duration frames, with alpha, libvpx decodes its alpha plane") {
   ScratchDir dir;
   setLibavVerbose(false);
   const int fps = 30;

@@ -313,7 +313,7 @@ TEST_CASE("sweep: a render split into segments, joined by concat into one video"
                     (s.dir / "out/jobs/000001/segment.mp4").string()) != std::string::npos);
 }
 
-TEST_CASE("job record: done by this very binary counts; by another build, or with a lost output, it runs again") {
+TEST_CASE("job record: done by this very binary counts, by another build, or with a lost output, it runs again") {
   Scratch s;
   const std::string job = "run " + kSource + "/scenarios/springs.yaml --duration 0.2 --stats s.csv --record r.txt";
   auto r = s.run(job);

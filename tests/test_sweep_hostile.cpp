@@ -184,7 +184,7 @@ TEST_CASE("sweep: a split render's segments and joins run as jobs by index, the 
   CHECK(pwned(s.dir).empty());
 }
 
-TEST_CASE("sweep: a path with a line break cannot go into a job list; values with one can") {
+TEST_CASE("sweep: a path with a line break cannot go into a job list, values with one can") {
   Scratch s;
   s.write("hostile.yaml", hostileSweep());
   const auto r = s.run("sweep hostile.yaml -o 'o\ntouch PWNED' --emit parallel");
