@@ -1,9 +1,8 @@
 #pragma once
-// Where rendered frames go (`particles render SCENARIO -o OUT`, docs/physics.md §12):
-//   OUT.mp4   H.264 video (Mp4Writer)            OUT/  numbered PNGs (PngSequenceWriter)
-//   OUT.webm  VP9 video, with alpha if the frames have it (WebmWriter)
-//   OUT.gif   animated GIF, one palette for the whole video (GifWriter)
-//   OUT.png   one frame at --at T: not a stream; call writePng (png_io.hpp) directly.
+// Where rendered frames go (`particles render SCENARIO -o OUT`, docs/physics.md §12): a writer for
+// each format of render/output_formats.hpp that is a run of frames, opened by openFrameWriter from
+// the format's row. The one frame at --at T is not a stream: renderSimulation calls writePng
+// (png_io.hpp) directly.
 //
 // A writer encodes on its own thread behind a bounded queue, writes to a temporary (an anonymous
 // file, or the staging directory of a PNG sequence) and moves the result into place in finish(). Until then an existing
@@ -36,6 +35,7 @@
 #include <string>
 
 #include "render/image.hpp"
+#include "render/output_formats.hpp"
 #include "render/png_io.hpp"
 
 namespace particles::render {
@@ -55,21 +55,10 @@ class FrameWriter {
   virtual long framesWritten() const = 0;  // frames accepted by write()
 };
 
-// x264 constant rate factor, 0 (lossless) to 51. Line art on a flat background is cheap to
-// encode; 18 keeps thin coloured lines free of visible ringing and chroma smear.
-inline constexpr int kX264DefaultCrf = 18;
-// libvpx-vp9 constant quality (crf with a bit rate of 0), 0 to 63: render/webm_writer.hpp says why 31.
-inline constexpr int kVp9DefaultCrf = 31;
-// GIF frame delays are whole centiseconds, and browsers show a delay under 2 cs as 10 cs (a
-// 60 fps GIF plays at 10 fps in them), so a GIF has at most 50 frames per second. Without --fps a
-// GIF takes the scenario's rate, at most 30 (render/gif_writer.hpp).
-inline constexpr int kMaxGifFps = 50;
-inline constexpr int kDefaultMaxGifFps = 30;
-
 struct VideoOptions {
   int fps = 60;
-  // Constant rate factor (quality) of the encoder: H.264 0 … 51, VP9 0 … 63 (lower is better and
-  // larger). Nothing: kX264DefaultCrf or kVp9DefaultCrf. Not used by GIF.
+  // Constant rate factor (quality) of the encoder, in the range of its format's row
+  // (render/output_formats.hpp; crfOf). Nothing: the row's default.
   std::optional<int> crf;
   // x264 preset: ultrafast … placebo. Encoding alone, 25×25 cloth at 1280×720 on 2 shared cores:
   // medium about 55 frames/s, veryfast about 114 frames/s with 5 % larger files.
@@ -108,24 +97,11 @@ struct FrameWriterOptions {
   bool wholeSequence = true;
 };
 
-enum class OutputKind { mp4, webm, gif, png, pngSequence };
-
-// The kind of output a path names: a trailing '/' or an existing directory is a PNG sequence,
-// otherwise the extension decides (.mp4, .webm, .gif, .png; case-insensitive). Throws
-// std::invalid_argument for anything else, listing what is supported.
-OutputKind outputKind(const std::filesystem::path& path);
-// Whether frames with alpha (RenderOptions::transparentBackground) keep it in this kind of output:
-// PNG (RGBA) and WebM (VP9 with an alpha channel). MP4's H.264 and GIF's one transparent colour
-// cannot hold anti-aliased edges over nothing.
-bool keepsAlpha(OutputKind kind);
-// "MP4", "WebM", "GIF", "PNG", "PNG sequence": for messages.
-std::string outputKindName(OutputKind kind);
-
-// Opens the writer for an mp4, webm, gif or pngSequence path. `alpha`: the frames have a
-// transparent background to keep (webm and pngSequence only, else std::invalid_argument). Throws
-// std::invalid_argument for bad options (including an odd size for MP4 and WebM, see
-// yuv_video_writer.hpp, or an fps GIF cannot show) or a .png path (use writePng), and OutputError
-// if the output cannot be created (the message names the path and the reason).
+// Opens the writer of the path's format (outputFormatOf). Throws std::invalid_argument for a path
+// of no format, or of the one-frame PNG (use writePng), for alpha (FrameWriterOptions::alpha) the
+// format cannot keep, and for bad options (including an odd size for MP4 and WebM, see
+// yuv_video_writer.hpp, or an fps GIF cannot show); OutputError if the output cannot be created
+// (the message names the path and the reason).
 std::unique_ptr<FrameWriter> openFrameWriter(const std::filesystem::path& path, const FrameWriterOptions& options);
 
 // Frames for `duration` seconds at `fps`: at t = i / fps for i = 0 … frameCount − 1, so that the

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "render/frame_pipeline.hpp"
+#include "render/output_formats.hpp"
 #include "render/video_encoder.hpp"
 
 extern "C" {
@@ -186,12 +187,9 @@ struct GifWriter::Passes {
 namespace {
 
 void validate(const FrameWriterOptions& o) {
-  if (o.video.fps < 1 || o.video.fps > kMaxGifFps) {
-    throw std::invalid_argument("a GIF has at most " + std::to_string(kMaxGifFps) + " frames per second (" +
-                                std::to_string(o.video.fps) +
-                                " asked): its delays are whole centiseconds, and browsers slow delays under 2 cs "
-                                "down to 10 cs");
-  }
+  if (o.video.fps < 1)
+    throw std::invalid_argument("GIF frame rate " + std::to_string(o.video.fps) + " is not positive");
+  checkFps(outputFormat(OutputKind::gif), o.video.fps);
   if (o.width < 1 || o.height < 1 || o.width > 65535 || o.height > 65535) {
     throw std::invalid_argument("GIF size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                                 " is out of range");

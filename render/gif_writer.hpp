@@ -20,7 +20,7 @@
 // Timing: GIF delays are whole centiseconds. Frame i is shown from round(100·i / fps) cs, so at
 // 30 fps the delays run 3, 4, 3, 3, 4, 3, … cs and each frame starts within 5 ms of i / fps; the
 // last frame's delay (the muxer's final_delay) ends the animation at round(100·n / fps) cs, the
-// video's length. fps is 1 … kMaxGifFps (frame_writer.hpp). The GIF loops forever.
+// video's length. fps is 1 … the cap of GIF's row (output_formats.cpp). The GIF loops forever.
 //
 // Any size (palettised, no chroma subsampling); no alpha: GIF has one transparent colour, which
 // cannot hold anti-aliased edges over nothing (FrameWriterOptions::alpha is refused).
@@ -35,7 +35,7 @@ namespace particles::render {
 class GifWriter final : public SingleFileWriter {
  public:
   // Opens the temporary file and the palette's filter graph. Throws std::invalid_argument for bad
-  // options (fps above kMaxGifFps), OutputError naming the failing libav call and its message.
+  // options (fps above GIF's cap, output_formats.cpp), OutputError naming the failing libav call and its message.
   GifWriter(const std::filesystem::path& path, const FrameWriterOptions& options);
   ~GifWriter() override;  // abort() unless finished
 

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "render/output_formats.hpp"
 #include "render/video_encoder.hpp"
 
 namespace particles::render {
@@ -10,10 +11,7 @@ namespace {
 
 void validate(const FrameWriterOptions& o) {
   validateYuvVideo(o, "MP4 (H.264, yuv420p)");
-  const int crf = o.video.crf.value_or(kX264DefaultCrf);
-  if (crf < 0 || crf > 51) {
-    throw std::invalid_argument("crf " + std::to_string(crf) + " is out of range for H.264 (0 to 51)");
-  }
+  crfOf(outputFormat(OutputKind::mp4), o.video.crf);
   if (!isX264Preset(o.video.preset)) {
     throw std::invalid_argument("unknown x264 preset '" + o.video.preset +
                                 "' (ultrafast, superfast, veryfast, faster, fast, medium, slow, slower, veryslow, "
@@ -43,7 +41,7 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions
   video->codec()->gop_size = options.video.keyframeInterval();
   video->setOption("preset", options.video.preset);
   if (!options.video.tune.empty()) video->setOption("tune", options.video.tune);
-  video->setOption("crf", std::to_string(options.video.crf.value_or(kX264DefaultCrf)));
+  video->setOption("crf", std::to_string(crfOf(outputFormat(OutputKind::mp4), options.video.crf)));
   start(std::move(video), {{"movflags", "+faststart"}});
 }
 

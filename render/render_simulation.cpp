@@ -45,38 +45,22 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 RenderSummary renderSimulation(System& system, Integrator integrator, double dt, const RenderJob& job,
                                const RenderHooks& hooks) {
   if (!(dt > 0.0)) throw std::invalid_argument("time step must be positive");
-  const OutputKind kind = outputKind(job.output);
-  if (kind == OutputKind::png && !job.at) {
-    throw std::invalid_argument("'" + job.output.string() + "' is a single PNG: give the time to draw (at)");
-  }
-  if (kind != OutputKind::png && job.at) {
-    throw std::invalid_argument("a time to draw (at) is for one frame to a file.png, not '" + job.output.string() +
-                                "'");
-  }
-  const long total = kind == OutputKind::png ? 1 : frameCount(job.duration, job.fps);
+  const OutputFormat& format = outputFormatOf(job.output);
+  checkFormatOptions(format, job.output,
+                     {.transparentBackground = job.look.transparentBackground,
+                      .crf = job.video.crf,
+                      .fps = job.fps,
+                      .at = job.at,
+                      .frames = job.frames.has_value()});
+  const long total = format.oneFrameAt ? 1 : frameCount(job.duration, job.fps);
   const long first = job.frames ? job.frames->first : 0;
   const long end = job.frames ? job.frames->second : total;
-  if (job.frames && kind == OutputKind::png) {
-    throw std::invalid_argument("a frame range is for a video or a sequence, not the single frame '" +
-                                job.output.string() + "'");
-  }
-  // Segments of an MP4 join without re-encoding (particles concat); a GIF's palette and WebM's
-  // keyframe and alpha streams would not, so they render whole.
-  if (job.frames && (kind == OutputKind::gif || kind == OutputKind::webm)) {
-    throw std::invalid_argument("a frame range (a split render) is for MP4 or a PNG sequence, not " +
-                                outputKindName(kind) + " ('" + job.output.string() + "')");
-  }
   if (!(0 <= first && first < end && end <= total)) {
     throw std::invalid_argument("frames " + std::to_string(first) + ":" + std::to_string(end) +
                                 " are not a range of the video's " + std::to_string(total) + " frames (0:" +
                                 std::to_string(total) + ")");
   }
-
   const bool alpha = job.look.transparentBackground;
-  if (alpha && !keepsAlpha(kind)) {
-    throw std::invalid_argument("a transparent background cannot be kept in " + outputKindName(kind) + " ('" +
-                                job.output.string() + "'): write .webm, .png or dir/");
-  }
 
   FramePainter painter(job, hooks);
   Stepper stepper(system, integrator, dt);
@@ -88,7 +72,7 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
   const auto start = std::chrono::steady_clock::now();
   RenderSummary summary;
 
-  if (kind == OutputKind::png) {
+  if (format.oneFrameAt) {
     reached(*job.at);
     PngOptions png = job.png;
     png.alpha = png.alpha || alpha;

@@ -1,12 +1,9 @@
 #pragma once
 // `particles render` as a library call: steps a simulation, draws it at each frame's time and
-// writes the frames (render/frame_writer.hpp, render/png_io.hpp):
-//   file.mp4   H.264 video, frames i = 0 … frameCount(duration, fps) − 1 at t = i / fps
-//   file.webm  the same as VP9 (with alpha for a transparent background)
-//   file.gif   the same as an animated GIF (fps at most kMaxGifFps)
-//   dir/       the same frames as frame_000000.png …
-//   file.png   one frame at `at` seconds
-// or a range of the frames of a video or sequence (RenderJob::frames).
+// writes them in the output's format (render/output_formats.hpp): a run of frames
+// i = 0 … frameCount(duration, fps) − 1 at t = i / fps through a writer (render/frame_writer.hpp),
+// or a range of them (RenderJob::frames, for the formats that split), or the one frame at `at`
+// seconds (render/png_io.hpp).
 // A frame shows the state after the last time step at or before its time (to rounding), so with
 // a dt that divides 1/fps every frame is exact.
 //
@@ -30,9 +27,9 @@
 namespace particles::render {
 
 struct RenderJob {
-  std::filesystem::path output;  // file.mp4, file.webm, file.gif, dir/ (or an existing directory) or file.png
-  std::optional<double> at;      // s: the time of the one frame of a file.png; only with one. A time
-                                 // not after the system's (or NaN) draws its current state
+  std::filesystem::path output;  // its format is a row of render/output_formats.hpp (outputFormatOf)
+  std::optional<double> at;      // s: the time of the one frame of a one-frame format; only with one.
+                                 // A time not after the system's (or NaN) draws its current state
   double duration = 0.0;         // s of simulated time a video or sequence covers, > 0
   int fps = 60;                  // frames per simulated second, ≥ 1
   // Only frames first … end − 1 of the video or sequence (a split render): the simulation still
@@ -40,7 +37,8 @@ struct RenderJob {
   // them, so each frame is the same as in the whole render. A sequence names the frames by their
   // index in the whole (frame_000060.png …) and leaves other frames in the directory alone; an
   // MP4 holds end − first frames from t = 0 and starts with a keyframe (particles concat joins
-  // segments). Not for a GIF or WebM. Nothing: every frame. 0 ≤ first < end ≤ frameCount(duration, fps).
+  // segments). Only for the formats that split (OutputFormat::splits). Nothing: every frame.
+  // 0 ≤ first < end ≤ frameCount(duration, fps).
   std::optional<std::pair<long, long>> frames;
   Camera camera;
   RenderOptions look;
@@ -76,9 +74,10 @@ struct RenderSummary {
 // RenderError when the GL context cannot be made (before any output is opened) or draw,
 // OutputError when the output cannot be written, std::invalid_argument for options out of range
 // (render/render_options.hpp, render/gl_backend.hpp's validate, a video of odd size, an unknown
-// preset, a file.png without `at` or `at` for anything else, a frame range outside the video or
-// with a file.png, a transparent background (RenderOptions::transparentBackground) for an output
-// that cannot keep it: MP4 or GIF), and whatever a hook throws.
+// preset, a frame range outside the video) or that the output's format does not take
+// (checkFormatOptions, whose messages name the options as `particles render` spells them: --at
+// for `at`, --frames, --background transparent for RenderOptions::transparentBackground), and
+// whatever a hook throws.
 RenderSummary renderSimulation(System& system, Integrator integrator, double dt, const RenderJob& job,
                                const RenderHooks& hooks = {});
 

@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "render/output_formats.hpp"
 #include "render/video_encoder.hpp"
 
 namespace particles::render {
@@ -16,10 +17,7 @@ constexpr int kVp9CpuUsed = 4;
 
 void validate(const FrameWriterOptions& o) {
   validateYuvVideo(o, o.alpha ? "WebM (VP9, yuva420p)" : "WebM (VP9, yuv420p)");
-  const int crf = o.video.crf.value_or(kVp9DefaultCrf);
-  if (crf < 0 || crf > 63) {
-    throw std::invalid_argument("crf " + std::to_string(crf) + " is out of range for VP9 (0 to 63)");
-  }
+  crfOf(outputFormat(OutputKind::webm), o.video.crf);
 }
 
 const std::filesystem::path& validated(const std::filesystem::path& path, const FrameWriterOptions& options) {
@@ -39,7 +37,7 @@ WebmWriter::WebmWriter(const std::filesystem::path& path, const FrameWriterOptio
   // tiles and row synchronisation), and the same command must give the same bytes on any machine
   // (measured: 1 core against 2 gave different files with one thread per core).
   c->thread_count = kVp9Threads;
-  video->setOption("crf", std::to_string(options.video.crf.value_or(kVp9DefaultCrf)));
+  video->setOption("crf", std::to_string(crfOf(outputFormat(OutputKind::webm), options.video.crf)));
   video->setOption("deadline", "good");
   video->setOption("cpu-used", std::to_string(kVp9CpuUsed));
   video->setOption("row-mt", "1");

@@ -106,20 +106,20 @@ TEST_CASE("a run renders duration × fps frames, and an output's kind and a fram
   CHECK(frameCount(10.0, 60) == 600);
   CHECK(frameCount(0.5, 24) == 12);
   CHECK(frameCount(0.001, 30) == 1);
-  CHECK(outputKind("a/b/out.mp4") == OutputKind::mp4);
-  CHECK(outputKind("OUT.MP4") == OutputKind::mp4);
-  CHECK(outputKind("frame.png") == OutputKind::png);
-  CHECK(outputKind("frames/") == OutputKind::pngSequence);
-  CHECK(outputKind("a/out.gif") == OutputKind::gif);
-  CHECK(outputKind("OUT.WebM") == OutputKind::webm);
-  CHECK_THROWS_AS(outputKind("out.avi"), std::invalid_argument);
-  // The error lists every kind there is.
+  CHECK(outputFormatOf("a/b/out.mp4").kind == OutputKind::mp4);
+  CHECK(outputFormatOf("OUT.MP4").kind == OutputKind::mp4);
+  CHECK(outputFormatOf("frame.png").kind == OutputKind::png);
+  CHECK(outputFormatOf("frames/").kind == OutputKind::pngSequence);
+  CHECK(outputFormatOf("a/out.gif").kind == OutputKind::gif);
+  CHECK(outputFormatOf("OUT.WebM").kind == OutputKind::webm);
+  CHECK_THROWS_AS(outputFormatOf("out.avi"), std::invalid_argument);
+  // The error lists every format there is.
   try {
-    outputKind("out.mkv");
+    outputFormatOf("out.mkv");
     FAIL("out.mkv accepted");
   } catch (const std::invalid_argument& e) {
-    for (const char* kind : {"file.mp4", "file.webm", "file.gif", "file.png", "dir/"}) {
-      CHECK_MESSAGE(std::string(e.what()).find(kind) != std::string::npos, e.what());
+    for (const OutputFormat& format : outputFormats()) {
+      CHECK_MESSAGE(std::string(e.what()).find(format.example) != std::string::npos, e.what());
     }
   }
   CHECK(sequenceFrameName(42) == "frame_000042.png");

@@ -11,6 +11,7 @@
 #include "app/job_record.hpp"
 #include "render/frame_writer.hpp"
 #include "render/gl_backend.hpp"
+#include "render/output_formats.hpp"
 #include "render/renderer.hpp"
 
 namespace particles::app {
@@ -73,18 +74,11 @@ Cli::Cli() {
   renderCmd = app.add_subcommand(
       "render", "Simulate and draw the scenario off-screen to an MP4, WebM or GIF video, PNG frames or one PNG");
   addCommonOptions(*renderCmd, common);
-  renderCmd
-      ->add_option("-o,--output", render.output,
-                   "file.mp4 (H.264), file.webm (VP9), file.gif, dir/ (frame_000000.png …) or file.png (with --at)")
-      ->required();
-  renderCmd->add_option("--at", render.at, "Draw the one frame at this simulated time, s (with -o file.png)");
-  renderCmd->add_option("--frames", render.frames,
-                        "Render frames A … B−1 only (A:B; A: to the end), each the same as in the whole render: "
-                        "a segment of an MP4, or those frames of a sequence (join MP4 segments with concat)");
+  renderCmd->add_option("-o,--output", render.output, render::outputHelp())->required();
+  renderCmd->add_option("--at", render.at, render::atHelp());
+  renderCmd->add_option("--frames", render.frames, render::framesHelp());
   renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
-  renderCmd->add_option("--fps", render.fps,
-                        "Frames per simulated second (default: the scenario's render.fps, for a GIF capped at 30; "
-                        "a GIF takes at most 50)");
+  renderCmd->add_option("--fps", render.fps, render::fpsHelp());
   renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: 1 (off), 2, 4, 8 or 16")
       ->check(CLI::IsMember(render::kSampleCounts))
       ->capture_default_str();
@@ -95,16 +89,10 @@ Cli::Cli() {
       ->check(CLI::IsMember({"auto", "triangles", "tiles"}))
       ->capture_default_str();
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
-  renderCmd
-      ->add_option("--background", render.background,
-                   "theme (the theme's colour) or transparent (alpha 0 behind the shapes: PNG, PNG frames and WebM "
-                   "only)")
-      ->capture_default_str();
+  renderCmd->add_option("--background", render.background, render::backgroundHelp())->capture_default_str();
   renderCmd->add_option("--particle-radius", render.particleRadius,
                         "Particle disc radius: 4px (pixels) or 0.02m (world)");
-  renderCmd->add_option("--crf", render.crf,
-                        "Constant quality, lower is better and larger: MP4 (x264) 0 … 51, default 18; WebM (VP9) "
-                        "0 … 63, default 31");
+  renderCmd->add_option("--crf", render.crf, render::crfHelp());
   renderCmd
       ->add_option("--keyint", render.keyint,
                    "Longest time between keyframes, s (MP4, WebM): players seek to a keyframe, so shorter seeks "

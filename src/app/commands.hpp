@@ -52,17 +52,17 @@ struct StabilityOptionsCli {
 };
 
 struct RenderCommandOptions {
-  std::string output;                  // -o: file.mp4, file.webm, file.gif, dir/ or file.png (with --at)
+  std::string output;                  // -o: a path of a format of render/output_formats.hpp
   std::optional<double> at;            // --at T, s
   std::string frames;                  // --frames A:B, frames A … B−1 only; empty: all
   std::string size;                    // --size WxH; empty: the scenario's render.size
-  std::optional<double> fps;           // --fps; none: the scenario's render.fps (a GIF's at most 30)
+  std::optional<double> fps;           // --fps; none: the scenario's render.fps (render::defaultFps)
   int msaa = 4;                        // anti-aliasing samples per pixel: 1 (off), 2, 4, 8, 16
   std::string raster = "auto";         // --raster auto | triangles | tiles
   std::string theme = "dark";          // dark | light
   std::string background = "theme";    // --background theme | transparent (PNG and WebM)
   std::string particleRadius;          // "4px" or "0.02m"; empty: the renderer's default
-  std::optional<int> crf;              // encoder quality; none: H.264's or VP9's default (render/frame_writer.hpp)
+  std::optional<int> crf;              // encoder quality; none: the format's default (render/output_formats.hpp)
   double keyint = 2.0;                 // --keyint: longest time between keyframes, s
   std::string preset = "medium";       // x264 preset
   int pngLevel = 6;                    // zlib level for PNG output

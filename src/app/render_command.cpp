@@ -1,9 +1,6 @@
-// `particles render SCENARIO -o OUT` (docs/physics.md §9, §12): simulate and draw frames off-screen.
-//   OUT.mp4   H.264 video, frames i = 0 … round(duration·fps) − 1 at t = i / fps
-//   OUT.webm  the same as VP9, with alpha under --background transparent
-//   OUT.gif   the same as an animated GIF (at most 30 fps unless --fps says, at most 50)
-//   OUT/      the same frames as frame_000000.png …
-//   OUT.png   one frame at --at T, for report figures
+// `particles render SCENARIO -o OUT` (docs/physics.md §9, §12): simulate and draw frames off-screen,
+// frames i = 0 … round(duration·fps) − 1 at t = i / fps, or the one frame at --at T, in OUT's
+// format (render/output_formats.hpp, which checks the options that depend on it).
 // The work is render::renderSimulation (render/render_simulation.hpp); this file reads the options,
 // adds what only the program has (the --stats/--trace CSVs, the --hud text, progress, stopping on
 // SIGINT/SIGTERM) as its hooks and reports the outcome. Outputs appear only when complete, and a
@@ -28,6 +25,7 @@
 #include "plot/text_overlay.hpp"
 #include "render/errors.hpp"
 #include "render/frame_writer.hpp"
+#include "render/output_formats.hpp"
 #include "render/render_options.hpp"
 #include "render/render_simulation.hpp"
 #include "scenario/runner.hpp"
@@ -198,65 +196,36 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   if (options.at && !std::isfinite(*options.at)) {
     throw InputError(fmt::format("--at: expected a simulated time in seconds, not {}", *options.at));
   }
-  render::OutputKind kind;
+  const render::OutputFormat* outputFormat = nullptr;
   try {
-    kind = render::outputKind(options.output);
+    outputFormat = &render::outputFormatOf(options.output);
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("-o {}: {}", options.output, e.what()));
   }
-  const bool gif = kind == render::OutputKind::gif;
-  // A GIF without --fps: the scenario's rate, at most 30 (render/frame_writer.hpp, kDefaultMaxGifFps).
-  const double fpsValue =
-      options.fps.value_or(gif ? std::min<double>(s.render.fps, render::kDefaultMaxGifFps) : s.render.fps);
+  const render::OutputFormat& format = *outputFormat;
+  const double fpsValue = options.fps.value_or(render::defaultFps(format, s.render.fps));
   const int fps = int(std::lround(fpsValue));
   if (std::abs(fpsValue - fps) > 1e-9 || fps <= 0) {
     throw InputError(fmt::format("render needs a whole, positive number of frames per second, not {}", fpsValue));
   }
-  if (gif && fps > render::kMaxGifFps) {
-    throw InputError(
-        fmt::format("--fps {}: a GIF has at most {} frames per second (its delays are whole "
-                    "centiseconds, and browsers slow delays under 2 cs down to 10 cs)",
-                    fps, render::kMaxGifFps));
-  }
-  if (look.transparentBackground && !render::keepsAlpha(kind)) {
-    throw InputError(fmt::format(
-        "--background transparent: {} output ({}) cannot keep it ({}); write .webm, .png "
-        "or DIR/",
-        render::outputKindName(kind), options.output,
-        gif ? "GIF has one transparent colour, no smooth edges over it" : "H.264 in MP4 has no alpha channel"));
-  }
+  refusedOptionsAreInputErrors([&] {
+    render::checkFormatOptions(format, options.output,
+                               {.transparentBackground = look.transparentBackground,
+                                .hud = options.hud,
+                                .crf = options.crf,
+                                .fps = fps,
+                                .at = options.at,
+                                .frames = !options.frames.empty()});
+  });
   if (look.transparentBackground && options.hud) {
     throw InputError("--hud draws an opaque panel over the frame: not with --background transparent");
   }
-  if (options.crf) {
-    const int most = kind == render::OutputKind::webm ? 63 : 51;
-    if (kind != render::OutputKind::mp4 && kind != render::OutputKind::webm) {
-      throw InputError(fmt::format("--crf is for MP4 and WebM, not {} output", render::outputKindName(kind)));
-    }
-    if (*options.crf < 0 || *options.crf > most) {
-      throw InputError(fmt::format("--crf {}: {} takes 0 … {}", *options.crf, render::outputKindName(kind), most));
-    }
-  }
-  if (kind == render::OutputKind::png && !options.at) {
-    throw InputError(
-        fmt::format("-o {}: a single PNG needs --at T, the simulated time to draw (or use -o DIR/ for every frame)",
-                    options.output));
-  }
-  if (kind != render::OutputKind::png && options.at) throw InputError("--at draws one frame: give -o FILE.png");
   if (options.at && (*options.at < 0 || *options.at > s.simulation.duration + 1e-9)) {
     throw InputError(fmt::format("--at {}: outside the simulation, 0 … {} s", *options.at, s.simulation.duration));
   }
   const long totalFrames = render::frameCount(s.simulation.duration, fps);
   std::optional<std::pair<long, long>> frameRange;
-  if (!options.frames.empty()) {
-    if (kind != render::OutputKind::mp4 && kind != render::OutputKind::pngSequence) {
-      throw InputError(
-          fmt::format("--frames (a split render) is for MP4, whose segments concat joins, or a PNG "
-                      "sequence: give -o FILE.mp4 or DIR/, not {} output",
-                      render::outputKindName(kind)));
-    }
-    frameRange = parseFrameRange(options.frames, totalFrames);
-  }
+  if (!options.frames.empty()) frameRange = parseFrameRange(options.frames, totalFrames);
   if (options.pngLevel < 0 || options.pngLevel > 9) {
     throw InputError(fmt::format("--png-level: 0 (fastest) to 9 (smallest), not {}", options.pngLevel));
   }
@@ -308,7 +277,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
     }
   };
 
-  if (kind == render::OutputKind::png) {
+  if (format.oneFrameAt) {
     refusedOptionsAreInputErrors(run);
     recorder->commit();
     if (!common.quiet) {
