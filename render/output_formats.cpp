@@ -151,18 +151,22 @@ void checkFps(const OutputFormat& format, int fps) {
                                           format.fpsCap->most, format.fpsCap->why));
 }
 
-int crfOf(const OutputFormat& format, std::optional<int> crf) {
+void checkCrf(const OutputFormat& format, std::optional<int> crf) {
+  if (!crf) return;
   if (!format.crf) {
-    if (!crf) return 0;
     throw std::invalid_argument(
         fmt::format("--crf is for {} output, not {}", rowsWhere(hasCrf, &OutputFormat::name, "and"), format.name));
   }
-  const CrfRange range = *format.crf;
-  if (crf && (*crf < range.lowest || *crf > range.highest)) {
-    throw std::invalid_argument(
-        fmt::format("--crf {}: {} ({}) takes {} … {}", *crf, format.name, format.codec, range.lowest, range.highest));
+  if (*crf < format.crf->lowest || *crf > format.crf->highest) {
+    throw std::invalid_argument(fmt::format("--crf {}: {} ({}) takes {} … {}", *crf, format.name, format.codec,
+                                            format.crf->lowest, format.crf->highest));
   }
-  return crf.value_or(range.byDefault);
+}
+
+int crfOf(const OutputFormat& format, std::optional<int> crf) {
+  checkCrf(format, crf);
+  if (!format.crf) throw std::logic_error(fmt::format("crfOf: {} output has no crf", format.name));
+  return crf.value_or(format.crf->byDefault);
 }
 
 double defaultFps(const OutputFormat& format, double scenarioFps) {
@@ -171,7 +175,7 @@ double defaultFps(const OutputFormat& format, double scenarioFps) {
 
 void checkFormatOptions(const OutputFormat& format, const std::filesystem::path& path, const FormatOptions& options) {
   checkAlpha(format, path, options.transparentBackground);
-  crfOf(format, options.crf);
+  checkCrf(format, options.crf);
   if (options.fps) checkFps(format, *options.fps);
   if (format.oneFrameAt && !options.at) {
     throw std::invalid_argument(fmt::format(

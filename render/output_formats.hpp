@@ -89,8 +89,10 @@ void checkFormatOptions(const OutputFormat& format, const std::filesystem::path&
 void checkAlpha(const OutputFormat& format, const std::filesystem::path& path, bool alpha);
 // The frame rate against the format's cap (std::invalid_argument).
 void checkFps(const OutputFormat& format, int fps);
-// The crf the encoder gets: `crf` if in the format's range, else its default. Throws
-// std::invalid_argument for a crf out of range or given to a format without one.
+// A crf asked for, against the format's range; std::invalid_argument for one out of range or
+// given to a format without one.
+void checkCrf(const OutputFormat& format, std::optional<int> crf);
+// The crf the encoder of a format with one gets: `crf` once checked, else the format's default.
 int crfOf(const OutputFormat& format, std::optional<int> crf);
 // The frame rate when none is asked for: the scenario's, capped where the format caps it.
 double defaultFps(const OutputFormat& format, double scenarioFps);

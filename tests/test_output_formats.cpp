@@ -95,6 +95,9 @@ TEST_CASE("the option checks refuse what a format's row does not take, naming th
       CHECK(refuses(format, {.crf = format.crf->highest + 1, .at = at}, "--crf"));
       CHECK(refuses(format, {.crf = format.crf->lowest - 1, .at = at}, "--crf"));
       CHECK_THROWS_AS(crfOf(format, format.crf->highest + 1), std::invalid_argument);
+      CHECK(crfOf(format, format.crf->lowest) == format.crf->lowest);
+    } else {
+      CHECK_THROWS_AS(crfOf(format, std::nullopt), std::logic_error);
     }
     if (format.fpsCap) {
       CHECK_FALSE(refuses(format, {.fps = format.fpsCap->most}, ""));
