@@ -13,9 +13,7 @@
 #include <cstdint>
 #include <string>
 
-namespace CLI {
-class App;
-}
+#include "app/command.hpp"
 
 namespace particles::app {
 
@@ -26,7 +24,6 @@ struct RunJobOptions {
   std::uintmax_t maxInputMiB = 64;
 };
 
-CLI::App* addRunJobCommand(CLI::App& app, RunJobOptions& options);
-int runJobCommand(const RunJobOptions& options);
+extern const CommandDescriptor<RunJobOptions> kRunJobCommand;
 
 }  // namespace particles::app

@@ -1,19 +1,13 @@
-// `particles render SCENARIO -o OUT` (docs/physics.md §9, §12): simulate and draw frames off-screen.
-//   OUT.mp4   H.264 video, frames i = 0 … round(duration·fps) − 1 at t = i / fps
-//   OUT.webm  the same as VP9, with alpha under --background transparent
-//   OUT.gif   the same as an animated GIF (at most 30 fps unless --fps says, at most 50)
-//   OUT/      the same frames as frame_000000.png …
-//   OUT.png   one frame at --at T, for report figures
-// The work is render::renderSimulation (render/render_simulation.hpp); this file reads the options,
-// adds what only the program has (the --stats/--trace CSVs, the --hud text, progress, stopping on
-// SIGINT/SIGTERM) as its hooks and reports the outcome. Outputs appear only when complete, and a
-// signal or any failure removes them (exit 128 + signal, or the codes of exit_codes.hpp).
+// `particles render`: see render_command.hpp. The work is render::renderSimulation
+// (render/render_simulation.hpp); this file reads the options, adds what only the program has (the
+// --stats/--trace CSVs, the --hud text, progress, stopping on SIGINT/SIGTERM: stop_signal.hpp) as
+// its hooks and reports the outcome.
+#include "app/render_command.hpp"
+
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <csignal>
 #include <optional>
 #include <string>
 #include <utility>
@@ -22,12 +16,14 @@
 #include "app/csv_recorder.hpp"
 #include "app/gl_options.hpp"
 #include "app/job_record.hpp"
+#include "app/stop_signal.hpp"
 #include "core/solver.hpp"
 #include "core/system.hpp"
 #include "plot/errors.hpp"
 #include "plot/text_overlay.hpp"
 #include "render/errors.hpp"
 #include "render/frame_writer.hpp"
+#include "render/gl_backend.hpp"
 #include "render/render_options.hpp"
 #include "render/render_simulation.hpp"
 #include "scenario/runner.hpp"
@@ -36,26 +32,8 @@ namespace particles::app {
 
 namespace {
 
-// SIGINT and SIGTERM stop a video render between frames: the handler sets a flag the frame loop
-// polls (render/frame_writer.hpp), and the render removes what it wrote. A render can also be
-// stuck where no loop polls: writing to a pipe or FIFO whose reader has stopped reading (a write
-// restarts after the handler returns), or a filesystem that hangs. So the first signal also starts
-// a grace period; a render that has not stopped by its end exits at once from the alarm's handler
-// with the same code. Its output is an anonymous temporary that vanishes with the process (a named
-// one, or a PNG sequence's staging folder, is left for the next run to remove, as after SIGKILL).
-constexpr unsigned kStopGraceSeconds = 3;  // several frames of the largest renders we make; in the message
-
-volatile std::sig_atomic_t stopSignal = 0;
-extern "C" void onStopSignal(int signal) {
-  if (stopSignal == 0) ::alarm(kStopGraceSeconds);
-  stopSignal = signal;
-}
-extern "C" void onStopGraceOver(int) {
-  static const char message[] =
-      "particles: not stopped within 3 s of the signal (blocked writing an output?); ended at once\n";
-  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, sizeof message - 1);
-  ::_exit(128 + stopSignal);
-}
+// The shortest --keyint, s: a keyframe every millisecond is already every frame.
+constexpr double kMinKeyintSeconds = 1e-3;
 
 std::optional<render::Length> parseRadius(const std::string& text) {
   // "4px" (pixels, also a bare number) or "0.02m" (world units).
@@ -86,29 +64,6 @@ auto hudOverlay(const scenario::Scenario& s, const render::RenderOptions& look) 
         style);
   };
 }
-
-struct SignalGuard {
-  SignalGuard() {
-    stopSignal = 0;
-    previousAlarm = std::signal(SIGALRM, onStopGraceOver);
-    previousInt = std::signal(SIGINT, onStopSignal);
-    previousTerm = std::signal(SIGTERM, onStopSignal);
-  }
-  ~SignalGuard() {
-    std::signal(SIGINT, previousInt);
-    std::signal(SIGTERM, previousTerm);
-    // Once stopping, the grace period keeps running: it bounds what the command still does on its
-    // way out too, such as closing a --trace FIFO whose last buffered lines wait for a reader.
-    if (stopSignal != 0) return;
-    ::alarm(0);
-    std::signal(SIGALRM, previousAlarm);
-  }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
-  void (*previousInt)(int);
-  void (*previousTerm)(int);
-  void (*previousAlarm)(int);
-};
 
 // The look of the frames: the scenario's render block, then the command line. Throws InputError.
 render::RenderOptions lookOf(const scenario::Scenario& s, const RenderCommandOptions& options) {
@@ -182,28 +137,31 @@ std::pair<long, long> parseFrameRange(const std::string& text, long total) {
   return {*first, *end};
 }
 
-}  // namespace
-
-int renderCommand(const CommonOptions& common, const RenderCommandOptions& options) {
-  scenario::Scenario s = loadScenario(common);
-  const render::RenderOptions look = lookOf(s, options);
+// --fps, --keyint and --at as numbers, before the output says what they mean for it.
+void checkNumbers(const RenderCommandOptions& options) {
   if (options.fps && !(*options.fps >= 1 && *options.fps <= 1000)) {  // NaN fails both
     throw InputError(fmt::format("--fps: expected a whole number of frames per second from 1 to 1000, not {}",
                                  *options.fps));
   }
-  if (!(options.keyint >= 1e-3 && options.keyint <= render::kMaxKeyintSeconds)) {  // NaN fails both
-    throw InputError(fmt::format("--keyint: expected seconds from 0.001 to 3600 between keyframes, not {}",
-                                 options.keyint));
+  if (!(options.keyint >= kMinKeyintSeconds && options.keyint <= render::kMaxKeyintSeconds)) {  // NaN fails both
+    throw InputError(fmt::format("--keyint: expected seconds from {} to {} between keyframes, not {}",
+                                 kMinKeyintSeconds, render::kMaxKeyintSeconds, options.keyint));
   }
   if (options.at && !std::isfinite(*options.at)) {
     throw InputError(fmt::format("--at: expected a simulated time in seconds, not {}", *options.at));
   }
-  render::OutputKind kind;
+}
+
+render::OutputKind outputKindOf(const RenderCommandOptions& options) {
   try {
-    kind = render::outputKind(options.output);
+    return render::outputKind(options.output);
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("-o {}: {}", options.output, e.what()));
   }
+}
+
+// The frame rate: --fps, else the scenario's (a GIF's at most kDefaultMaxGifFps).
+int framesPerSecondOf(const scenario::Scenario& s, const RenderCommandOptions& options, render::OutputKind kind) {
   const bool gif = kind == render::OutputKind::gif;
   // A GIF without --fps: the scenario's rate, at most 30 (render/frame_writer.hpp, kDefaultMaxGifFps).
   const double fpsValue =
@@ -218,6 +176,12 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
                     "centiseconds, and browsers slow delays under 2 cs down to 10 cs)",
                     fps, render::kMaxGifFps));
   }
+  return fps;
+}
+
+// --background transparent, for a format that keeps alpha.
+void checkAlpha(const RenderCommandOptions& options, const render::RenderOptions& look, render::OutputKind kind) {
+  const bool gif = kind == render::OutputKind::gif;
   if (look.transparentBackground && !render::keepsAlpha(kind)) {
     throw InputError(fmt::format(
         "--background transparent: {} output ({}) cannot keep it ({}); write .webm, .png "
@@ -228,6 +192,10 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   if (look.transparentBackground && options.hud) {
     throw InputError("--hud draws an opaque panel over the frame: not with --background transparent");
   }
+}
+
+// --crf, for an encoder that takes it, within its range.
+void checkCrf(const RenderCommandOptions& options, render::OutputKind kind) {
   if (options.crf) {
     const int most = kind == render::OutputKind::webm ? 63 : 51;
     if (kind != render::OutputKind::mp4 && kind != render::OutputKind::webm) {
@@ -237,6 +205,10 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
       throw InputError(fmt::format("--crf {}: {} takes 0 … {}", *options.crf, render::outputKindName(kind), most));
     }
   }
+}
+
+// --at, with a single PNG and only with one, inside the simulation.
+void checkAt(const scenario::Scenario& s, const RenderCommandOptions& options, render::OutputKind kind) {
   if (kind == render::OutputKind::png && !options.at) {
     throw InputError(
         fmt::format("-o {}: a single PNG needs --at T, the simulated time to draw (or use -o DIR/ for every frame)",
@@ -246,20 +218,61 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   if (options.at && (*options.at < 0 || *options.at > s.simulation.duration + 1e-9)) {
     throw InputError(fmt::format("--at {}: outside the simulation, 0 … {} s", *options.at, s.simulation.duration));
   }
-  const long totalFrames = render::frameCount(s.simulation.duration, fps);
-  std::optional<std::pair<long, long>> frameRange;
-  if (!options.frames.empty()) {
-    if (kind != render::OutputKind::mp4 && kind != render::OutputKind::pngSequence) {
-      throw InputError(
-          fmt::format("--frames (a split render) is for MP4, whose segments concat joins, or a PNG "
-                      "sequence: give -o FILE.mp4 or DIR/, not {} output",
-                      render::outputKindName(kind)));
-    }
-    frameRange = parseFrameRange(options.frames, totalFrames);
+}
+
+// --frames, checked against the output and the video's `totalFrames`; none: every frame.
+std::optional<std::pair<long, long>> frameRangeOf(const RenderCommandOptions& options, render::OutputKind kind,
+                                                  long totalFrames) {
+  if (options.frames.empty()) return std::nullopt;
+  if (kind != render::OutputKind::mp4 && kind != render::OutputKind::pngSequence) {
+    throw InputError(
+        fmt::format("--frames (a split render) is for MP4, whose segments concat joins, or a PNG "
+                    "sequence: give -o FILE.mp4 or DIR/, not {} output",
+                    render::outputKindName(kind)));
   }
+  return parseFrameRange(options.frames, totalFrames);
+}
+
+void checkPngLevel(const RenderCommandOptions& options) {
   if (options.pngLevel < 0 || options.pngLevel > 9) {
     throw InputError(fmt::format("--png-level: 0 (fastest) to 9 (smallest), not {}", options.pngLevel));
   }
+}
+
+// Adds --stats/--trace, --verbose's GL line and --hud to the render's hooks.
+void addProgramHooks(render::RenderHooks& hooks, const scenario::Scenario& s, const RenderCommandOptions& options,
+                     const render::RenderOptions& look, CsvRecorder& recorder, long& framesReached) {
+  if (options.verbose) {
+    hooks.glReady = [](const render::GlInfo& info) { fmt::print(stderr, "GL: {}\n", render::describe(info)); };
+  }
+  hooks.onFrame = [&](const System& system) {
+    recorder.record(system);
+    ++framesReached;
+  };
+  if (options.hud) {
+    hooks.decorate = [hud = hudOverlay(s, look)](render::Image& frame, const System& system) {
+      try {
+        hud(frame, system);
+      } catch (const plot::FigureError& e) {
+        throw plot::FigureError(std::string("--hud: ") + e.what());
+      }
+    };
+  }
+}
+
+int renderCommand(const RenderCommandOptions& options) {
+  const CommonOptions& common = options.common;
+  scenario::Scenario s = loadScenario(common);
+  const render::RenderOptions look = lookOf(s, options);
+  checkNumbers(options);
+  const render::OutputKind kind = outputKindOf(options);
+  const int fps = framesPerSecondOf(s, options, kind);
+  checkAlpha(options, look, kind);
+  checkCrf(options, kind);
+  checkAt(s, options, kind);
+  const long totalFrames = render::frameCount(s.simulation.duration, fps);
+  const std::optional<std::pair<long, long>> frameRange = frameRangeOf(options, kind, totalFrames);
+  checkPngLevel(options);
   render::setLibavVerbose(options.verbose);
   refusedOptionsAreInputErrors([&] { render::validate(look); });
   const render::GlRequest gl = glRequestOf(options.gl, options.gpu);
@@ -280,22 +293,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   job.png.compressionLevel = options.pngLevel;
   long framesReached = 0;  // frames whose time the simulation reached
   render::RenderHooks hooks;
-  if (options.verbose) {
-    hooks.glReady = [](const render::GlInfo& info) { fmt::print(stderr, "GL: {}\n", render::describe(info)); };
-  }
-  hooks.onFrame = [&](const System& system) {
-    recorder->record(system);
-    ++framesReached;
-  };
-  if (options.hud) {
-    hooks.decorate = [hud = hudOverlay(s, look)](render::Image& frame, const System& system) {
-      try {
-        hud(frame, system);
-      } catch (const plot::FigureError& e) {
-        throw plot::FigureError(std::string("--hud: ") + e.what());
-      }
-    };
-  }
+  addProgramHooks(hooks, s, options, look, *recorder, framesReached);
   // A frame larger than the GL draws is bad input: the size's, named as it was given.
   const std::string sizeSource = options.size.empty()
                                      ? fmt::format("the scenario's render size {}x{}", look.width, look.height)
@@ -323,8 +321,8 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   hooks.progress = [&](long done, long total, const System& system) {
     progress.update(done, total, fmt::format("t = {:.2f} s", system.time()));
   };
-  SignalGuard signals;
-  hooks.shouldStop = [] { return stopSignal != 0; };
+  StopSignals signals(StopMode::pollWithGrace);
+  hooks.shouldStop = [] { return stopSignal() != 0; };
   render::RenderSummary summary;
   try {
     summary = refusedOptionsAreInputErrors(run);
@@ -335,7 +333,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
     progress.finish();
     fmt::print(stderr, "{}: interrupted at frame {} of {}; no output written\n", common.scenario, summary.frames,
                frames);
-    return 128 + int(stopSignal);
+    return 128 + stopSignal();
   }
   recorder->commit();
   progress.finish();
@@ -349,5 +347,101 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   }
   return kOk;
 }
+
+void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
+  CLI::App* renderCmd = &command;
+  addCommonOptions(*renderCmd, render.common);
+  renderCmd
+      ->add_option("-o,--output", render.output,
+                   "file.mp4 (H.264), file.webm (VP9), file.gif, dir/ (frame_000000.png …) or file.png (with --at)")
+      ->required();
+  renderCmd->add_option("--at", render.at, "Draw the one frame at this simulated time, s (with -o file.png)");
+  renderCmd->add_option("--frames", render.frames,
+                        "Render frames A … B−1 only (A:B; A: to the end), each the same as in the whole render: "
+                        "a segment of an MP4, or those frames of a sequence (join MP4 segments with concat)");
+  renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
+  renderCmd->add_option("--fps", render.fps,
+                        "Frames per simulated second (default: the scenario's render.fps, for a GIF capped at 30; "
+                        "a GIF takes at most 50)");
+  renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: 1 (off), 2, 4, 8 or 16")
+      ->check(CLI::IsMember(render::kSampleCounts))
+      ->capture_default_str();
+  renderCmd
+      ->add_option("--raster", render.raster,
+                   "How shapes become pixels: triangles (one GL primitive each), tiles (sorted into screen tiles "
+                   "on the CPU, one pass; fast for large scenes) or auto (tiles from 5000 shapes)")
+      ->check(CLI::IsMember({"auto", "triangles", "tiles"}))
+      ->capture_default_str();
+  renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
+  renderCmd
+      ->add_option("--background", render.background,
+                   "theme (the theme's colour) or transparent (alpha 0 behind the shapes: PNG, PNG frames and WebM "
+                   "only)")
+      ->capture_default_str();
+  renderCmd->add_option("--particle-radius", render.particleRadius,
+                        "Particle disc radius: 4px (pixels) or 0.02m (world)");
+  renderCmd->add_option("--crf", render.crf,
+                        "Constant quality, lower is better and larger: MP4 (x264) 0 … 51, default 18; WebM (VP9) "
+                        "0 … 63, default 31");
+  renderCmd
+      ->add_option("--keyint", render.keyint,
+                   "Longest time between keyframes, s (MP4, WebM): players seek to a keyframe, so shorter seeks "
+                   "faster")
+      ->check(CLI::Range(kMinKeyintSeconds, render::kMaxKeyintSeconds))
+      ->capture_default_str();
+  renderCmd->add_option("--preset", render.preset, "x264 preset (MP4): ultrafast … veryslow")->capture_default_str();
+  renderCmd->add_option("--png-level", render.pngLevel, "PNG compression level 0 … 9")->capture_default_str();
+  renderCmd->add_flag("--verbose", render.verbose, "Name the GL backend and renderer; show libav/x264's own log");
+  renderCmd
+      ->add_option("--gl", render.gl,
+                   fmt::format("GL backend: auto (EGL, else OSMesa), egl or osmesa (default: ${}, else auto)",
+                               kGlEnvironmentVariable))
+      ->check(CLI::IsMember(render::glBackendNames()));
+  renderCmd->add_flag("--gpu", render.gpu,
+                      "Draw on a GPU through EGL instead of llvmpipe on the CPU (frames may differ from the goldens)");
+  renderCmd->add_flag("--hud", render.hud,
+                      "Draw time, integrator, dt and energy in the top-left corner of every frame");
+  renderCmd->add_option("--stats", render.stats,
+                        "Write t,kinetic,potential,total,constraint_error,penetration per frame");
+  auto* renderTrace = renderCmd->add_option("--trace", render.trace, "Write t,name,x,y,vx,vy,angle,omega per frame");
+  renderCmd->add_option("--trace-only", render.traceOnly, "Trace only these objects (comma-separated names)")
+      ->delimiter(',')
+      ->needs(renderTrace);
+  renderCmd->footer(
+      "Frame i shows t = i / fps; a video has round(duration · fps) frames. Odd sizes are refused for MP4\n"
+      "and WebM (yuv420p needs even sizes); GIF and PNG take any size. A GIF has one palette made for the\n"
+      "whole video, at most 50 fps (30 unless --fps says), delays rounded to whole centiseconds.\n"
+      "--background transparent keeps alpha in PNG and WebM (VP9 with an alpha channel); MP4 and GIF\n"
+      "refuse it. --frames (split renders) is for MP4 and PNG sequences. Outputs appear only when complete.\n"
+      "Frames are drawn by Mesa's llvmpipe on the CPU, the same bytes through EGL or OSMesa;\n"
+      "'particles --version' names the backend and renderer.\n"
+      "Examples:\n"
+      "  particles render scenarios/cloth.yaml -o cloth.mp4\n"
+      "  particles render scenarios/soft_body.yaml -o frames/ --size 640x360 --fps 30\n"
+      "  particles render scenarios/cloth.yaml -o fig.png --at 2.5 --theme light --size 1600x1200\n"
+      "  particles render scenarios/soft_body.yaml -o man.mp4 --hud   # time, integrator, dt, energy on every frame\n"
+      "  particles render scenarios/rigid_chain.yaml -o chain.mp4 --crf 23 --preset veryfast --quiet\n"
+      "  particles render scenarios/cloth.yaml -o cloth.gif --size 480x270   # 30 fps, a palette for the video\n"
+      "  particles render scenarios/cloth.yaml -o cloth.webm --background transparent   # VP9 with alpha\n"
+      "  PARTICLES_GL=osmesa particles render scenarios/cloth.yaml -o cloth.mp4   # where EGL will not start\n");
+  addJobOptions(*renderCmd, render.job);
+}
+
+CommandFiles renderFiles(const RenderCommandOptions& render) {
+  return {{{"-o", render.output}, {"--stats", render.stats}, {"--trace", render.trace}},
+          {{"the scenario", render.common.scenario}}};
+}
+
+}  // namespace
+
+const CommandDescriptor<RenderCommandOptions> kRenderCommand = {
+    .name = "render",
+    .summary = "Simulate and draw the scenario off-screen to an MP4, WebM or GIF video, PNG frames or one PNG",
+    .addOptions = addRenderOptions,
+    .run = renderCommand,
+    .files = renderFiles,
+    .common = &RenderCommandOptions::common,
+    .job = &RenderCommandOptions::job,
+};
 
 }  // namespace particles::app

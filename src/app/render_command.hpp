@@ -1,0 +1,48 @@
+#pragma once
+// `particles render SCENARIO -o OUT` (docs/physics.md §9, §12): simulate and draw frames off-screen.
+//   OUT.mp4   H.264 video, frames i = 0 … round(duration·fps) − 1 at t = i / fps
+//   OUT.webm  the same as VP9, with alpha under --background transparent
+//   OUT.gif   the same as an animated GIF (at most 30 fps unless --fps says, at most 50)
+//   OUT/      the same frames as frame_000000.png …
+//   OUT.png   one frame at --at T, for report figures
+//
+// Exit codes: 0 done; 1 the simulation failed; 2 bad input (options, the scenario, a frame larger
+// than the GL draws); 3 an output failed; 128 + signal when stopped by SIGINT or SIGTERM. Outputs
+// appear only when complete: a signal or any failure removes them.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/command.hpp"
+
+namespace particles::app {
+
+struct RenderCommandOptions {
+  CommonOptions common;
+  std::string output;                // -o: file.mp4, file.webm, file.gif, dir/ or file.png (with --at)
+  std::optional<double> at;          // --at T, s
+  std::string frames;                // --frames A:B, frames A … B−1 only; empty: all
+  std::string size;                  // --size WxH; empty: the scenario's render.size
+  std::optional<double> fps;         // --fps; none: the scenario's render.fps (a GIF's at most 30)
+  int msaa = 4;                      // anti-aliasing samples per pixel: 1 (off), 2, 4, 8, 16
+  std::string raster = "auto";       // --raster auto | triangles | tiles
+  std::string theme = "dark";        // dark | light
+  std::string background = "theme";  // --background theme | transparent (PNG and WebM)
+  std::string particleRadius;        // "4px" or "0.02m"; empty: the renderer's default
+  std::optional<int> crf;            // encoder quality; none: H.264's or VP9's default (render/frame_writer.hpp)
+  double keyint = 2.0;               // --keyint: longest time between keyframes, s
+  std::string preset = "medium";     // x264 preset
+  int pngLevel = 6;                  // zlib level for PNG output
+  bool verbose = false;              // the GL backend on stderr, and libav/x264's log
+  std::string gl;                    // --gl auto | egl | osmesa; empty: $PARTICLES_GL, else auto
+  bool gpu = false;                  // --gpu: a hardware EGL device
+  bool hud = false;                  // time, integrator, dt and energy drawn on each frame
+  std::string stats, trace;          // CSVs, one row per frame
+  std::vector<std::string> traceOnly;
+  JobOptions job;
+};
+
+extern const CommandDescriptor<RenderCommandOptions> kRenderCommand;
+
+}  // namespace particles::app
