@@ -12,6 +12,7 @@
 
 #include "app/exit_codes.hpp"
 #include "core/integrators.hpp"
+#include "input/text_file.hpp"
 #include "scenario/scenario.hpp"
 
 namespace particles::app {
@@ -28,7 +29,7 @@ struct CommonOptions {
   std::string scenario;
   std::optional<std::string> integrator, dt, duration;         // shorthands for --set simulation.*=…
   std::vector<std::string> sets;                               // --set path=value, in order
-  std::uintmax_t maxInputMiB = scenario::kDefaultMaxInputMiB;  // --max-input
+  std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;     // --max-input
   std::vector<std::string> limits;                             // --limit NAME=N, in order
   bool quiet = false;
 };

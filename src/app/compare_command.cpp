@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <new>
 #include <stdexcept>
@@ -15,6 +16,7 @@
 #include "render/errors.hpp"
 #include "render/image_compare.hpp"
 #include "render/png_io.hpp"
+#include "render/render_options.hpp"
 
 namespace particles::app {
 
@@ -32,18 +34,22 @@ void addCompareOptions(CLI::App& command, CompareOptions& o) {
       ->capture_default_str();
   command
       .add_option("--max-share", o.maxShare,
-                  "Fail when more than this share (0 … 1) of the pixels differ; 0.0002 = 0.02 %")
+                  fmt::format("Fail when more than this share (0 … 1) of the pixels differ; {} = {} %",
+                              render::kDefaultMaxShare, 100 * render::kDefaultMaxShare))
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   command.add_flag("-q,--quiet", o.quiet, "Print nothing when the frames match");
-  command.footer(
+  // Two frames of the largest size, 4 bytes a pixel each.
+  const std::uint64_t largestPairGiB = 2 * 4 * std::uint64_t(render::kMaxImageSide) * render::kMaxImageSide >> 30;
+  command.footer(fmt::format(
       "Exit codes: 0 the frames match, 1 they differ, 2 bad input (unreadable PNG, sizes differ: read from\n"
       "the headers, nothing decoded; a --diff that is not .png or is one of the frames), 3 the --diff picture\n"
-      "could not be written or memory ran out (two 16384x16384 frames decode to 2 GiB). Defaults and how they\n"
+      "could not be written or memory ran out (two {0}x{0} frames decode to {1} GiB). Defaults and how they\n"
       "were measured: golden/README.md.\n"
       "Examples:\n"
       "  particles compare golden/cloth_t2.5.png cloth.png\n"
-      "  particles compare golden/cloth_t2.5.png cloth.png --diff cloth_diff.png --threshold 16 --max-share 0.01\n");
+      "  particles compare golden/cloth_t2.5.png cloth.png --diff cloth_diff.png --threshold 16 --max-share 0.01\n",
+      render::kMaxImageSide, largestPairGiB));
 }
 
 int compareCommand(const CompareOptions& o) {

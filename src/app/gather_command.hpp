@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/command.hpp"
+#include "input/text_file.hpp"
 
 namespace particles::app {
 
@@ -19,7 +20,8 @@ struct GatherOptions {
   std::string output;  // -o: the CSV; empty: OUTDIR/results.csv
   std::string plot;    // --plot: the figure; empty: OUTDIR/results.svg when one parameter varies; "none": no figure
   bool quiet = false;
-  std::uintmax_t maxInputMiB = 64;  // --max-input: jobs.csv and each record are read within this
+  std::uintmax_t maxInputMiB =
+      input::kDefaultMaxInputMiB;  // --max-input: jobs.csv and each record are read within this
 };
 
 int gatherCommand(const GatherOptions& options);

@@ -14,6 +14,7 @@
 #include <string>
 
 #include "app/command.hpp"
+#include "input/text_file.hpp"
 
 namespace particles::app {
 
@@ -21,7 +22,7 @@ struct RunJobOptions {
   std::string outDir;
   std::string index;  // checked as a whole number here, for a message naming it
   bool force = false;
-  std::uintmax_t maxInputMiB = 64;
+  std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;
 };
 
 extern const CommandDescriptor<RunJobOptions> kRunJobCommand;

@@ -65,8 +65,10 @@ void addPlotOptions(CLI::App& command, PlotOptions& plot) {
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false)
       ->needs(plotScenario);
-  command.add_option("--width", plot.width, "Width in px (default 1200)")->check(CLI::Range(200, 10000));
-  command.add_option("--height", plot.height, "Height in px (default 800)")->check(CLI::Range(150, 10000));
+  command.add_option("--width", plot.width, fmt::format("Width in px (default {})", plot::Figure{}.widthPx))
+      ->check(CLI::Range(200, 10000));
+  command.add_option("--height", plot.height, fmt::format("Height in px (default {})", plot::Figure{}.heightPx))
+      ->check(CLI::Range(150, 10000));
   command.add_flag("-q,--quiet", plot.quiet, "Print nothing on success");
   addMaxInputOption(command, plot.maxInputMiB, "a CSV file");
   command.footer(

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "app/command.hpp"
+#include "input/text_file.hpp"
 
 namespace particles::app {
 
@@ -23,7 +24,7 @@ struct PlotOptions {
   std::optional<std::string> integrator, dt;
   std::vector<std::string> sets;
   int width = 0, height = 0;        // px; 0: the figure's default
-  std::uintmax_t maxInputMiB = 64;  // --max-input
+  std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;  // --max-input
   bool quiet = false;
 };
 

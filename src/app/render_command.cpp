@@ -34,6 +34,17 @@ namespace {
 
 // The shortest --keyint, s: a keyframe every millisecond is already every frame.
 constexpr double kMinKeyintSeconds = 1e-3;
+// The largest --png-level: zlib's best compression (render/png_io.hpp).
+constexpr int kMaxPngLevel = 9;
+
+// "1 (off), 2, 4, 8 or 16": the sample counts --msaa takes.
+std::string sampleCountsText() {
+  std::vector<std::string> counts;
+  for (int n : render::kSampleCounts) counts.push_back(n == 1 ? "1 (off)" : std::to_string(n));
+  const std::string last = counts.back();
+  counts.pop_back();
+  return fmt::format("{} or {}", fmt::join(counts, ", "), last);
+}
 
 std::optional<render::Length> parseRadius(const std::string& text) {
   // "4px" (pixels, also a bare number) or "0.02m" (world units).
@@ -234,8 +245,8 @@ std::optional<std::pair<long, long>> frameRangeOf(const RenderCommandOptions& op
 }
 
 void checkPngLevel(const RenderCommandOptions& options) {
-  if (options.pngLevel < 0 || options.pngLevel > 9) {
-    throw InputError(fmt::format("--png-level: 0 (fastest) to 9 (smallest), not {}", options.pngLevel));
+  if (options.pngLevel < 0 || options.pngLevel > kMaxPngLevel) {
+    throw InputError(fmt::format("--png-level: 0 (fastest) to {} (smallest), not {}", kMaxPngLevel, options.pngLevel));
   }
 }
 
@@ -363,13 +374,15 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
   renderCmd->add_option("--fps", render.fps,
                         "Frames per simulated second (default: the scenario's render.fps, for a GIF capped at 30; "
                         "a GIF takes at most 50)");
-  renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: 1 (off), 2, 4, 8 or 16")
+  renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: " + sampleCountsText())
       ->check(CLI::IsMember(render::kSampleCounts))
       ->capture_default_str();
   renderCmd
       ->add_option("--raster", render.raster,
-                   "How shapes become pixels: triangles (one GL primitive each), tiles (sorted into screen tiles "
-                   "on the CPU, one pass; fast for large scenes) or auto (tiles from 5000 shapes)")
+                   fmt::format("How shapes become pixels: triangles (one GL primitive each), tiles (sorted into "
+                               "screen tiles on the CPU, one pass; fast for large scenes) or auto (tiles from {} "
+                               "shapes)",
+                               render::kTilesFromShapes))
       ->check(CLI::IsMember({"auto", "triangles", "tiles"}))
       ->capture_default_str();
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
@@ -390,7 +403,8 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
       ->check(CLI::Range(kMinKeyintSeconds, render::kMaxKeyintSeconds))
       ->capture_default_str();
   renderCmd->add_option("--preset", render.preset, "x264 preset (MP4): ultrafast … veryslow")->capture_default_str();
-  renderCmd->add_option("--png-level", render.pngLevel, "PNG compression level 0 … 9")->capture_default_str();
+  renderCmd->add_option("--png-level", render.pngLevel, fmt::format("PNG compression level 0 … {}", kMaxPngLevel))
+      ->capture_default_str();
   renderCmd->add_flag("--verbose", render.verbose, "Name the GL backend and renderer; show libav/x264's own log");
   renderCmd
       ->add_option("--gl", render.gl,
@@ -407,10 +421,10 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
   renderCmd->add_option("--trace-only", render.traceOnly, "Trace only these objects (comma-separated names)")
       ->delimiter(',')
       ->needs(renderTrace);
-  renderCmd->footer(
+  renderCmd->footer(fmt::format(
       "Frame i shows t = i / fps; a video has round(duration · fps) frames. Odd sizes are refused for MP4\n"
       "and WebM (yuv420p needs even sizes); GIF and PNG take any size. A GIF has one palette made for the\n"
-      "whole video, at most 50 fps (30 unless --fps says), delays rounded to whole centiseconds.\n"
+      "whole video, at most {} fps ({} unless --fps says), delays rounded to whole centiseconds.\n"
       "--background transparent keeps alpha in PNG and WebM (VP9 with an alpha channel); MP4 and GIF\n"
       "refuse it. --frames (split renders) is for MP4 and PNG sequences. Outputs appear only when complete.\n"
       "Frames are drawn by Mesa's llvmpipe on the CPU, the same bytes through EGL or OSMesa;\n"
@@ -423,7 +437,8 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
       "  particles render scenarios/rigid_chain.yaml -o chain.mp4 --crf 23 --preset veryfast --quiet\n"
       "  particles render scenarios/cloth.yaml -o cloth.gif --size 480x270   # 30 fps, a palette for the video\n"
       "  particles render scenarios/cloth.yaml -o cloth.webm --background transparent   # VP9 with alpha\n"
-      "  PARTICLES_GL=osmesa particles render scenarios/cloth.yaml -o cloth.mp4   # where EGL will not start\n");
+      "  PARTICLES_GL=osmesa particles render scenarios/cloth.yaml -o cloth.mp4   # where EGL will not start\n",
+      render::kMaxGifFps, render::kDefaultMaxGifFps));
   addJobOptions(*renderCmd, render.job);
 }
 

@@ -15,6 +15,9 @@
 #include <vector>
 
 #include "app/command.hpp"
+#include "render/frame_writer.hpp"
+#include "render/png_io.hpp"
+#include "render/render_options.hpp"
 
 namespace particles::app {
 
@@ -25,15 +28,15 @@ struct RenderCommandOptions {
   std::string frames;                // --frames A:B, frames A … B−1 only; empty: all
   std::string size;                  // --size WxH; empty: the scenario's render.size
   std::optional<double> fps;         // --fps; none: the scenario's render.fps (a GIF's at most 30)
-  int msaa = 4;                      // anti-aliasing samples per pixel: 1 (off), 2, 4, 8, 16
+  int msaa = render::RenderOptions{}.msaa;  // anti-aliasing samples per pixel: one of render::kSampleCounts
   std::string raster = "auto";       // --raster auto | triangles | tiles
   std::string theme = "dark";        // dark | light
   std::string background = "theme";  // --background theme | transparent (PNG and WebM)
   std::string particleRadius;        // "4px" or "0.02m"; empty: the renderer's default
   std::optional<int> crf;            // encoder quality; none: H.264's or VP9's default (render/frame_writer.hpp)
-  double keyint = 2.0;               // --keyint: longest time between keyframes, s
-  std::string preset = "medium";     // x264 preset
-  int pngLevel = 6;                  // zlib level for PNG output
+  double keyint = render::VideoOptions{}.keyintSeconds;  // --keyint: longest time between keyframes, s
+  std::string preset = render::VideoOptions{}.preset;    // x264 preset
+  int pngLevel = render::PngOptions{}.compressionLevel;  // zlib level for PNG output
   bool verbose = false;              // the GL backend on stderr, and libav/x264's log
   std::string gl;                    // --gl auto | egl | osmesa; empty: $PARTICLES_GL, else auto
   bool gpu = false;                  // --gpu: a hardware EGL device

@@ -114,7 +114,7 @@ int stabilityCommand(const StabilityOptionsCli& options) {
   const std::vector<Integrator> integrators = parseIntegrators(options.integrators);
   const auto references = parseReferences(options.references, integrators);
   if (!references.empty() && options.plot.empty()) throw InputError("--reference is shown on --plot: give --plot too");
-  const double minDt = options.minDt > 0 ? options.minDt : s.simulation.dt / 1000.0;
+  const double minDt = options.minDt > 0 ? options.minDt : s.simulation.dt / kMinDtDivisor;
   // Written as "not inside" so that NaN, which fails every comparison, is refused too.
   const bool inside = options.energyTolerance > 0 && std::isfinite(options.energyTolerance) &&
                       options.stretchFactor > 1 && std::isfinite(options.stretchFactor) &&
@@ -140,7 +140,7 @@ int stabilityCommand(const StabilityOptionsCli& options) {
   study.criteria.shakeThreshold = options.shakeThreshold;
   study.startDt = s.simulation.dt;
   study.referenceDt = s.simulation.dt / 4.0;
-  study.minReferenceDt = std::max(minDt, study.referenceDt / 64.0);
+  study.minReferenceDt = std::max(minDt, std::ldexp(study.referenceDt, -kReferenceHalvings));
   study.minDt = minDt;
   study.maxDt = options.maxDt;
   study.costDtCap = 1.0 / s.render.fps;
@@ -244,14 +244,17 @@ void addStabilityOptions(CLI::App& command, StabilityOptionsCli& stability) {
       ->capture_default_str();
   command
       .add_option("--stretch-factor", stability.stretchFactor,
-                  "Unstable when a spring stretches beyond this multiple of the largest stretch of a "
-                  "reference run (rk4 at a quarter of the scenario's dt, halved up to six times until stable)")
+                  fmt::format("Unstable when a spring stretches beyond this multiple of the largest stretch of a "
+                              "reference run (rk4 at a quarter of the scenario's dt, halved up to {} times until "
+                              "stable)",
+                              kReferenceHalvings))
       ->capture_default_str();
   command
       .add_option("--shake-threshold", stability.shakeThreshold,
                   "Shaking when the step-alternating share of velocity exceeds this (sin²(ωh/2))")
       ->capture_default_str();
-  command.add_option("--min-dt", stability.minDt, "Smallest dt tried, s (default: the scenario's dt / 1000)");
+  command.add_option("--min-dt", stability.minDt,
+                     fmt::format("Smallest dt tried, s (default: the scenario's dt / {})", kMinDtDivisor));
   command.add_option("--max-dt", stability.maxDt, "Largest dt tried, s")->capture_default_str();
   command.add_option("--threads", stability.threads, "Integrators studied at once (0: one per core)")
       ->capture_default_str();

@@ -8,10 +8,17 @@
 #include <vector>
 
 #include "app/command.hpp"
+#include "core/stability.hpp"
 
 namespace particles::app {
 
-// Defaults as in StabilityCriteria / StabilityOptions (src/core/stability.hpp).
+// Without --min-dt, the smallest step tried is the scenario's dt divided by this.
+inline constexpr double kMinDtDivisor = 1000;
+// The reference run (rk4 at a quarter of the scenario's dt) is halved up to this many times until
+// it is stable.
+inline constexpr int kReferenceHalvings = 6;
+
+// Defaults from StabilityCriteria and StabilityOptions.
 struct StabilityOptionsCli {
   CommonOptions common;
   std::vector<std::string> integrators = integratorNames();  // every integrator the core has
@@ -19,12 +26,12 @@ struct StabilityOptionsCli {
   std::string plot;                                          // --plot .svg | .png | .pdf, empty: none
   std::vector<std::string> references;                       // --reference NAME=DT or NAME=LO:HI, for the figure
   std::string referenceName = "reference";
-  double energyTolerance = 0.1;
-  double stretchFactor = 1.5;  // × the reference run's largest stretch
-  double shakeThreshold = 0.1;
-  double minDt = 0;  // 0: the scenario's dt / 1000
-  double maxDt = 10.0;
-  int threads = 0;
+  double energyTolerance = StabilityCriteria{}.energyTolerance;
+  double stretchFactor = StabilityOptions{}.stretchFactor;  // × the reference run's largest stretch
+  double shakeThreshold = StabilityCriteria{}.shakeThreshold;
+  double minDt = 0;  // 0: the scenario's dt / kMinDtDivisor
+  double maxDt = StabilityOptions{}.maxDt;
+  int threads = StabilityOptions{}.threads;
   JobOptions job;
 };
 

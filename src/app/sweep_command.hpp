@@ -12,6 +12,7 @@
 #include <string>
 
 #include "app/command.hpp"
+#include "input/text_file.hpp"
 
 namespace particles::app {
 
@@ -23,7 +24,7 @@ struct SweepOptions {
   std::string program;  // --program: the particles the jobs call; empty: this one
   bool force = false;   // rerun finished jobs
   bool quiet = false;
-  std::uintmax_t maxInputMiB = 64;
+  std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;
 };
 
 extern const CommandDescriptor<SweepOptions> kSweepCommand;
