@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "input/text_file.hpp"
 #include "plot/figure.hpp"
 
 namespace particles::plot {
@@ -26,7 +27,7 @@ inline constexpr const char* kStatsCsvHeader = "t,kinetic,potential,total,constr
 // numbers (no spaces, no quotes; "\r\n" line ends accepted; one final newline optional; no blank
 // lines). Throws CsvError with the file, line and column of the first problem.
 // Files past maxInputMiB are refused as they are read (an endless device such as /dev/zero too).
-StatsTable readStatsCsv(const std::filesystem::path& file, std::uintmax_t maxInputMiB = 64);
+StatsTable readStatsCsv(const std::filesystem::path& file, std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB);
 // The same rules on text in memory; `file` only labels messages.
 StatsTable parseStatsCsv(std::string_view text, const std::filesystem::path& file);
 

@@ -108,6 +108,29 @@ TEST_CASE("cli: usage errors exit with 2") {
   CHECK(r.code == 2);
 }
 
+// CLI11 alone answered `particles golden --help` with the main help and exit 0, as if the word
+// were not there: a typo in a script went unnoticed.
+TEST_CASE("cli: an unknown command is a usage error naming it, with or without --help") {
+  Scratch s;
+  for (const std::string args : {"golden --help", "golden", "--help golden", "golden x.yaml -o x.mp4"}) {
+    CAPTURE(args);
+    const Result r = s.run(args);
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());  // no help
+    CHECK_MESSAGE(r.err.starts_with("unknown command 'golden'; the commands are check, run, render, "), r.err);
+  }
+  // A near miss names the command meant.
+  for (const std::string args : {"rnder --help", "rnder x.yaml -o x.mp4", "stabilty x.yaml"}) {
+    CAPTURE(args);
+    const Result r = s.run(args);
+    CHECK(r.code == 2);
+    CHECK(r.out.empty());
+    const std::string word = args.substr(0, args.find(' '));
+    const std::string meant = word == "rnder" ? "render" : "stability";
+    CHECK_MESSAGE(r.err.starts_with(fmt::format("unknown command '{}' (did you mean '{}'?)", word, meant)), r.err);
+  }
+}
+
 TEST_CASE("cli: check accepts a valid scenario and rejects a bad one with file, line and key") {
   Scratch s;
   s.write("p.yaml", kPendulum);

@@ -11,6 +11,7 @@
 #include "core/forces/damped_spring_force.hpp"
 #include "core/grid.hpp"
 #include "core/system.hpp"
+#include "input/text_file.hpp"
 #include "scenario/scenario.hpp"
 
 using namespace particles;
@@ -81,11 +82,11 @@ TEST_CASE("scene budget: each demo loads at limits equal to what it builds and i
       CAPTURE(l.name);
       SceneLimits exact;
       exact.*l.member = n;
-      CHECK_NOTHROW(loadScenarioFile(entry.path(), {}, kDefaultMaxInputMiB, exact));
+      CHECK_NOTHROW(loadScenarioFile(entry.path(), {}, particles::input::kDefaultMaxInputMiB, exact));
       SceneLimits below;
       below.*l.member = n - 1;
       const std::string raise = fmt::format("--limit {}=N", l.name);
-      CHECK_THROWS_WITH_AS(loadScenarioFile(entry.path(), {}, kDefaultMaxInputMiB, below),
+      CHECK_THROWS_WITH_AS(loadScenarioFile(entry.path(), {}, particles::input::kDefaultMaxInputMiB, below),
                            doctest::Contains(raise.c_str()), ScenarioError);
     }
   }

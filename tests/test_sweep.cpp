@@ -286,6 +286,58 @@ TEST_CASE("sweep: a killed sweep resumes, and no finished job runs again") {
   CHECK_MESSAGE(forced.out.find("8 ran (8 ok, 0 failed), 0 done before") != std::string::npos, forced.out);
 }
 
+// The sweep's handler (src/app/stop_signal.hpp, StopMode::interruptWaits) must interrupt its wait
+// for a job: with system calls restarted after it, the sweep would wait for the running job to end.
+TEST_CASE("sweep: SIGINT and SIGTERM stop the running job at once and exit 128 + the signal") {
+  for (const int signal : {SIGINT, SIGTERM}) {
+    CAPTURE(signal);
+    Scratch s;
+    // Cloth runs of about 40 s each (0.1 s per 1.5 simulated s), one at a time: none ends by itself.
+    s.write("long.yaml", "scenarios: [" + kSource +
+                             "/scenarios/cloth.yaml]\ncommand: run\n"
+                             "options: {duration: 600}\n"
+                             "parameters:\n  - {key: 'forces[1].kd', range: {from: 0.001, to: 0.002, count: 2}}\n");
+    const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
+    const pid_t pid = ::fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+      if (::chdir(s.dir.c_str()) != 0 || !std::freopen("err.txt", "w", stderr)) ::_exit(127);
+      ::execl(exe.c_str(), "particles", "sweep", "long.yaml", "-o", "out", "--jobs", "1", "--quiet",
+              static_cast<char*>(nullptr));
+      ::_exit(127);
+    }
+    // The first job has started once its log exists (the sweep opens it before it runs the job).
+    const auto start = std::chrono::steady_clock::now();
+    while (!fs::exists(s.dir / "out/jobs" / jobDir(0) / "log.txt") &&
+           std::chrono::steady_clock::now() - start < std::chrono::seconds(60)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));  // the sweep is now waiting for it
+    ::kill(pid, signal);
+    const auto signalled = std::chrono::steady_clock::now();
+    int status = 0;
+    pid_t waited = 0;
+    while ((waited = ::waitpid(pid, &status, WNOHANG)) == 0 &&
+           std::chrono::steady_clock::now() - signalled < std::chrono::seconds(30)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    if (waited == 0) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - signalled).count();
+    REQUIRE_MESSAGE(waited == pid, "the sweep still ran 30 s after the signal");
+    CHECK(seconds < 10);  // far less than the job's 40 s
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 128 + signal);
+    const std::string err = slurp(s.dir / "err.txt");
+    CHECK_MESSAGE(
+        err.find("long.yaml: interrupted after 0 of 2 jobs; run the same command again to resume") != std::string::npos,
+        err);
+    CHECK_FALSE(fs::exists(s.dir / "out/jobs" / jobDir(0) / "record.txt"));  // stopped, not finished
+  }
+}
+
 TEST_CASE("sweep: a render split into segments, joined by concat into one video") {
   Scratch s;
   s.write("swing.yaml", particles::test::kSwingScenario);

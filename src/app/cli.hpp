@@ -1,35 +1,30 @@
 #pragma once
-// The command line (docs/physics.md §12): every subcommand, its options and where they are parsed
-// into, built once per parse. main() parses argv with it; `sweep` parses each job's command line
-// with a fresh one before any job runs, so a bad option in a sweep file is found up front.
+// The command line (docs/physics.md §12): every command of kCommands (command_table.hpp), its
+// options and where they are parsed into, built once per parse. main() parses argv with it;
+// `sweep` parses each job's command line with a fresh one before any job runs, so a bad option in
+// a sweep file is found up front.
 
 #include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "app/commands.hpp"
-#include "app/compare_command.hpp"
-#include "app/concat_command.hpp"
-#include "app/job_command.hpp"
-#include "app/job_record.hpp"
-#include "app/sweep_command.hpp"
-#include "output/distinct_files.hpp"
+#include "app/command.hpp"
 
 namespace particles::app {
 
-// The files a command writes and reads, as its command line names them (empty: an option not
-// given). Checked against each other before the command runs (output/distinct_files.hpp).
-struct CommandFiles {
-  std::vector<output::NamedFile> outputs, inputs;
-};
-
-struct Cli {
+class Cli {
+ public:
   Cli();
   Cli(const Cli&) = delete;
   Cli& operator=(const Cli&) = delete;
 
-  // Runs the parsed subcommand (with its job record, when it has --record) and returns the exit
+  // Parses `args` (argv without argv[0]) into the commands' options. Throws CLI::ParseError, which
+  // app.exit() prints: the help or the version (exit code 0), or a usage error. A first word that
+  // names no command is a usage error that names it, even before --help (CLI11 would answer
+  // `particles golden --help` with the main help and success).
+  void parse(const std::vector<std::string>& args);
+  // Runs the parsed command (with its job record, when it has --record) and returns the exit
   // code; errors are printed and mapped by runReportingErrors. `args` is argv without argv[0].
   int dispatch(const std::vector<std::string>& args);
   // The parsed command's files, --record aside. gather has none here: its inputs are the records
@@ -37,22 +32,14 @@ struct Cli {
   CommandFiles commandFiles() const;
 
   CLI::App app{"particles: 2D particle systems and rigid bodies after Witkin & Baraff", "particles"};
-  CommonOptions common;
-  RunOptions run;
-  RenderCommandOptions render;
-  StabilityOptionsCli stability;
-  CompareOptions compare;
-  ConcatOptions concat;
-  PlotOptions plot;
-  SchemaOptions schema;
-  JobOptions job;
-  SweepOptions sweep;
-  GatherOptions gather;
-  RunJobOptions runJob;
 
-  CLI::App *checkCmd = nullptr, *runCmd = nullptr, *renderCmd = nullptr, *stabilityCmd = nullptr, *compareCmd = nullptr,
-           *concatCmd = nullptr, *plotCmd = nullptr, *schemaCmd = nullptr, *sweepCmd = nullptr, *gatherCmd = nullptr,
-           *runJobCmd = nullptr;
+ private:
+  // Throws CLI::ParseError when the first word that is not an option is no command's name.
+  void requireKnownCommand(const std::vector<std::string>& args) const;
+  // The command the parse named; nullptr before a parse.
+  const BoundCommand* parsedCommand() const;
+
+  std::vector<std::unique_ptr<BoundCommand>> commands_;  // kCommands' order
 };
 
 }  // namespace particles::app

@@ -36,6 +36,25 @@ scenario::Scenario loadScenario(const CommonOptions& o) {
   return scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB, sceneLimitsOf(o));
 }
 
+void addCommonOptions(CLI::App& command, CommonOptions& o) {
+  command.add_option("scenario", o.scenario, "Scenario file (YAML, see docs/scenarios.md)")->required();
+  command.add_option("--integrator", o.integrator,
+                     fmt::format("Override simulation.integrator: {}", fmt::join(integratorNames(), " | ")));
+  command.add_option("--dt", o.dt, "Override simulation.dt, the time step in seconds");
+  command.add_option("--duration", o.duration, "Override simulation.duration, in simulated seconds");
+  command.add_option("--set", o.sets, "Override any key before validation: --set path.to.key=value (repeatable)")
+      ->type_name("KEY=VALUE")
+      ->allow_extra_args(false);
+  command.add_flag("-q,--quiet", o.quiet, "No progress and no summary; errors are still printed");
+  addMaxInputOption(command, o.maxInputMiB, "a scenario file");
+  command
+      .add_option("--limit", o.limits,
+                  "Raise (or lower) a scene limit, counted before anything is built: particles, springs, "
+                  "constraints, endpoints or entries (repeatable; defaults in docs/scenarios.md, Limits)")
+      ->type_name("NAME=N")
+      ->allow_extra_args(false);
+}
+
 void addMaxInputOption(CLI::App& command, std::uintmax_t& mebibytes, const std::string& what) {
   command.add_option("--max-input", mebibytes, fmt::format("Refuse {} larger than this, MiB", what))
       ->check(CLI::Range(std::uintmax_t(1), std::uintmax_t(1) << 20))

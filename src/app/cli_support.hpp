@@ -1,18 +1,41 @@
 #pragma once
-// What the subcommands share: loading the scenario with the command line's overrides, and the
-// progress line on stderr.
+// What the subcommands share: the options of those that read a scenario, loading it with the
+// command line's overrides, and the progress line on stderr.
 
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "app/commands.hpp"
+#include "app/exit_codes.hpp"
+#include "core/integrators.hpp"
+#include "input/text_file.hpp"
 #include "scenario/scenario.hpp"
 
 namespace particles::app {
+
+// The names of every integrator the core has, in its order ("euler", "midpoint", "rk4").
+inline std::vector<std::string> integratorNames() {
+  std::vector<std::string> names;
+  for (Integrator i : allIntegrators()) names.emplace_back(integratorName(i));
+  return names;
+}
+
+// Options every scenario-reading subcommand takes.
+struct CommonOptions {
+  std::string scenario;
+  std::optional<std::string> integrator, dt, duration;         // shorthands for --set simulation.*=…
+  std::vector<std::string> sets;                               // --set path=value, in order
+  std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;     // --max-input
+  std::vector<std::string> limits;                             // --limit NAME=N, in order
+  bool quiet = false;
+};
+
+// Adds the options of CommonOptions to a command that reads a scenario.
+void addCommonOptions(CLI::App& command, CommonOptions& options);
 
 // The overrides of the command line: --set first, in order, then the shorthands, which win.
 std::vector<scenario::Override> overridesOf(const CommonOptions& o);

@@ -7,44 +7,49 @@
 #include <algorithm>
 #include <cctype>
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <new>
 #include <stdexcept>
 
-#include "app/commands.hpp"
+#include "app/exit_codes.hpp"
 #include "render/errors.hpp"
 #include "render/image_compare.hpp"
 #include "render/png_io.hpp"
+#include "render/render_options.hpp"
 
 namespace particles::app {
 
-CLI::App* addCompareCommand(CLI::App& app, CompareOptions& o) {
-  o.threshold = render::kDefaultThreshold;
-  o.maxShare = render::kDefaultMaxShare;
-  CLI::App* cmd = app.add_subcommand(
-      "compare", "Compare a frame with its golden frame: exit 0 if they match, 1 if they differ (docs/physics.md §10)");
-  cmd->add_option("expected", o.expected, "The reference frame (PNG), e.g. golden/cloth_t2.5.png")->required();
-  cmd->add_option("actual", o.actual, "The frame to check (PNG), of the same size")->required();
-  cmd->add_option("--diff", o.diff,
-                  "Write a PNG of the differences: magenta above the threshold, teal below it, the bounding box in "
-                  "yellow, over a dimmed grey copy of the expected frame");
-  cmd->add_option("--threshold", o.threshold, "A pixel differs when any channel (0 … 255) differs by more than this")
+namespace {
+
+void addCompareOptions(CLI::App& command, CompareOptions& o) {
+  command.add_option("expected", o.expected, "The reference frame (PNG), e.g. golden/cloth_t2.5.png")->required();
+  command.add_option("actual", o.actual, "The frame to check (PNG), of the same size")->required();
+  command.add_option("--diff", o.diff,
+                     "Write a PNG of the differences: magenta above the threshold, teal below it, the bounding box in "
+                     "yellow, over a dimmed grey copy of the expected frame");
+  command
+      .add_option("--threshold", o.threshold, "A pixel differs when any channel (0 … 255) differs by more than this")
       ->check(CLI::Range(0, 255))
       ->capture_default_str();
-  cmd->add_option("--max-share", o.maxShare,
-                  "Fail when more than this share (0 … 1) of the pixels differ; 0.0002 = 0.02 %")
+  command
+      .add_option("--max-share", o.maxShare,
+                  fmt::format("Fail when more than this share (0 … 1) of the pixels differ; {} = {} %",
+                              render::kDefaultMaxShare, 100 * render::kDefaultMaxShare))
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing when the frames match");
-  cmd->footer(
+  command.add_flag("-q,--quiet", o.quiet, "Print nothing when the frames match");
+  // Two frames of the largest size, 4 bytes a pixel each.
+  const std::uint64_t largestPairGiB = 2 * 4 * std::uint64_t(render::kMaxImageSide) * render::kMaxImageSide >> 30;
+  command.footer(fmt::format(
       "Exit codes: 0 the frames match, 1 they differ, 2 bad input (unreadable PNG, sizes differ: read from\n"
       "the headers, nothing decoded; a --diff that is not .png or is one of the frames), 3 the --diff picture\n"
-      "could not be written or memory ran out (two 16384x16384 frames decode to 2 GiB). Defaults and how they\n"
+      "could not be written or memory ran out (two {0}x{0} frames decode to {1} GiB). Defaults and how they\n"
       "were measured: golden/README.md.\n"
       "Examples:\n"
       "  particles compare golden/cloth_t2.5.png cloth.png\n"
-      "  particles compare golden/cloth_t2.5.png cloth.png --diff cloth_diff.png --threshold 16 --max-share 0.01\n");
-  return cmd;
+      "  particles compare golden/cloth_t2.5.png cloth.png --diff cloth_diff.png --threshold 16 --max-share 0.01\n",
+      render::kMaxImageSide, largestPairGiB));
 }
 
 int compareCommand(const CompareOptions& o) {
@@ -107,5 +112,19 @@ int compareCommand(const CompareOptions& o) {
   if (!o.quiet) fmt::print("ok\n");
   return kOk;
 }
+
+CommandFiles compareFiles(const CompareOptions& o) {
+  return {{{"--diff", o.diff}}, {{"the expected frame", o.expected}, {"the actual frame", o.actual}}};
+}
+
+}  // namespace
+
+const CommandDescriptor<CompareOptions> kCompareCommand = {
+    .name = "compare",
+    .summary = "Compare a frame with its golden frame: exit 0 if they match, 1 if they differ (docs/physics.md §10)",
+    .addOptions = addCompareOptions,
+    .run = compareCommand,
+    .files = compareFiles,
+};
 
 }  // namespace particles::app

@@ -11,9 +11,8 @@
 
 #include <string>
 
-namespace CLI {
-class App;
-}
+#include "app/command.hpp"
+#include "render/image_compare.hpp"
 
 namespace particles::app {
 
@@ -21,15 +20,11 @@ struct CompareOptions {
   std::string expected;  // the golden frame
   std::string actual;    // the frame under test
   std::string diff;      // --diff D.png; empty: none
-  int threshold = 0;     // set from render::kDefaultThreshold by addCompareCommand
-  double maxShare = 0;   // set from render::kDefaultMaxShare by addCompareCommand
+  int threshold = render::kDefaultThreshold;
+  double maxShare = render::kDefaultMaxShare;
   bool quiet = false;
 };
 
-// Registers the `compare` subcommand on `app`, parsing into `options` (which must outlive the
-// parse). Dispatch with `if (cmd->parsed()) return compareCommand(options);`.
-CLI::App* addCompareCommand(CLI::App& app, CompareOptions& options);
-
-int compareCommand(const CompareOptions& options);
+extern const CommandDescriptor<CompareOptions> kCompareCommand;
 
 }  // namespace particles::app

@@ -14,14 +14,14 @@
 
 namespace particles::app {
 
-CLI::App* addConcatCommand(CLI::App& app, ConcatOptions& o) {
-  CLI::App* cmd = app.add_subcommand(
-      "concat", "Join MP4 segments of a split render (render --frames A:B) into one video, without re-encoding");
-  cmd->add_option("segments", o.segments, "The segments, in order (MP4 files of the same size, rate and settings)")
+namespace {
+
+void addConcatOptions(CLI::App& command, ConcatOptions& o) {
+  command.add_option("segments", o.segments, "The segments, in order (MP4 files of the same size, rate and settings)")
       ->required();
-  cmd->add_option("-o,--output", o.output, "The joined video (.mp4)")->required();
-  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
-  cmd->footer(
+  command.add_option("-o,--output", o.output, "The joined video (.mp4)")->required();
+  command.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
+  command.footer(
       "Exit codes: 0 joined, 2 bad input (a segment unreadable, truncated or damaged: every packet is\n"
       "decoded on its way; or unlike the first; or -o naming a segment), 3 the output failed. Segments are\n"
       "opened one at a time.\n"
@@ -29,7 +29,7 @@ CLI::App* addConcatCommand(CLI::App& app, ConcatOptions& o) {
       "  particles render scenarios/cloth.yaml -o part0.mp4 --frames 0:300\n"
       "  particles render scenarios/cloth.yaml -o part1.mp4 --frames 300:\n"
       "  particles concat part0.mp4 part1.mp4 -o cloth.mp4\n");
-  return cmd;
+  addJobOptions(command, o.job);
 }
 
 int concatCommand(const ConcatOptions& o) {
@@ -51,5 +51,22 @@ int concatCommand(const ConcatOptions& o) {
   }
   return kOk;
 }
+
+CommandFiles concatFiles(const ConcatOptions& o) {
+  CommandFiles files{{{"-o", o.output}}, {}};
+  for (const std::string& segment : o.segments) files.inputs.push_back({"the segment", segment});
+  return files;
+}
+
+}  // namespace
+
+const CommandDescriptor<ConcatOptions> kConcatCommand = {
+    .name = "concat",
+    .summary = "Join MP4 segments of a split render (render --frames A:B) into one video, without re-encoding",
+    .addOptions = addConcatOptions,
+    .run = concatCommand,
+    .files = concatFiles,
+    .job = &ConcatOptions::job,
+};
 
 }  // namespace particles::app

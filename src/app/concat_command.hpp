@@ -9,9 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace CLI {
-class App;
-}
+#include "app/command.hpp"
 
 namespace particles::app {
 
@@ -19,12 +17,9 @@ struct ConcatOptions {
   std::vector<std::string> segments;
   std::string output;
   bool quiet = false;
+  JobOptions job;
 };
 
-// Registers the `concat` subcommand on `app`, parsing into `options` (which must outlive the
-// parse). Dispatch with `if (cmd->parsed()) return concatCommand(options);`.
-CLI::App* addConcatCommand(CLI::App& app, ConcatOptions& options);
-
-int concatCommand(const ConcatOptions& options);
+extern const CommandDescriptor<ConcatOptions> kConcatCommand;
 
 }  // namespace particles::app

@@ -1,7 +1,7 @@
-// `particles gather OUTDIR`: one row per job of a sweep (jobs.csv) with its parameters, its outcome
-// from its record and the headline numbers the job reported; and, when one parameter varies, a
-// figure of those numbers against it (one panel per quantity, one line per integrator or
-// scenario).
+// `particles gather`: see gather_command.hpp. The figure has one panel per quantity and one line
+// per integrator or scenario.
+#include "app/gather_command.hpp"
+
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -15,7 +15,6 @@
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
-#include "app/sweep_command.hpp"
 #include "input/text_file.hpp"
 #include "output/distinct_files.hpp"
 #include "output/output_file.hpp"
@@ -68,26 +67,24 @@ plot::AxisScale scaleFor(const std::vector<double>& values) {
   return !values.empty() && hi / lo >= 20 ? plot::AxisScale::Log : plot::AxisScale::Linear;
 }
 
-}  // namespace
-
-CLI::App* addGatherCommand(CLI::App& app, GatherOptions& o) {
-  CLI::App* cmd = app.add_subcommand("gather", "Collect a sweep's results: one CSV row per job, and a figure");
-  cmd->add_option("outdir", o.outDir, "A sweep's output folder (with jobs.csv)")->required();
-  cmd->add_option("-o,--output", o.output, "The CSV (default OUTDIR/results.csv)");
-  cmd->add_option(
+void addGatherOptions(CLI::App& command, GatherOptions& o) {
+  command.add_option("outdir", o.outDir, "A sweep's output folder (with jobs.csv)")->required();
+  command.add_option("-o,--output", o.output, "The CSV (default OUTDIR/results.csv)");
+  command.add_option(
       "--plot", o.plot,
       "The figure, .svg, .pdf or .png (default OUTDIR/results.svg when one parameter varies; none: no figure)");
-  cmd->add_flag("-q,--quiet", o.quiet, "Print nothing on success");
-  addMaxInputOption(*cmd, o.maxInputMiB, "a job table or record");
-  cmd->footer(
+  command.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
+  addMaxInputOption(command, o.maxInputMiB, "a job table or record");
+  command.footer(
       "Columns: index, stage, scenario, the parameters, segment, status (ok, failed or not run), exit,\n"
       "seconds, then the numbers the jobs report (run: final_energy, worst_constraint_error,\n"
       "worst_penetration, wall_seconds, …; stability: max_stable_dt.INTEGRATOR, max_smooth_dt.…; render:\n"
       "frames, wall_seconds), then message.\n"
       "Example:\n"
       "  particles gather cloth-sweep --plot cloth-sweep.png\n");
-  return cmd;
 }
+
+}  // namespace
 
 int gatherCommand(const GatherOptions& o) {
   if (!o.plot.empty() && o.plot != "none") requireFigurePath("--plot", o.plot);
@@ -256,5 +253,12 @@ int gatherCommand(const GatherOptions& o) {
   }
   return kOk;
 }
+
+const CommandDescriptor<GatherOptions> kGatherCommand = {
+    .name = "gather",
+    .summary = "Collect a sweep's results: one CSV row per job, and a figure",
+    .addOptions = addGatherOptions,
+    .run = gatherCommand,
+};
 
 }  // namespace particles::app

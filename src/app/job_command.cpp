@@ -22,21 +22,17 @@ std::string commandOfStage(const std::string& stage) {
   return stage;  // run, render, stability, concat (parseJobTable admits no other)
 }
 
-}  // namespace
-
-CLI::App* addRunJobCommand(CLI::App& app, RunJobOptions& o) {
-  CLI::App* cmd = app.add_subcommand("job", "Run one job of a sweep, by its index in OUT/jobs.csv");
-  cmd->add_option("outdir", o.outDir, "The sweep's output folder (with jobs.csv)")->required();
-  cmd->add_option("index", o.index, "The job's index: 0 for the first row of jobs.csv")->required();
-  cmd->add_flag("--force", o.force, "Run the job even when its record says it is done");
-  addMaxInputOption(*cmd, o.maxInputMiB, "a job table or record");
-  cmd->footer(
+void addRunJobOptions(CLI::App& command, RunJobOptions& o) {
+  command.add_option("outdir", o.outDir, "The sweep's output folder (with jobs.csv)")->required();
+  command.add_option("index", o.index, "The job's index: 0 for the first row of jobs.csv")->required();
+  command.add_flag("--force", o.force, "Run the job even when its record says it is done");
+  addMaxInputOption(command, o.maxInputMiB, "a job table or record");
+  command.footer(
       "The job lists that 'particles sweep --emit' writes are lines of this command: GNU parallel and Slurm\n"
       "run them as they are. The job's record makes a rerun of a finished job a no-op.\n"
       "Examples:\n"
       "  particles job cloth-sweep 0\n"
       "  SLURM_ARRAY_TASK_ID=3 bash cloth-sweep/sweep.sbatch   # what a Slurm array task runs\n");
-  return cmd;
 }
 
 int runJobCommand(const RunJobOptions& o) {
@@ -62,12 +58,21 @@ int runJobCommand(const RunJobOptions& o) {
 
   Cli cli;
   try {
-    cli.app.parse(std::vector<std::string>(args.rbegin(), args.rend()));
+    cli.parse(args);
   } catch (const CLI::ParseError& e) {
     throw InputError(fmt::format("{}:{}: job {}'s command line: {}", table.file, table.rowLines[index], index,
                                  e.get_exit_code() == 0 ? "--help and --version are not jobs" : e.what()));
   }
   return cli.dispatch(args);
 }
+
+}  // namespace
+
+const CommandDescriptor<RunJobOptions> kRunJobCommand = {
+    .name = "job",
+    .summary = "Run one job of a sweep, by its index in OUT/jobs.csv",
+    .addOptions = addRunJobOptions,
+    .run = runJobCommand,
+};
 
 }  // namespace particles::app

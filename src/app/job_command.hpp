@@ -13,9 +13,8 @@
 #include <cstdint>
 #include <string>
 
-namespace CLI {
-class App;
-}
+#include "app/command.hpp"
+#include "input/text_file.hpp"
 
 namespace particles::app {
 
@@ -23,10 +22,9 @@ struct RunJobOptions {
   std::string outDir;
   std::string index;  // checked as a whole number here, for a message naming it
   bool force = false;
-  std::uintmax_t maxInputMiB = 64;
+  std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;
 };
 
-CLI::App* addRunJobCommand(CLI::App& app, RunJobOptions& options);
-int runJobCommand(const RunJobOptions& options);
+extern const CommandDescriptor<RunJobOptions> kRunJobCommand;
 
 }  // namespace particles::app

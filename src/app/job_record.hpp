@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "app/exit_codes.hpp"
+#include "input/text_file.hpp"
 
 namespace CLI {
 class App;
@@ -24,13 +25,10 @@ class App;
 
 namespace particles::app {
 
-// The most a record (or a sweep's jobs.csv) may take unless --max-input says otherwise, MiB.
-inline constexpr std::uintmax_t kDefaultMaxTableMiB = 64;
-
 struct JobOptions {
   std::string record;                                // --record FILE; empty: not a sweep job
   bool force = false;                                // --force: run even when the record says done
-  std::uintmax_t maxInputMiB = kDefaultMaxTableMiB;  // the record is read within the command's --max-input
+  std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;  // the record is read within the command's --max-input
 };
 
 void addJobOptions(CLI::App& command, JobOptions& options);

@@ -27,13 +27,14 @@ int main(int argc, char** argv) {
   keepHeapBetweenFrames();
   try {
     auto cli = std::make_unique<particles::app::Cli>();
+    const std::vector<std::string> args(argv + 1, argv + argc);
     try {
-      cli->app.parse(argc, argv);
+      cli->parse(args);
     } catch (const CLI::ParseError& e) {
       const int code = cli->app.exit(e);  // prints help, the version or the error
       return code == 0 ? particles::app::kOk : particles::app::kBadInput;
     }
-    return cli->dispatch(std::vector<std::string>(argv + 1, argv + argc));
+    return cli->dispatch(args);
   } catch (const std::bad_alloc&) {
     // Memory ran out before a command ran (or after it reported): the options themselves, under a
     // tight cap (`ulimit -v`). The same code and words as runReportingErrors', allocating nothing.

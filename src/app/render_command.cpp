@@ -1,16 +1,13 @@
-// `particles render SCENARIO -o OUT` (docs/physics.md §9, §12): simulate and draw frames off-screen,
-// frames i = 0 … round(duration·fps) − 1 at t = i / fps, or the one frame at --at T, in OUT's
-// format (render/output_formats.hpp, which checks the options that depend on it).
-// The work is render::renderSimulation (render/render_simulation.hpp); this file reads the options,
-// adds what only the program has (the --stats/--trace CSVs, the --hud text, progress, stopping on
-// SIGINT/SIGTERM) as its hooks and reports the outcome. Outputs appear only when complete, and a
-// signal or any failure removes them (exit 128 + signal, or the codes of exit_codes.hpp).
+// `particles render`: see render_command.hpp. The work is render::renderSimulation
+// (render/render_simulation.hpp); this file reads the options, adds what only the program has (the
+// --stats/--trace CSVs, the --hud text, progress, stopping on SIGINT/SIGTERM: stop_signal.hpp) as
+// its hooks and reports the outcome.
+#include "app/render_command.hpp"
+
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <csignal>
 #include <optional>
 #include <string>
 #include <utility>
@@ -19,12 +16,14 @@
 #include "app/csv_recorder.hpp"
 #include "app/gl_options.hpp"
 #include "app/job_record.hpp"
+#include "app/stop_signal.hpp"
 #include "core/solver.hpp"
 #include "core/system.hpp"
 #include "plot/errors.hpp"
 #include "plot/text_overlay.hpp"
 #include "render/errors.hpp"
 #include "render/frame_writer.hpp"
+#include "render/gl_backend.hpp"
 #include "render/output_formats.hpp"
 #include "render/render_options.hpp"
 #include "render/render_simulation.hpp"
@@ -34,25 +33,18 @@ namespace particles::app {
 
 namespace {
 
-// SIGINT and SIGTERM stop a video render between frames: the handler sets a flag the frame loop
-// polls (render/frame_writer.hpp), and the render removes what it wrote. A render can also be
-// stuck where no loop polls: writing to a pipe or FIFO whose reader has stopped reading (a write
-// restarts after the handler returns), or a filesystem that hangs. So the first signal also starts
-// a grace period; a render that has not stopped by its end exits at once from the alarm's handler
-// with the same code. Its output is an anonymous temporary that vanishes with the process (a named
-// one, or a PNG sequence's staging folder, is left for the next run to remove, as after SIGKILL).
-constexpr unsigned kStopGraceSeconds = 3;  // several frames of the largest renders we make; in the message
+// The shortest --keyint, s: a keyframe every millisecond is already every frame.
+constexpr double kMinKeyintSeconds = 1e-3;
+// The largest --png-level: zlib's best compression (render/png_io.hpp).
+constexpr int kMaxPngLevel = 9;
 
-volatile std::sig_atomic_t stopSignal = 0;
-extern "C" void onStopSignal(int signal) {
-  if (stopSignal == 0) ::alarm(kStopGraceSeconds);
-  stopSignal = signal;
-}
-extern "C" void onStopGraceOver(int) {
-  static const char message[] =
-      "particles: not stopped within 3 s of the signal (blocked writing an output?); ended at once\n";
-  [[maybe_unused]] const ssize_t written = ::write(STDERR_FILENO, message, sizeof message - 1);
-  ::_exit(128 + stopSignal);
+// "1 (off), 2, 4, 8 or 16": the sample counts --msaa takes.
+std::string sampleCountsText() {
+  std::vector<std::string> counts;
+  for (int n : render::kSampleCounts) counts.push_back(n == 1 ? "1 (off)" : std::to_string(n));
+  const std::string last = counts.back();
+  counts.pop_back();
+  return fmt::format("{} or {}", fmt::join(counts, ", "), last);
 }
 
 std::optional<render::Length> parseRadius(const std::string& text) {
@@ -84,29 +76,6 @@ auto hudOverlay(const scenario::Scenario& s, const render::RenderOptions& look) 
         style);
   };
 }
-
-struct SignalGuard {
-  SignalGuard() {
-    stopSignal = 0;
-    previousAlarm = std::signal(SIGALRM, onStopGraceOver);
-    previousInt = std::signal(SIGINT, onStopSignal);
-    previousTerm = std::signal(SIGTERM, onStopSignal);
-  }
-  ~SignalGuard() {
-    std::signal(SIGINT, previousInt);
-    std::signal(SIGTERM, previousTerm);
-    // Once stopping, the grace period keeps running: it bounds what the command still does on its
-    // way out too, such as closing a --trace FIFO whose last buffered lines wait for a reader.
-    if (stopSignal != 0) return;
-    ::alarm(0);
-    std::signal(SIGALRM, previousAlarm);
-  }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
-  void (*previousInt)(int);
-  void (*previousTerm)(int);
-  void (*previousAlarm)(int);
-};
 
 // The look of the frames: the scenario's render block, then the command line. Throws InputError.
 render::RenderOptions lookOf(const scenario::Scenario& s, const RenderCommandOptions& options) {
@@ -180,34 +149,45 @@ std::pair<long, long> parseFrameRange(const std::string& text, long total) {
   return {*first, *end};
 }
 
-}  // namespace
-
-int renderCommand(const CommonOptions& common, const RenderCommandOptions& options) {
-  scenario::Scenario s = loadScenario(common);
-  const render::RenderOptions look = lookOf(s, options);
+// --fps, --keyint and --at as numbers, before the output says what they mean for it.
+void checkNumbers(const RenderCommandOptions& options) {
   if (options.fps && !(*options.fps >= 1 && *options.fps <= 1000)) {  // NaN fails both
     throw InputError(fmt::format("--fps: expected a whole number of frames per second from 1 to 1000, not {}",
                                  *options.fps));
   }
-  if (!(options.keyint >= 1e-3 && options.keyint <= render::kMaxKeyintSeconds)) {  // NaN fails both
-    throw InputError(fmt::format("--keyint: expected seconds from 0.001 to 3600 between keyframes, not {}",
-                                 options.keyint));
+  if (!(options.keyint >= kMinKeyintSeconds && options.keyint <= render::kMaxKeyintSeconds)) {  // NaN fails both
+    throw InputError(fmt::format("--keyint: expected seconds from {} to {} between keyframes, not {}",
+                                 kMinKeyintSeconds, render::kMaxKeyintSeconds, options.keyint));
   }
   if (options.at && !std::isfinite(*options.at)) {
     throw InputError(fmt::format("--at: expected a simulated time in seconds, not {}", *options.at));
   }
-  const render::OutputFormat* outputFormat = nullptr;
+}
+
+// The row of render/output_formats.hpp that -o names.
+const render::OutputFormat& outputFormatOf(const RenderCommandOptions& options) {
   try {
-    outputFormat = &render::outputFormatOf(options.output);
+    return render::outputFormatOf(options.output);
   } catch (const std::invalid_argument& e) {
     throw InputError(fmt::format("-o {}: {}", options.output, e.what()));
   }
-  const render::OutputFormat& format = *outputFormat;
+}
+
+// The frame rate: --fps, else the scenario's (capped where the format caps it, render::defaultFps).
+int framesPerSecondOf(const scenario::Scenario& s, const RenderCommandOptions& options,
+                      const render::OutputFormat& format) {
   const double fpsValue = options.fps.value_or(render::defaultFps(format, s.render.fps));
   const int fps = int(std::lround(fpsValue));
   if (std::abs(fpsValue - fps) > 1e-9 || fps <= 0) {
     throw InputError(fmt::format("render needs a whole, positive number of frames per second, not {}", fpsValue));
   }
+  return fps;
+}
+
+// The options whose meaning depends on the output's format (alpha, --crf, the frame rate's cap,
+// --at, --frames), by its row; and --hud's opaque panel, never over a transparent background.
+void checkFormatOptions(const RenderCommandOptions& options, const render::RenderOptions& look,
+                        const render::OutputFormat& format, int fps) {
   refusedOptionsAreInputErrors([&] {
     render::checkFormatOptions(format, options.output,
                                {.transparentBackground = look.transparentBackground,
@@ -220,15 +200,60 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   if (look.transparentBackground && options.hud) {
     throw InputError("--hud draws an opaque panel over the frame: not with --background transparent");
   }
+}
+
+// --at inside the simulation (whether the format takes it is checkFormatOptions's).
+void checkAtTime(const scenario::Scenario& s, const RenderCommandOptions& options) {
   if (options.at && (*options.at < 0 || *options.at > s.simulation.duration + 1e-9)) {
     throw InputError(fmt::format("--at {}: outside the simulation, 0 … {} s", *options.at, s.simulation.duration));
   }
-  const long totalFrames = render::frameCount(s.simulation.duration, fps);
-  std::optional<std::pair<long, long>> frameRange;
-  if (!options.frames.empty()) frameRange = parseFrameRange(options.frames, totalFrames);
-  if (options.pngLevel < 0 || options.pngLevel > 9) {
-    throw InputError(fmt::format("--png-level: 0 (fastest) to 9 (smallest), not {}", options.pngLevel));
+}
+
+// --frames against the video's `totalFrames`; none: every frame.
+std::optional<std::pair<long, long>> frameRangeOf(const RenderCommandOptions& options, long totalFrames) {
+  if (options.frames.empty()) return std::nullopt;
+  return parseFrameRange(options.frames, totalFrames);
+}
+
+void checkPngLevel(const RenderCommandOptions& options) {
+  if (options.pngLevel < 0 || options.pngLevel > kMaxPngLevel) {
+    throw InputError(fmt::format("--png-level: 0 (fastest) to {} (smallest), not {}", kMaxPngLevel, options.pngLevel));
   }
+}
+
+// Adds --stats/--trace, --verbose's GL line and --hud to the render's hooks.
+void addProgramHooks(render::RenderHooks& hooks, const scenario::Scenario& s, const RenderCommandOptions& options,
+                     const render::RenderOptions& look, CsvRecorder& recorder, long& framesReached) {
+  if (options.verbose) {
+    hooks.glReady = [](const render::GlInfo& info) { fmt::print(stderr, "GL: {}\n", render::describe(info)); };
+  }
+  hooks.onFrame = [&](const System& system) {
+    recorder.record(system);
+    ++framesReached;
+  };
+  if (options.hud) {
+    hooks.decorate = [hud = hudOverlay(s, look)](render::Image& frame, const System& system) {
+      try {
+        hud(frame, system);
+      } catch (const plot::FigureError& e) {
+        throw plot::FigureError(std::string("--hud: ") + e.what());
+      }
+    };
+  }
+}
+
+int renderCommand(const RenderCommandOptions& options) {
+  const CommonOptions& common = options.common;
+  scenario::Scenario s = loadScenario(common);
+  const render::RenderOptions look = lookOf(s, options);
+  checkNumbers(options);
+  const render::OutputFormat& format = outputFormatOf(options);
+  const int fps = framesPerSecondOf(s, options, format);
+  checkFormatOptions(options, look, format, fps);
+  checkAtTime(s, options);
+  const long totalFrames = render::frameCount(s.simulation.duration, fps);
+  const std::optional<std::pair<long, long>> frameRange = frameRangeOf(options, totalFrames);
+  checkPngLevel(options);
   render::setLibavVerbose(options.verbose);
   refusedOptionsAreInputErrors([&] { render::validate(look); });
   const render::GlRequest gl = glRequestOf(options.gl, options.gpu);
@@ -249,22 +274,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   job.png.compressionLevel = options.pngLevel;
   long framesReached = 0;  // frames whose time the simulation reached
   render::RenderHooks hooks;
-  if (options.verbose) {
-    hooks.glReady = [](const render::GlInfo& info) { fmt::print(stderr, "GL: {}\n", render::describe(info)); };
-  }
-  hooks.onFrame = [&](const System& system) {
-    recorder->record(system);
-    ++framesReached;
-  };
-  if (options.hud) {
-    hooks.decorate = [hud = hudOverlay(s, look)](render::Image& frame, const System& system) {
-      try {
-        hud(frame, system);
-      } catch (const plot::FigureError& e) {
-        throw plot::FigureError(std::string("--hud: ") + e.what());
-      }
-    };
-  }
+  addProgramHooks(hooks, s, options, look, *recorder, framesReached);
   // A frame larger than the GL draws is bad input: the size's, named as it was given.
   const std::string sizeSource = options.size.empty()
                                      ? fmt::format("the scenario's render size {}x{}", look.width, look.height)
@@ -292,8 +302,8 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   hooks.progress = [&](long done, long total, const System& system) {
     progress.update(done, total, fmt::format("t = {:.2f} s", system.time()));
   };
-  SignalGuard signals;
-  hooks.shouldStop = [] { return stopSignal != 0; };
+  StopSignals signals(StopMode::pollWithGrace);
+  hooks.shouldStop = [] { return stopSignal() != 0; };
   render::RenderSummary summary;
   try {
     summary = refusedOptionsAreInputErrors(run);
@@ -304,7 +314,7 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
     progress.finish();
     fmt::print(stderr, "{}: interrupted at frame {} of {}; no output written\n", common.scenario, summary.frames,
                frames);
-    return 128 + int(stopSignal);
+    return 128 + stopSignal();
   }
   recorder->commit();
   progress.finish();
@@ -318,5 +328,93 @@ int renderCommand(const CommonOptions& common, const RenderCommandOptions& optio
   }
   return kOk;
 }
+
+void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
+  CLI::App* renderCmd = &command;
+  addCommonOptions(*renderCmd, render.common);
+  renderCmd->add_option("-o,--output", render.output, render::outputHelp())->required();
+  renderCmd->add_option("--at", render.at, render::atHelp());
+  renderCmd->add_option("--frames", render.frames, render::framesHelp());
+  renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
+  renderCmd->add_option("--fps", render.fps, render::fpsHelp());
+  renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: " + sampleCountsText())
+      ->check(CLI::IsMember(render::kSampleCounts))
+      ->capture_default_str();
+  renderCmd
+      ->add_option("--raster", render.raster,
+                   fmt::format("How shapes become pixels: triangles (one GL primitive each), tiles (sorted into "
+                               "screen tiles on the CPU, one pass; fast for large scenes) or auto (tiles from {} "
+                               "shapes)",
+                               render::kTilesFromShapes))
+      ->check(CLI::IsMember({"auto", "triangles", "tiles"}))
+      ->capture_default_str();
+  renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
+  renderCmd->add_option("--background", render.background, render::backgroundHelp())->capture_default_str();
+  renderCmd->add_option("--particle-radius", render.particleRadius,
+                        "Particle disc radius: 4px (pixels) or 0.02m (world)");
+  renderCmd->add_option("--crf", render.crf, render::crfHelp());
+  renderCmd
+      ->add_option("--keyint", render.keyint,
+                   "Longest time between keyframes, s (MP4, WebM): players seek to a keyframe, so shorter seeks "
+                   "faster")
+      ->check(CLI::Range(kMinKeyintSeconds, render::kMaxKeyintSeconds))
+      ->capture_default_str();
+  renderCmd->add_option("--preset", render.preset, "x264 preset (MP4): ultrafast … veryslow")->capture_default_str();
+  renderCmd->add_option("--png-level", render.pngLevel, fmt::format("PNG compression level 0 … {}", kMaxPngLevel))
+      ->capture_default_str();
+  renderCmd->add_flag("--verbose", render.verbose, "Name the GL backend and renderer; show libav/x264's own log");
+  renderCmd
+      ->add_option("--gl", render.gl,
+                   fmt::format("GL backend: auto (EGL, else OSMesa), egl or osmesa (default: ${}, else auto)",
+                               kGlEnvironmentVariable))
+      ->check(CLI::IsMember(render::glBackendNames()));
+  renderCmd->add_flag("--gpu", render.gpu,
+                      "Draw on a GPU through EGL instead of llvmpipe on the CPU (frames may differ from the goldens)");
+  renderCmd->add_flag("--hud", render.hud,
+                      "Draw time, integrator, dt and energy in the top-left corner of every frame");
+  renderCmd->add_option("--stats", render.stats,
+                        "Write t,kinetic,potential,total,constraint_error,penetration per frame");
+  auto* renderTrace = renderCmd->add_option("--trace", render.trace, "Write t,name,x,y,vx,vy,angle,omega per frame");
+  renderCmd->add_option("--trace-only", render.traceOnly, "Trace only these objects (comma-separated names)")
+      ->delimiter(',')
+      ->needs(renderTrace);
+  const render::FpsCap& gifCap = *render::outputFormat(render::OutputKind::gif).fpsCap;
+  renderCmd->footer(fmt::format(
+      "Frame i shows t = i / fps; a video has round(duration · fps) frames. Odd sizes are refused for MP4\n"
+      "and WebM (yuv420p needs even sizes); GIF and PNG take any size. A GIF has one palette made for the\n"
+      "whole video, at most {} fps ({} unless --fps says), delays rounded to whole centiseconds.\n"
+      "Which formats take --background transparent, --frames, --crf and --at: their help above.\n"
+      "Outputs appear only when complete.\n"
+      "Frames are drawn by Mesa's llvmpipe on the CPU, the same bytes through EGL or OSMesa;\n"
+      "'particles --version' names the backend and renderer.\n"
+      "Examples:\n"
+      "  particles render scenarios/cloth.yaml -o cloth.mp4\n"
+      "  particles render scenarios/soft_body.yaml -o frames/ --size 640x360 --fps 30\n"
+      "  particles render scenarios/cloth.yaml -o fig.png --at 2.5 --theme light --size 1600x1200\n"
+      "  particles render scenarios/soft_body.yaml -o man.mp4 --hud   # time, integrator, dt, energy on every frame\n"
+      "  particles render scenarios/rigid_chain.yaml -o chain.mp4 --crf 23 --preset veryfast --quiet\n"
+      "  particles render scenarios/cloth.yaml -o cloth.gif --size 480x270   # 30 fps, a palette for the video\n"
+      "  particles render scenarios/cloth.yaml -o cloth.webm --background transparent   # VP9 with alpha\n"
+      "  PARTICLES_GL=osmesa particles render scenarios/cloth.yaml -o cloth.mp4   # where EGL will not start\n",
+      gifCap.most, gifCap.byDefault));
+  addJobOptions(*renderCmd, render.job);
+}
+
+CommandFiles renderFiles(const RenderCommandOptions& render) {
+  return {{{"-o", render.output}, {"--stats", render.stats}, {"--trace", render.trace}},
+          {{"the scenario", render.common.scenario}}};
+}
+
+}  // namespace
+
+const CommandDescriptor<RenderCommandOptions> kRenderCommand = {
+    .name = "render",
+    .summary = "Simulate and draw the scenario off-screen to an MP4, WebM or GIF video, PNG frames or one PNG",
+    .addOptions = addRenderOptions,
+    .run = renderCommand,
+    .files = renderFiles,
+    .common = &RenderCommandOptions::common,
+    .job = &RenderCommandOptions::job,
+};
 
 }  // namespace particles::app

@@ -1,12 +1,24 @@
 // `particles schema`: the scenario format as JSON Schema (draft 7) on stdout, for editors and CI
 // validators; with --markdown, each kind's key table as docs/scenarios.md holds it.
+#include "app/schema_command.hpp"
+
 #include <fmt/format.h>
 
-#include "app/commands.hpp"
 #include "core/kind.hpp"
 #include "scenario/schema.hpp"
 
 namespace particles::app {
+
+namespace {
+
+void addSchemaOptions(CLI::App& command, SchemaOptions& schema) {
+  command.add_flag("--markdown", schema.markdown, "Print each kind's key table as docs/scenarios.md has it");
+  command.footer(
+      "Examples:\n"
+      "  particles schema > scenario.schema.json\n"
+      "  # then, at the top of a scenario: # yaml-language-server: $schema=scenario.schema.json\n"
+      "  particles schema --markdown\n");
+}
 
 int schemaCommand(const SchemaOptions& options) {
   if (!options.markdown) {
@@ -18,5 +30,14 @@ int schemaCommand(const SchemaOptions& options) {
   }
   return kOk;
 }
+
+}  // namespace
+
+const CommandDescriptor<SchemaOptions> kSchemaCommand = {
+    .name = "schema",
+    .summary = "Print the scenario format as JSON Schema (draft 7), for editors and validators",
+    .addOptions = addSchemaOptions,
+    .run = schemaCommand,
+};
 
 }  // namespace particles::app

@@ -1,14 +1,14 @@
-// `particles stability`: the time-step study (src/core/stability.hpp, docs/stability.md) as a command,
-// with the table on stdout, `--csv` and a `--plot` figure.
+// `particles stability`: see stability_command.hpp.
+#include "app/stability_command.hpp"
+
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <map>
-
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "app/cli_support.hpp"
@@ -107,15 +107,14 @@ std::string dtText(double dt, bool atMax) {
   return dt > 0.0 ? fmt::format("{:.2g} s", dt) : std::string("none ≥ min");
 }
 
-}  // namespace
-
-int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& options) {
+int stabilityCommand(const StabilityOptionsCli& options) {
+  const CommonOptions& common = options.common;
   if (!options.plot.empty()) requireFigurePath("--plot", options.plot);
   const scenario::Scenario s = loadScenario(common);
   const std::vector<Integrator> integrators = parseIntegrators(options.integrators);
   const auto references = parseReferences(options.references, integrators);
   if (!references.empty() && options.plot.empty()) throw InputError("--reference is shown on --plot: give --plot too");
-  const double minDt = options.minDt > 0 ? options.minDt : s.simulation.dt / 1000.0;
+  const double minDt = options.minDt > 0 ? options.minDt : s.simulation.dt / kMinDtDivisor;
   // Written as "not inside" so that NaN, which fails every comparison, is refused too.
   const bool inside = options.energyTolerance > 0 && std::isfinite(options.energyTolerance) &&
                       options.stretchFactor > 1 && std::isfinite(options.stretchFactor) &&
@@ -141,7 +140,7 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
   study.criteria.shakeThreshold = options.shakeThreshold;
   study.startDt = s.simulation.dt;
   study.referenceDt = s.simulation.dt / 4.0;
-  study.minReferenceDt = std::max(minDt, study.referenceDt / 64.0);
+  study.minReferenceDt = std::max(minDt, std::ldexp(study.referenceDt, -kReferenceHalvings));
   study.minDt = minDt;
   study.maxDt = options.maxDt;
   study.costDtCap = 1.0 / s.render.fps;
@@ -220,5 +219,70 @@ int stabilityCommand(const CommonOptions& common, const StabilityOptionsCli& opt
   }
   return kOk;
 }
+
+void addStabilityOptions(CLI::App& command, StabilityOptionsCli& stability) {
+  addCommonOptions(command, stability.common);
+  command.add_option("--integrators", stability.integrators, "Integrators to study, comma-separated")
+      ->delimiter(',')
+      ->capture_default_str();
+  command.add_option("--csv", stability.csv,
+                     "Write integrator,evals_per_step,max_stable_dt,max_smooth_dt,cost_dt,evals_per_sim_second,"
+                     "speed_vs_euler,wall_seconds_per_sim_second to this CSV");
+  command.add_option("--plot", stability.plot,
+                     "Write the limits as a dot plot (log axis, criteria in the caption): .svg, .png or .pdf");
+  command
+      .add_option("--reference", stability.references,
+                  "Values to show beside the limits on the plot, per integrator: NAME=DT (a point) or NAME=LO:HI "
+                  "(the limit lies between), e.g. euler=0.003:0.005,rk4=0.3")
+      ->delimiter(',')
+      ->type_name("NAME=DT");
+  command.add_option("--reference-name", stability.referenceName, "What the references are, in the legend")
+      ->capture_default_str();
+  command
+      .add_option("--energy-tolerance", stability.energyTolerance,
+                  "Unstable when energy exceeds E(0) + mouse work by this fraction of the energy scale")
+      ->capture_default_str();
+  command
+      .add_option("--stretch-factor", stability.stretchFactor,
+                  fmt::format("Unstable when a spring stretches beyond this multiple of the largest stretch of a "
+                              "reference run (rk4 at a quarter of the scenario's dt, halved up to {} times until "
+                              "stable)",
+                              kReferenceHalvings))
+      ->capture_default_str();
+  command
+      .add_option("--shake-threshold", stability.shakeThreshold,
+                  "Shaking when the step-alternating share of velocity exceeds this (sin²(ωh/2))")
+      ->capture_default_str();
+  command.add_option("--min-dt", stability.minDt,
+                     fmt::format("Smallest dt tried, s (default: the scenario's dt / {})", kMinDtDivisor));
+  command.add_option("--max-dt", stability.maxDt, "Largest dt tried, s")->capture_default_str();
+  command.add_option("--threads", stability.threads, "Integrators studied at once (0: one per core)")
+      ->capture_default_str();
+  command.footer(
+      "Criteria and the report's results: docs/stability.md.\n"
+      "Examples:\n"
+      "  particles stability scenarios/cloth.yaml\n"
+      "  particles stability scenarios/cloth.yaml --csv cloth_dt.csv --plot cloth_dt.svg\n"
+      "  particles stability scenarios/soft_body.yaml --integrators midpoint,rk4 --duration 20\n"
+      "  particles stability scenarios/cloth_report.yaml --integrators euler,midpoint,rk4 --plot dt.pdf \\\n"
+      "      --reference euler=0.003:0.005,midpoint=0.03:0.05,rk4=0.3:0.4 --reference-name report\n");
+  addJobOptions(command, stability.job);
+}
+
+CommandFiles stabilityFiles(const StabilityOptionsCli& o) {
+  return {{{"--csv", o.csv}, {"--plot", o.plot}}, {{"the scenario", o.common.scenario}}};
+}
+
+}  // namespace
+
+const CommandDescriptor<StabilityOptionsCli> kStabilityCommand = {
+    .name = "stability",
+    .summary = "Find the largest stable time step of each integrator on a scenario (simulation only)",
+    .addOptions = addStabilityOptions,
+    .run = stabilityCommand,
+    .files = stabilityFiles,
+    .common = &StabilityOptionsCli::common,
+    .job = &StabilityOptionsCli::job,
+};
 
 }  // namespace particles::app

@@ -20,7 +20,9 @@
 
 #include "app/cli_support.hpp"
 #include "app/exit_codes.hpp"
+#include "app/gather_command.hpp"
 #include "app/job_record.hpp"
+#include "app/stop_signal.hpp"
 #include "app/sweep_plan.hpp"
 #include "input/text_file.hpp"
 #include "output/output_error.hpp"
@@ -29,34 +31,6 @@
 namespace particles::app {
 
 namespace {
-
-volatile std::sig_atomic_t stopSignal = 0;
-extern "C" void onSweepStopSignal(int signal) {
-  stopSignal = signal;
-}
-
-// SIGINT and SIGTERM end the sweep: running jobs are stopped and nothing new starts. Installed
-// without SA_RESTART, so that waiting for a child returns at once.
-class SweepSignals {
- public:
-  SweepSignals() {
-    struct sigaction action {};
-    action.sa_handler = onSweepStopSignal;
-    sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, &oldInt_);
-    sigaction(SIGTERM, &action, &oldTerm_);
-  }
-  ~SweepSignals() {
-    sigaction(SIGINT, &oldInt_, nullptr);
-    sigaction(SIGTERM, &oldTerm_, nullptr);
-  }
-  SweepSignals(const SweepSignals&) = delete;
-  SweepSignals& operator=(const SweepSignals&) = delete;
-
- private:
-  struct sigaction oldInt_ {
-  }, oldTerm_{};
-};
 
 std::string thisProgram() {
   std::error_code ec;
@@ -161,7 +135,7 @@ bool runJobs(const SweepPlan& plan, size_t from, size_t to, int parallel, const 
     }
   };
   while (next < to || !running.empty()) {
-    while (next < to && int(running.size()) < parallel && !stopSignal) {
+    while (next < to && int(running.size()) < parallel && !stopSignal()) {
       const SweepJob& job = plan.jobs[next++];
       bool ready = true;
       for (size_t k : job.after) ready = ready && succeeded[k];
@@ -180,7 +154,7 @@ bool runJobs(const SweepPlan& plan, size_t from, size_t to, int parallel, const 
       ++tally.ran;
     }
     progress.update(long(done), long(total), fmt::format("{} running", running.size()));
-    if (stopSignal) {
+    if (stopSignal()) {
       stopAll();
       return false;
     }
@@ -208,24 +182,22 @@ bool runJobs(const SweepPlan& plan, size_t from, size_t to, int parallel, const 
   return true;
 }
 
-}  // namespace
-
-CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
-  CLI::App* cmd = app.add_subcommand(
-      "sweep", "Run one command over scenarios × parameters (here, or as job lists for GNU parallel and Slurm)");
-  cmd->add_option("spec", o.spec, "The sweep file (YAML, see docs/sweeps.md)")->required();
-  cmd->add_option("-o,--out", o.out,
-                  "The output folder: jobs.csv, a folder per job, results.csv (default ./sweep-NAME)");
-  cmd->add_option("-j,--jobs", o.jobs, "Jobs at once here (0: one per core)")->check(CLI::Range(0, 4096));
-  cmd->add_option("--emit", o.emit,
+void addSweepOptions(CLI::App& command, SweepOptions& o) {
+  command.add_option("spec", o.spec, "The sweep file (YAML, see docs/sweeps.md)")->required();
+  command.add_option("-o,--out", o.out,
+                     "The output folder: jobs.csv, a folder per job, results.csv (default ./sweep-NAME)");
+  command.add_option("-j,--jobs", o.jobs, "Jobs at once here (0: one per core)")->check(CLI::Range(0, 4096));
+  command
+      .add_option("--emit", o.emit,
                   "Write the jobs for another engine and run nothing: parallel (jobs.txt for GNU parallel) or slurm "
                   "(sweep.sbatch, a job array)")
       ->check(CLI::IsMember({"parallel", "slurm"}));
-  cmd->add_option("--program", o.program, "The particles program the jobs run (default: this one, by its full path)");
-  cmd->add_flag("--force", o.force, "Run every job again, even those whose records say they are done");
-  cmd->add_flag("-q,--quiet", o.quiet, "No progress and no summary; failures are still printed");
-  addMaxInputOption(*cmd, o.maxInputMiB, "a sweep or scenario file (or a record)");
-  cmd->footer(
+  command.add_option("--program", o.program,
+                     "The particles program the jobs run (default: this one, by its full path)");
+  command.add_flag("--force", o.force, "Run every job again, even those whose records say they are done");
+  command.add_flag("-q,--quiet", o.quiet, "No progress and no summary; failures are still printed");
+  addMaxInputOption(command, o.maxInputMiB, "a sweep or scenario file (or a record)");
+  command.footer(
       "Every job is a plain 'particles …' command line with its outputs in OUT/jobs/NNNNNN/ and a record\n"
       "there: a rerun skips what is done, so an interrupted sweep resumes. After running, the results\n"
       "are gathered into OUT/results.csv (and OUT/results.svg when one parameter varies).\n"
@@ -235,7 +207,6 @@ CLI::App* addSweepCommand(CLI::App& app, SweepOptions& o) {
       "  particles sweep my.yaml -o out --emit parallel && parallel --joblog out/joblog.txt < out/jobs.txt\n"
       "  particles sweep my.yaml -o out --emit slurm && sbatch out/sweep.sbatch\n"
       "  particles gather out\n");
-  return cmd;
 }
 
 int sweepCommand(const SweepOptions& o) {
@@ -263,8 +234,7 @@ int sweepCommand(const SweepOptions& o) {
                parallel, plan.outDir.string());
   }
   const auto start = std::chrono::steady_clock::now();
-  SweepSignals signals;
-  stopSignal = 0;
+  StopSignals signals(StopMode::interruptWaits);
   RunTally tally;
   std::vector<bool> succeeded(plan.jobs.size(), false);
   size_t done = 0;
@@ -278,7 +248,7 @@ int sweepCommand(const SweepOptions& o) {
   if (!finished) {
     fmt::print(stderr, "{}: interrupted after {} of {} jobs; run the same command again to resume\n", o.spec, done,
                plan.jobs.size());
-    return 128 + int(stopSignal);
+    return 128 + stopSignal();
   }
 
   GatherOptions gather;
@@ -299,5 +269,14 @@ int sweepCommand(const SweepOptions& o) {
   }
   return kOk;
 }
+
+}  // namespace
+
+const CommandDescriptor<SweepOptions> kSweepCommand = {
+    .name = "sweep",
+    .summary = "Run one command over scenarios × parameters (here, or as job lists for GNU parallel and Slurm)",
+    .addOptions = addSweepOptions,
+    .run = sweepCommand,
+};
 
 }  // namespace particles::app

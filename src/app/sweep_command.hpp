@@ -1,19 +1,18 @@
 #pragma once
-// `particles sweep SPEC.yaml` and `particles gather OUTDIR` (docs/sweeps.md): many runs of one
-// command over scenarios and parameters, run here (--jobs N), or emitted for GNU parallel or as a
-// Slurm job array; and the one table (and figure) of their results.
+// `particles sweep SPEC.yaml` (docs/sweeps.md): many runs of one command over scenarios and
+// parameters, run here (--jobs N), or emitted for GNU parallel or as a Slurm job array; then their
+// results gathered (gather_command.hpp).
 //
-// Exit codes: sweep — 0 every job succeeded (or the lists were emitted), 1 some job failed (the
-// others still ran; each failure is listed with its message), 2 a bad sweep file (file:line, before
-// any job runs), 3 an output could not be written, 128 + signal when interrupted (rerun to
-// resume). gather — 0, 2 (not a sweep's folder), 3.
+// Exit codes: 0 every job succeeded (or the lists were emitted), 1 some job failed (the others
+// still ran; each failure is listed with its message), 2 a bad sweep file (file:line, before any
+// job runs), 3 an output could not be written, 128 + signal when interrupted by SIGINT or SIGTERM
+// (rerun to resume).
 
 #include <cstdint>
 #include <string>
 
-namespace CLI {
-class App;
-}
+#include "app/command.hpp"
+#include "input/text_file.hpp"
 
 namespace particles::app {
 
@@ -25,21 +24,9 @@ struct SweepOptions {
   std::string program;  // --program: the particles the jobs call; empty: this one
   bool force = false;   // rerun finished jobs
   bool quiet = false;
-  std::uintmax_t maxInputMiB = 64;
+  std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;
 };
 
-struct GatherOptions {
-  std::string outDir;
-  std::string output;  // -o: the CSV; empty: OUTDIR/results.csv
-  std::string plot;    // --plot: the figure; empty: OUTDIR/results.svg when one parameter varies; "none": no figure
-  bool quiet = false;
-  std::uintmax_t maxInputMiB = 64;  // --max-input: jobs.csv and each record are read within this
-};
-
-CLI::App* addSweepCommand(CLI::App& app, SweepOptions& options);
-CLI::App* addGatherCommand(CLI::App& app, GatherOptions& options);
-
-int sweepCommand(const SweepOptions& options);
-int gatherCommand(const GatherOptions& options);
+extern const CommandDescriptor<SweepOptions> kSweepCommand;
 
 }  // namespace particles::app

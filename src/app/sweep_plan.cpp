@@ -83,9 +83,8 @@ std::vector<std::string> outputArgs(const std::string& command, const std::files
 // empty when it parses.
 std::string parseError(const std::vector<std::string>& args) {
   Cli probe;
-  std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {
-    probe.app.parse(reversed);
+    probe.parse(args);
   } catch (const CLI::ParseError& e) {
     return e.get_exit_code() == 0 ? std::string("--help and --version are not options for a job") : e.what();
   }

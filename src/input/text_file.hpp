@@ -14,6 +14,11 @@
 
 namespace particles::input {
 
+// The most a text input may take unless `--max-input MIB` says otherwise: a scenario, a stats CSV,
+// a sweep file, a job table or record. The demos are a few kB, and an endless input (/dev/zero)
+// must end in an error, not in memory.
+inline constexpr std::uintmax_t kDefaultMaxInputMiB = 64;
+
 // Why a file could not be read, in words that follow "FILE: error: " ("cannot open: No such file
 // or directory"); reason() for callers that act on it.
 class ReadError : public std::runtime_error {

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <optional>
 
+#include "input/closest_name.hpp"
 #include "scenario/scenario.hpp"
 
 namespace particles::scenario::detail {
@@ -105,7 +106,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   const std::string& rest = split.second;
   const NameTable::Entry* entry = names.find(name);
   if (!entry) {
-    const std::string suggestion = closestName(name, names.names());
+    const std::string suggestion = input::closestName(name, names.names());
     bad(fmt::format("nothing is named '{}'{}", name,
                     suggestion.empty() ? std::string() : fmt::format("; did you mean '{}'?", suggestion)));
   }

@@ -12,6 +12,7 @@
 #include "core/forces/damped_spring_force.hpp"
 #include "core/grid.hpp"
 #include "core/kind.hpp"
+#include "input/closest_name.hpp"
 #include "input/text_file.hpp"
 #include "scenario/budget.hpp"
 #include "scenario/entry_args.hpp"
@@ -40,7 +41,7 @@ std::string readType(const Value& entry, const std::vector<std::string>& types) 
   }
   const std::string name = type.string();
   if (std::find(types.begin(), types.end(), name) == types.end()) {
-    const std::string suggestion = detail::closestName(name, types);
+    const std::string suggestion = input::closestName(name, types);
     type.fail(fmt::format("unknown type '{}'{}; expected one of {}", name,
                           suggestion.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", suggestion),
                           fmt::join(types, ", ")));
@@ -95,7 +96,7 @@ class Loader {
       if (!integrator) {
         std::vector<std::string> known;
         for (Integrator k : allIntegrators()) known.emplace_back(integratorName(k));
-        const std::string suggestion = detail::closestName(name, known);
+        const std::string suggestion = input::closestName(name, known);
         i->fail(fmt::format("unknown integrator '{}'{}; expected one of {}", name,
                             suggestion.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", suggestion),
                             fmt::join(known, ", ")));

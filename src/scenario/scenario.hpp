@@ -14,6 +14,7 @@
 
 #include "core/integrators.hpp"
 #include "core/system.hpp"
+#include "input/text_file.hpp"
 #include "scenario/scenario_error.hpp"
 
 namespace particles::scenario {
@@ -23,9 +24,6 @@ inline constexpr long kMaxSteps = 1'000'000'000;  // a run longer than this is a
 inline constexpr long long kMaxGridSide = 10'000;
 inline constexpr long long kMaxImageSide = 16'384;  // px, the renderer's largest frame side
 inline constexpr double kMinFps = 1e-3, kMaxFps = 1000.0;
-// Input files larger than this are refused before they are parsed (`--max-input MIB` raises it):
-// the demos are a few kB, and an endless input (/dev/zero) must end in an error, not in memory.
-inline constexpr std::uintmax_t kDefaultMaxInputMiB = 64;
 
 // How large a scene may be, counted from the file before anything is built (so a few hundred bytes
 // that name a grid two hundred times, or repeat an entry through YAML aliases, cost nothing before
@@ -92,9 +90,10 @@ struct Scenario {
 
 // Reads and validates a scenario file; overrides are applied first, in order.
 Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides = {},
-                          std::uintmax_t maxInputMiB = kDefaultMaxInputMiB, const SceneLimits& limits = {});
+                          std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB, const SceneLimits& limits = {});
 // The text of a scenario file, at most maxInputMiB; throws ScenarioError naming the file.
-std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t maxInputMiB = kDefaultMaxInputMiB);
+std::string readScenarioText(const std::filesystem::path& file,
+                             std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB);
 // The same from text in memory; `file` only labels messages.
 Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides = {},
                           const SceneLimits& limits = {});

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "input/closest_name.hpp"
 #include "scenario/scenario_error.hpp"
 
 namespace particles::scenario::detail {
@@ -23,22 +24,6 @@ bool isQuoted(const YAML::Node& node) {
 bool startsWithPath(const std::string& path, const std::string& prefix) {
   if (path.size() < prefix.size() || path.compare(0, prefix.size(), prefix) != 0) return false;
   return path.size() == prefix.size() || path[prefix.size()] == '.' || path[prefix.size()] == '[';
-}
-
-size_t editDistance(std::string_view a, std::string_view b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t up = row[j];
-      const size_t cost = std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1;
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + cost});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
 }
 
 // Where each document's first node starts, for the first two documents at most.
@@ -101,19 +86,6 @@ YAML::Node loadOneDocument(const std::string& text, const std::string& file) {
 
 std::string formatNumber(double x) {
   return fmt::format("{}", x);
-}
-
-std::string closestName(std::string_view word, const std::vector<std::string>& candidates) {
-  std::string best;
-  size_t bestDistance = std::max<size_t>(2, word.size() / 3) + 1;  // at most a third of the word wrong
-  for (const std::string& c : candidates) {
-    const size_t d = editDistance(word, c);
-    if (d < bestDistance) {
-      bestDistance = d;
-      best = c;
-    }
-  }
-  return best;
 }
 
 Value::Value(const Source& source, YAML::Node node, std::string path, YAML::Mark fallback)
@@ -230,7 +202,7 @@ MapReader::MapReader(const Value& value, const std::vector<std::string_view>& al
     Value entry = value.child(it->second, prefix + name, key.Mark());
     if (!key.IsScalar()) keyValue.fail("expected a key name, got a list or map as key");
     if (std::find(allowedNames.begin(), allowedNames.end(), name) == allowedNames.end()) {
-      const std::string suggestion = closestName(name, allowedNames);
+      const std::string suggestion = input::closestName(name, allowedNames);
       std::string message = fmt::format("unknown key '{}'", name);
       if (!suggestion.empty()) message += fmt::format("; did you mean '{}'?", suggestion);
       message += fmt::format(" (valid keys here: {})", fmt::join(allowedNames, ", "));

@@ -90,9 +90,6 @@ class MapReader {
   std::vector<std::pair<std::string, Value>> entries_;
 };
 
-// The allowed name closest to `word` by edit distance, or empty when none is close.
-std::string closestName(std::string_view word, const std::vector<std::string>& candidates);
-
 std::string formatNumber(double x);  // shortest round-trip form
 // "> 0", "≥ 0", "from 0.001 to 1000", "> 0 and ≤ 1": the condition on a bounded number; empty
 // when there is none.

@@ -1,4 +1,5 @@
-#include "app/commands.hpp"
+// `particles run`: see run_command.hpp.
+#include "app/run_command.hpp"
 
 #include <fmt/format.h>
 
@@ -10,17 +11,28 @@
 
 namespace particles::app {
 
-int checkCommand(const CommonOptions& common) {
-  const scenario::Scenario s = loadScenario(common);
-  if (!common.quiet) {
-    const auto& sim = s.simulation;
-    fmt::print("{}: ok: '{}' with {}; {}, dt {} s, duration {} s ({})\n", common.scenario, s.name, contents(s),
-               integratorName(sim.integrator), sim.dt, sim.duration, plural(size_t(sim.steps()), "step", "steps"));
-  }
-  return kOk;
+namespace {
+
+void addRunOptions(CLI::App& command, RunOptions& o) {
+  addCommonOptions(command, o.common);
+  command.add_option("--stats", o.stats,
+                     "Write t,kinetic,potential,total,constraint_error,penetration per 1/fps tick to this CSV");
+  auto* trace = command.add_option(
+      "--trace", o.trace, "Write t,name,x,y,vx,vy,angle,omega of every particle and body per tick to this CSV");
+  command.add_option("--trace-only", o.traceOnly, "Trace only these objects (comma-separated names)")
+      ->delimiter(',')
+      ->needs(trace);
+  command.footer(
+      "Examples:\n"
+      "  particles run scenarios/cloth.yaml\n"
+      "  particles run scenarios/soft_body.yaml --stats man.csv --integrator midpoint --dt 0.05\n"
+      "  particles run scenarios/rod_pendulum.yaml --trace pendulum.csv --trace-only bob\n"
+      "  particles run scenarios/springs.yaml --duration 2 --quiet --stats springs.csv\n");
+  addJobOptions(command, o.job);
 }
 
-int runCommand(const CommonOptions& common, const RunOptions& options) {
+int runCommand(const RunOptions& options) {
+  const CommonOptions& common = options.common;
   scenario::Scenario s = loadScenario(common);
   // A SimulationError leaves the CSVs uncommitted: they are removed as they go out of scope.
   auto recorder = CsvRecorder::open(s.system, s.render.fps, options.stats, options.trace, options.traceOnly);
@@ -67,5 +79,21 @@ int runCommand(const CommonOptions& common, const RunOptions& options) {
   }
   return kOk;
 }
+
+CommandFiles runFiles(const RunOptions& o) {
+  return {{{"--stats", o.stats}, {"--trace", o.trace}}, {{"the scenario", o.common.scenario}}};
+}
+
+}  // namespace
+
+const CommandDescriptor<RunOptions> kRunCommand = {
+    .name = "run",
+    .summary = "Simulate a scenario headless for its duration and print a summary",
+    .addOptions = addRunOptions,
+    .run = runCommand,
+    .files = runFiles,
+    .common = &RunOptions::common,
+    .job = &RunOptions::job,
+};
 
 }  // namespace particles::app

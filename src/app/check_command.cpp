@@ -1,0 +1,42 @@
+// `particles check`: see check_command.hpp.
+#include "app/check_command.hpp"
+
+#include <fmt/format.h>
+
+#include "app/cli_support.hpp"
+#include "scenario/scenario.hpp"
+
+namespace particles::app {
+
+namespace {
+
+void addCheckOptions(CLI::App& command, CheckOptions& o) {
+  addCommonOptions(command, o.common);
+  command.footer(
+      "Examples:\n"
+      "  particles check scenarios/cloth.yaml\n"
+      "  particles check my.yaml --set simulation.dt=0.005 --set forces[1].kd=0.1\n");
+}
+
+int checkCommand(const CheckOptions& o) {
+  const CommonOptions& common = o.common;
+  const scenario::Scenario s = loadScenario(common);
+  if (!common.quiet) {
+    const auto& sim = s.simulation;
+    fmt::print("{}: ok: '{}' with {}; {}, dt {} s, duration {} s ({})\n", common.scenario, s.name, contents(s),
+               integratorName(sim.integrator), sim.dt, sim.duration, plural(size_t(sim.steps()), "step", "steps"));
+  }
+  return kOk;
+}
+
+}  // namespace
+
+const CommandDescriptor<CheckOptions> kCheckCommand = {
+    .name = "check",
+    .summary = "Validate a scenario file without simulating (exit 0 or 2)",
+    .addOptions = addCheckOptions,
+    .run = checkCommand,
+    .common = &CheckOptions::common,
+};
+
+}  // namespace particles::app
