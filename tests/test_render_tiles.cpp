@@ -72,7 +72,7 @@ bool coversTile(const ShapeRecord& r, const TileBins& bins, int tx, int ty) {
 long checkBins(const TileBins& bins) {
   const int tilesX = bins.tilesPerRow(), tilesY = bins.tileRows();
   REQUIRE(bins.tiles().size() == size_t(2 * tilesX * tilesY));
-  long slack = 0, listed = 0, hiddenPairs = 0;
+  long slack = 0, hiddenPairs = 0;
   for (int ty = 0; ty < tilesY; ++ty) {
     for (int tx = 0; tx < tilesX; ++tx) {
       const size_t t = size_t(ty * tilesX + tx);
@@ -83,7 +83,6 @@ long checkBins(const TileBins& bins) {
         if (i > 0) CHECK(s > bins.items()[first + i - 1]);  // painter's order, no repeats
         inList[s] = true;
       }
-      listed += count;
       for (size_t s = 0; s < bins.shapes().size(); ++s) {
         bool reaches = false;
         for (int y = ty * kTileSizePx; y < std::min((ty + 1) * kTileSizePx, bins.height()) && !reaches; ++y) {

@@ -25,7 +25,7 @@ skip() {
 
 [ "$(id -u)" -eq 0 ] || skip "the Slurm daemons are started as root here, and this runs as $(id -un)"
 for tool in munged slurmctld slurmd sinfo; do
-  command -v "$tool" >/dev/null || skip "$tool is not installed (scripts/deps installs munge and slurm-wlm)"
+  command -v "$tool" >/dev/null || skip "$tool is not installed (scripts/deps test installs munge and slurm-wlm)"
 done
 
 mkdir -p "$work/munge" "$work/state" "$work/spool" "$work/log" "$work/run"

@@ -6,7 +6,7 @@ set -euo pipefail
 particles=$1
 source_dir=$2
 source "$source_dir/tests/sweep/common.sh"
-command -v parallel >/dev/null || { echo "GNU parallel is not installed (scripts/deps installs it)" >&2; exit 1; }
+command -v parallel >/dev/null || { echo "GNU parallel is not installed (scripts/deps test installs it)" >&2; exit 1; }
 enter_work_dir parallel
 
 # Ten jobs: five stiffnesses × two (integrator, dt) pairs.

@@ -11,7 +11,7 @@ source_dir=$2
 source "$source_dir/tests/sweep/common.sh"
 skip_log="$(dirname "$particles")/skipped-tests.txt"
 for tool in sbatch slurmctld slurmd munged; do
-  command -v "$tool" >/dev/null || { echo "$tool is not installed (scripts/deps installs slurm-wlm and munge)" >&2; exit 1; }
+  command -v "$tool" >/dev/null || { echo "$tool is not installed (scripts/deps test installs slurm-wlm and munge)" >&2; exit 1; }
 done
 enter_work_dir slurm
 mkdir cluster

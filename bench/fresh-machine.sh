@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# Times the README's two commands as a new user meets them: a fresh Debian 12 root (debootstrap
+# --variant=minbase, plus git, ca-certificates and sudo), `git clone` of this repository's HEAD
+# into it, then `scripts/demo` or `scripts/test` run inside it by chroot, every package downloaded
+# and installed by the script itself. Prints the wall time from the clone to the script's end;
+# the script's own output (stage times of scripts/test among it) goes to OUT/SCRIPT.log.
+#
+# usage (as root, on a Debian machine with debootstrap): bench/fresh-machine.sh OUT demo|test
+#   OUT      a new folder: the root file system goes to OUT/root (a few GB), the log beside it.
+#            A debootstrapped root to copy instead of downloading one: BASE_ROOT=DIR.
+# Not part of scripts/test: it needs root and a network mirror; bench/README.md has its results.
+# Slurm's daemons need more than a chroot gives (their own host name, systemd-less munged), so the
+# Slurm test may report itself skipped in here; it runs on a real machine (CI).
+set -euo pipefail
+[ $# -eq 2 ] || { sed -n '2,/^set -e/p' "$0" | sed '$d; s/^# \{0,1\}//' >&2; exit 2; }
+out="$1" script="$2"
+case "$script" in demo|test) ;; *) echo "expected demo or test, got '$script'" >&2; exit 2 ;; esac
+[ "$(id -u)" -eq 0 ] || { echo "bench/fresh-machine.sh needs root (debootstrap, chroot, mounts)" >&2; exit 2; }
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+[ -e "$out" ] && { echo "$out exists: give a new folder" >&2; exit 2; }
+mkdir -p "$out"
+out="$(cd "$out" && pwd)"
+root="$out/root"
+
+if [ -n "${BASE_ROOT:-}" ]; then
+  cp -a "$BASE_ROOT" "$root"
+else
+  debootstrap --variant=minbase --include=ca-certificates,git,sudo bookworm "$root" \
+    http://deb.debian.org/debian >"$out/debootstrap.log"
+fi
+cp /etc/resolv.conf "$root/etc/resolv.conf"
+mounted=()
+cleanup() {
+  local m
+  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do umount -l "${mounted[i]}" || true; done
+}
+trap cleanup EXIT
+for m in proc sys dev dev/pts; do
+  mount --bind "/$m" "$root/$m"
+  mounted+=("$root/$m")
+done
+mkdir -p "$root/dev/shm" && mount -t tmpfs tmpfs "$root/dev/shm" && mounted+=("$root/dev/shm")
+
+git -C "$repo" bundle create "$out/head.bundle" HEAD >/dev/null 2>&1
+cp "$out/head.bundle" "$root/tmp/head.bundle"
+start=$(date +%s)
+status=0
+chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
+  LANG=C.UTF-8 bash -c 'git clone -q /tmp/head.bundle /root/particles && cd /root/particles && "scripts/$1"' \
+  fresh-machine "$script" \
+  >"$out/$script.log" 2>&1 || status=$?
+end=$(date +%s)
+echo "scripts/$script on a new Debian 12 root: $((end - start)) s from git clone to its end (exit $status);" \
+     "log: $out/$script.log"
+exit "$status"
