@@ -83,16 +83,16 @@ TEST_CASE("cli help: render states the renderer's and the encoders' numbers") {
   for (const OutputFormat& format : outputFormats()) {
     CAPTURE(format.name);
     if (format.crf) {
-      const auto crf = numbersAt(help, fmt::format(R"(--crf INT [^\n]*{} \([^)]*\) (\d+) … (\d+), default (\d+))",
-                                                   format.name));
+      const auto crf =
+          numbersAt(help, fmt::format(R"(--crf INT [^\n]*{} \([^)]*\) (\d+) … (\d+), default (\d+))", format.name));
       REQUIRE(crf.size() == 3);
       CHECK(std::stoi(crf[0]) == format.crf->lowest);
       CHECK(std::stoi(crf[1]) == format.crf->highest);
       CHECK(std::stoi(crf[2]) == format.crf->byDefault);
     }
     if (format.fpsCap) {
-      const auto fps =
-          numbersAt(help, fmt::format(R"(--fps FLOAT [^\n]*{} at most (\d+) unless given, at most (\d+))", format.name));
+      const auto fps = numbersAt(
+          help, fmt::format(R"(--fps FLOAT [^\n]*{} at most (\d+) unless given, at most (\d+))", format.name));
       REQUIRE(fps.size() == 2);
       CHECK(std::stoi(fps[0]) == format.fpsCap->byDefault);
       CHECK(std::stoi(fps[1]) == format.fpsCap->most);
