@@ -3,11 +3,13 @@
 # --variant=minbase, plus git, ca-certificates and sudo), `git clone` of this repository's HEAD
 # into it, then `scripts/demo` or `scripts/test` run inside it by chroot, every package downloaded
 # and installed by the script itself. Prints the wall time from the clone to the script's end;
-# the script's own output (stage times of scripts/test among it) goes to OUT/SCRIPT.log.
+# the script's own output goes to OUT/SCRIPT.log, each line after the seconds since the clone began
+# (so the stages of any version of the scripts can be timed).
 #
 # usage (as root, on a Debian machine with debootstrap): bench/fresh-machine.sh OUT demo|test
 #   OUT      a new folder: the root file system goes to OUT/root (a few GB), the log beside it.
 #            A debootstrapped root to copy instead of downloading one: BASE_ROOT=DIR.
+#            Another commit than HEAD: REV=COMMIT.
 # Not part of scripts/test: it needs root and a network mirror; bench/README.md has its results.
 # Slurm's daemons need more than a chroot gives (their own host name, systemd-less munged), so the
 # Slurm test may report itself skipped in here; it runs on a real machine (CI).
@@ -41,14 +43,19 @@ for m in proc sys dev dev/pts; do
 done
 mkdir -p "$root/dev/shm" && mount -t tmpfs tmpfs "$root/dev/shm" && mounted+=("$root/dev/shm")
 
-git -C "$repo" bundle create "$out/head.bundle" HEAD >/dev/null 2>&1
+rev="${REV:-HEAD}"
+git -C "$repo" rev-parse --verify --quiet "$rev^{commit}" >/dev/null || { echo "no commit $rev" >&2; exit 2; }
+git -C "$repo" branch -f fresh-machine-measured "$rev" >/dev/null
+git -C "$repo" bundle create "$out/head.bundle" fresh-machine-measured >/dev/null 2>&1
+git -C "$repo" branch -D fresh-machine-measured >/dev/null
 cp "$out/head.bundle" "$root/tmp/head.bundle"
 start=$(date +%s)
 status=0
 chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-  LANG=C.UTF-8 bash -c 'git clone -q /tmp/head.bundle /root/particles && cd /root/particles && "scripts/$1"' \
-  fresh-machine "$script" \
-  >"$out/$script.log" 2>&1 || status=$?
+  LANG=C.UTF-8 bash -c 'git clone -q -b fresh-machine-measured /tmp/head.bundle /root/particles &&
+    cd /root/particles && "scripts/$1"' fresh-machine "$script" 2>&1 |
+  while IFS= read -r line; do printf '%5d %s\n' "$(($(date +%s) - start))" "$line"; done >"$out/$script.log" ||
+  status=$?
 end=$(date +%s)
 echo "scripts/$script on a new Debian 12 root: $((end - start)) s from git clone to its end (exit $status);" \
      "log: $out/$script.log"
