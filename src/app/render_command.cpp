@@ -409,7 +409,7 @@ CommandFiles renderFiles(const RenderCommandOptions& render) {
 
 const CommandDescriptor<RenderCommandOptions> kRenderCommand = {
     .name = "render",
-    .summary = "Simulate and draw the scenario off-screen to an MP4, WebM or GIF video, PNG frames or one PNG",
+    .summary = "Simulate and draw the scenario off-screen to a video, PNG frames or one PNG (formats: render --help)",
     .addOptions = addRenderOptions,
     .run = renderCommand,
     .files = renderFiles,
