@@ -34,7 +34,8 @@ const std::vector<Room>& rooms() {
       {"scenario", kSource / "src/scenario", {"core", "input"}},
       {"render", kSource / "render", {"core", "output"}},
       {"plot", kSource / "plot", {"output", "input"}},
-      {"app", kSource / "src/app", {"core", "scenario", "render", "plot", "output", "input"}},
+      {"golden", kSource / "src/golden", {"core", "scenario", "render", "output", "input"}},
+      {"app", kSource / "src/app", {"core", "scenario", "render", "plot", "output", "input", "golden"}},
       // What only the tests use (particles_test_support): no room above may include it.
       {"support", kSource / "tests/support", {"core", "render", "output"}},
   };

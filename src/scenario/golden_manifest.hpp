@@ -1,0 +1,126 @@
+#pragma once
+// A golden manifest (`particles golden check MANIFEST`, golden/README.md): which frames and which
+// states of which scenarios are compared with stored references, and how. Read and checked here
+// with the positions every later error names; rendering, comparing and reporting are the golden
+// room's (src/golden/), which also checks the render settings' names (theme, raster, background)
+// against the renderer's, failing at the positions kept here.
+//
+//   references: .                # folder of the references, relative to the manifest (default: its own)
+//   defaults:                    # for every entry that does not set its own
+//     render: {size: 320x240, msaa: 4, theme: dark, background: theme, raster: auto}
+//     tolerance: {threshold: 16, max_share: 0.0002}            # as `particles compare`'s
+//     state_tolerance: {position: 1e-9, velocity: 1e-9, angle: 1e-9, omega: 1e-9}
+//   frames:
+//     - scenario: ../scenarios/cloth.yaml       # relative to the manifest
+//       times: [0.5, 2.5, 10]                   # seconds of simulated time; one simulation renders all
+//       name: "{scenario}_t{time}"              # the default: cloth_t0.5 → references/cloth_t0.5.png
+//       set: {"grids[0].springs.structural.ks": [26.25, 1.05]}   # as --set, in order
+//       render: {raster: tiles}                 # over the defaults, key by key
+//       tolerance: {max_share: 0.0005}
+//       expect: differ                          # a control: passes only when the frame differs
+//   states:
+//     - scenario: ../scenarios/soft_body.yaml
+//       times: [9, 37.5]
+//       name: "{scenario}"                      # the default: soft_body → references/soft_body.csv
+//       state_tolerance: {position: 1e-6}
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace particles::scenario {
+
+// Where something was written in the manifest: 1-based line and column (0: nowhere in the file)
+// and its key path (`frames[1].times[2]`).
+struct GoldenPosition {
+  int line = 0, column = 0;
+  std::string keyPath;
+};
+
+template <class T>
+struct GoldenSetting {
+  T value;
+  GoldenPosition at;
+};
+
+// Render settings, each absent unless written; an entry's are laid over the defaults' key by key,
+// and what neither sets is the program's default (`particles render`'s). Names are checked by the
+// golden room against the renderer's.
+struct GoldenRenderSettings {
+  std::optional<GoldenSetting<std::pair<int, int>>> size;  // width, height in px, 1 … kMaxImageSide
+  std::optional<GoldenSetting<int>> msaa;                  // samples per pixel
+  std::optional<GoldenSetting<std::string>> theme;         // dark | light
+  std::optional<GoldenSetting<std::string>> background;    // theme | transparent
+  std::optional<GoldenSetting<std::string>> raster;        // auto | triangles | tiles
+};
+
+// A frame's tolerance, as `particles compare --threshold --max-share`.
+struct GoldenFrameTolerance {
+  std::optional<GoldenSetting<int>> threshold;    // 0 … 255
+  std::optional<GoldenSetting<double>> maxShare;  // 0 … 1
+};
+
+// A state's absolute tolerances: positions (m), velocities (m/s), rigid bodies' angles (rad) and
+// angular velocities (rad/s). A quantity differs when |actual − expected| > its tolerance.
+struct GoldenStateTolerance {
+  std::optional<GoldenSetting<double>> position, velocity, angle, omega;  // ≥ 0
+};
+
+// One time of an entry: the number, its text as written (for names and the state file's time
+// column) and the name of the frame it makes (frames only).
+struct GoldenTime {
+  double seconds = 0.0;  // ≥ 0, finite
+  std::string text;
+  std::string frameName;
+  GoldenPosition at;
+};
+
+struct GoldenEntry {
+  std::string scenarioGiven;       // as the manifest writes it
+  std::filesystem::path scenario;  // resolved against the manifest's folder
+  GoldenPosition scenarioAt;
+  std::vector<std::pair<std::string, std::string>> sets;  // --set path=value, in the order written
+  std::vector<GoldenPosition> setsAt;
+  std::vector<GoldenTime> times;  // as written: distinct, in increasing order
+  std::string stateName;          // states: the name of its reference (NAME.csv)
+  GoldenPosition nameAt;
+  GoldenRenderSettings render;          // frames: the entry's own, not yet laid over the defaults
+  GoldenFrameTolerance tolerance;       // frames: the entry's own
+  GoldenStateTolerance stateTolerance;  // states: the entry's own
+  bool expectDiffer = false;            // frames: `expect: differ`
+  GoldenPosition at;                    // the entry
+};
+
+struct GoldenManifest {
+  std::string file;                  // as given, for messages
+  std::filesystem::path references;  // the references' folder, resolved against the manifest's
+  GoldenRenderSettings defaultRender;
+  GoldenFrameTolerance defaultTolerance;
+  GoldenStateTolerance defaultStateTolerance;
+  std::vector<GoldenEntry> frames, states;
+};
+
+// The most frames and states one manifest may name in all (entries × times).
+inline constexpr std::uintmax_t kMaxGoldenChecks = 100'000;
+// The longest name (a file name, without .png or .csv).
+inline constexpr std::size_t kMaxGoldenNameLength = 200;
+
+// Reads and checks a manifest: unknown keys (with the closest known one), empty lists, times that
+// are negative or repeated, names that are not file names ([A-Za-z0-9._+-], not starting with a
+// dot) or that two checks share, a size or tolerance out of range. Throws ScenarioError naming
+// file, line, column and key. Nothing is opened but the manifest (scenarios are the golden room's).
+GoldenManifest loadGoldenManifestFile(const std::filesystem::path& file, std::uintmax_t maxInputMiB);
+// The same from text; relative paths are resolved against `directory`.
+GoldenManifest loadGoldenManifestText(std::string_view text, const std::string& file,
+                                      const std::filesystem::path& directory);
+
+// Throws ScenarioError in the manifest at `at`.
+[[noreturn]] void failInManifest(const GoldenManifest& manifest, const GoldenPosition& at, const std::string& message);
+
+// The JSON Schema (draft 7) of a manifest, for editors and CI checks (`particles schema --golden`).
+std::string goldenManifestJsonSchema();
+
+}  // namespace particles::scenario
