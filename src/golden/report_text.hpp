@@ -4,8 +4,8 @@
 // deviation. Internal to src/golden/.
 //
 // Names, messages and commands hold whatever bytes the manifest, a scenario or a shell put there:
-// invalid UTF-8 becomes U+FFFD (the Unicode standard's "maximal subpart" replacement, one U+FFFD
-// per byte that cannot start or continue a sequence), in every file, so each is valid UTF-8.
+// invalid UTF-8 becomes U+FFFD (one per maximal subpart of an invalid sequence, the Unicode
+// standard's practice and the WHATWG decoder's), in every file, so each is valid UTF-8.
 
 #include <string>
 #include <string_view>
