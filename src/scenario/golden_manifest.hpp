@@ -28,6 +28,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -107,6 +108,9 @@ struct GoldenManifest {
 inline constexpr std::uintmax_t kMaxGoldenChecks = 100'000;
 // The longest name (a file name, without .png or .csv).
 inline constexpr std::size_t kMaxGoldenNameLength = 200;
+// The samples per pixel `render.msaa` takes: `particles render --msaa`'s (render::kSampleCounts,
+// which this room cannot include; tests/test_golden_manifest.cpp checks that they agree).
+inline constexpr int kGoldenSampleCounts[] = {1, 2, 4, 8, 16};
 
 // Reads and checks a manifest: unknown keys (with the closest known one), empty lists, times that
 // are negative or repeated, names that are not file names ([A-Za-z0-9._+-], not starting with a

@@ -10,6 +10,7 @@
 #include "core/grid.hpp"
 #include "core/integrators.hpp"
 #include "core/system.hpp"
+#include "scenario/golden_manifest.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/yaml_reader.hpp"
 
@@ -233,6 +234,80 @@ Json bodySchema() {
 
 Json listOf(const Json& item) { return {{"type", "array"}, {"items", item}}; }
 
+// A golden manifest's parts (golden_manifest.cpp reads them).
+// A frame side from 1 to 16384 px, leading zeros allowed, as the loader reads `WxH`.
+constexpr const char* kFrameSidePattern = "0*([1-9][0-9]{0,3}|1[0-5][0-9]{3}|16[0-2][0-9]{2}|163[0-7][0-9]|1638[0-4])";
+static_assert(kMaxImageSide == 16'384, "kFrameSidePattern spells out kMaxImageSide");
+
+Json goldenRenderSchema() {
+  Json msaa = Json::array();
+  for (int n : kGoldenSampleCounts) msaa.push_back(n);
+  const std::string side = kFrameSidePattern;
+  return withDescription(
+      object({{"size", withDescription({{"type", "string"}, {"pattern", "^" + side + "[xX]" + side + "$"}},
+                                       fmt::format("WIDTHxHEIGHT in px, each 1 to {}", kMaxImageSide))},
+              {"msaa", withDescription({{"enum", msaa}}, "samples per pixel (1: off)")},
+              {"theme", withDescription(text(), "the renderer's theme: dark or light")},
+              {"background", withDescription(text(), "theme or transparent")},
+              {"raster", withDescription(text(), "auto, triangles or tiles")}},
+             {}),
+      "as `particles render`'s options; what is not set is render's default");
+}
+
+Json goldenToleranceSchema() {
+  return withDescription(
+      object(
+          {{"threshold", withDescription(wholeNumber(0, 255), "the largest channel difference that is no difference")},
+           {"max_share",
+            withDescription(number(Bound{0, true}, Bound{1, true}), "the share of pixels that may differ")}},
+          {}),
+      "as `particles compare --threshold --max-share`");
+}
+
+Json goldenStateToleranceSchema() {
+  auto bound = [](const char* what) { return withDescription(number(Bound{0, true}), what); };
+  return withDescription(
+      object({{"position", bound("m")}, {"velocity", bound("m/s")}, {"angle", bound("rad")}, {"omega", bound("rad/s")}},
+             {}),
+      "absolute tolerances: a quantity differs when |actual − expected| exceeds its own");
+}
+
+Json goldenEntrySchema(bool frames) {
+  const std::string placeholders = frames ? "|\\{scenario\\}|\\{time\\}" : "|\\{scenario\\}";
+  const Json name = {{"type", "string"},
+                     {"pattern", "^([A-Za-z0-9_+-]" + placeholders + ")([A-Za-z0-9._+-]" + placeholders + ")*$"},
+                     {"description", frames ? "the frames' names (NAME.png): {scenario} is the scenario file's stem, "
+                                              "{time} the time as written"
+                                            : "the state's name (NAME.csv): {scenario} is the scenario file's stem"},
+                     {"default", frames ? "{scenario}_t{time}" : "{scenario}"}};
+  const Json setValue = {{"type", Json::array({"string", "number", "boolean", "array"})}};
+  const Json set = {
+      {"oneOf", Json::array({{{"type", "object"}, {"additionalProperties", setValue}},
+                             {{"type", "array"}, {"items", {{"type", "string"}, {"pattern", "^[^=]+=.+$"}}}}})},
+      {"description", "--set overrides, in order: {PATH: VALUE, …} or [PATH=VALUE, …]"}};
+  std::vector<std::pair<std::string, Json>> properties = {
+      {"scenario", withDescription(text(), "the scenario file, relative to the manifest")},
+      {"times", withDescription({{"type", "array"},
+                                 {"items", number(Bound{0, true})},
+                                 {"minItems", 1},
+                                 {"maxItems", kMaxGoldenChecks},
+                                 {"uniqueItems", true}},
+                                "seconds of simulated time")},
+      {"name", name},
+      {"set", set}};
+  if (frames) {
+    properties.emplace_back("render", goldenRenderSchema());
+    properties.emplace_back("tolerance", goldenToleranceSchema());
+    properties.emplace_back("expect",
+                            withDefault(withDescription({{"enum", {"match", "differ"}}},
+                                                        "differ: a control, passing only when the frame differs"),
+                                        "match"));
+  } else {
+    properties.emplace_back("state_tolerance", goldenStateToleranceSchema());
+  }
+  return object(properties, {"scenario", "times"});
+}
+
 }  // namespace
 
 std::string scenarioJsonSchema() {
@@ -250,6 +325,37 @@ std::string scenarioJsonSchema() {
                  {"title", "particles scenario"},
                  {"description", "A particles scenario file (docs/scenarios.md)"}};
   schema.update(object(sections, {"name"}));
+  return schema.dump(2) + "\n";
+}
+
+std::string goldenManifestJsonSchema() {
+  auto entries = [](bool frames) {
+    return withDescription({{"type", "array"}, {"items", goldenEntrySchema(frames)}, {"maxItems", kMaxGoldenChecks}},
+                           frames ? "frames rendered and compared with references/NAME.png"
+                                  : "simulation states compared with references/NAME.csv");
+  };
+  const Json defaults = object({{"render", goldenRenderSchema()},
+                                {"tolerance", goldenToleranceSchema()},
+                                {"state_tolerance", goldenStateToleranceSchema()}},
+                               {});
+  Json schema = {{"$schema", "http://json-schema.org/draft-07/schema#"},
+                 {"title", "particles golden manifest"},
+                 {"description",
+                  "Which frames and states of which scenarios `particles golden check` compares with "
+                  "stored references (golden/README.md)"}};
+  schema.update(object({{"references", withDefault(withDescription(text(),
+                                                                   "the references' folder, relative to the "
+                                                                   "manifest"),
+                                                   ".")},
+                        {"defaults", withDescription(defaults, "for every entry that does not set its own")},
+                        {"frames", entries(true)},
+                        {"states", entries(false)}},
+                       {}));
+  // At least one check: frames or states, not empty.
+  schema["anyOf"] = Json::array();
+  for (const char* list : {"frames", "states"}) {
+    schema["anyOf"].push_back({{"required", {list}}, {"properties", {{list, {{"type", "array"}, {"minItems", 1}}}}}});
+  }
   return schema.dump(2) + "\n";
 }
 

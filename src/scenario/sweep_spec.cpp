@@ -4,18 +4,14 @@
 #include "scenario/sweep_spec.hpp"
 
 #include <fmt/format.h>
-#include <yaml-cpp/eventhandler.h>
-#include <yaml-cpp/parser.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <functional>
-#include <sstream>
 
 #include "core/integrators.hpp"
-#include "input/text_file.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/yaml_reader.hpp"
 
@@ -32,14 +28,6 @@ SweepPosition positionOf(const Value& v) {
   return {m.line + 1, m.column + 1, v.path()};
 }
 
-// A YAML node as it goes on a command line: a scalar as written, anything else in flow form.
-std::string commandLineText(const YAML::Node& node) {
-  if (node.IsScalar()) return node.Scalar();
-  YAML::Emitter out;
-  out << YAML::Flow << node;
-  return out.c_str();
-}
-
 std::optional<double> numberOf(const YAML::Node& node) {
   double x = 0.0;
   if (node.IsScalar() && node.Tag() != "!" && YAML::convert<double>::decode(node, x) && std::isfinite(x)) return x;
@@ -54,121 +42,6 @@ double tidy(double x) {
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), rounded);
   return ec == std::errc() && end == text.data() + text.size() && std::isfinite(rounded) ? rounded : x;
 }
-
-// yaml-cpp's scanner keeps every token of a flow list (`[1, 2, 3]`) until the list ends, ~380
-// bytes each, so a 2 MB line of 10⁶ values took 380 MB before the first event. This lexical pass
-// counts the items of flow lists first, in constant memory: it follows quotes, comments and
-// brackets only as far as needed to count commas at flow depth, and refuses a list with more
-// than kMaxSweepJobs items at its opening bracket. (An unusual file may be counted high, never
-// low: the exact count is SweepShapeCheck's, on the parser's events.)
-void checkFlowListLengths(std::string_view text, const std::string& file) {
-  struct Flow {
-    int line, column;
-    std::uintmax_t commas;
-  };
-  std::vector<Flow> open;
-  int line = 1, column = 0;
-  char quote = 0;
-  char before = '\n';  // the last character that is not a space or tab
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (c == '\n') {
-      ++line;
-      column = 0;
-    } else {
-      ++column;
-    }
-    if (quote) {
-      if (quote == '"' && c == '\\') {
-        ++i;
-        ++column;
-      } else if (c == quote) {
-        if (quote == '\'' && i + 1 < text.size() && text[i + 1] == '\'') {
-          ++i;
-          ++column;
-        } else {
-          quote = 0;
-          before = c;
-        }
-      }
-      continue;
-    }
-    const bool startsNode = std::string_view("\n[{,:-?").find(before) != std::string_view::npos;
-    if (c == '#' && (column == 1 || text[i - 1] == ' ' || text[i - 1] == '\t')) {
-      const size_t end = text.find('\n', i);
-      if (end == std::string_view::npos) break;
-      i = end - 1;
-      continue;
-    }
-    if ((c == '\'' || c == '"') && startsNode) {
-      quote = c;
-    } else if ((c == '[' || c == '{') && (startsNode || !open.empty())) {
-      open.push_back({line, column, 0});
-    } else if ((c == ']' || c == '}') && !open.empty()) {
-      open.pop_back();
-    } else if (c == ',' && !open.empty() && ++open.back().commas >= kMaxSweepJobs) {
-      throw ScenarioError(file, open.back().line, open.back().column, "",
-                          fmt::format("a list of more than {} items: a sweep makes at most {} jobs, so no list "
-                                      "needs more; split the sweep into several files",
-                                      kMaxSweepJobs, kMaxSweepJobs));
-    }
-    if (c != ' ' && c != '\t') before = c;
-  }
-}
-
-// The shape of a sweep file, checked on the parser's events before any node is built: no list
-// longer than kMaxSweepJobs (one parameter with more values makes more jobs than any sweep may),
-// at most kMaxSweepNodes nodes in all, and no aliases (`*name` repeats a node as often as it is
-// written, so a small file could stand for any number of values). A file past these is refused
-// at the node that passes, in the time of reading up to it and in constant memory, where building
-// its nodes first took a second and ~900 bytes per value.
-class SweepShapeCheck final : public YAML::EventHandler {
- public:
-  explicit SweepShapeCheck(const std::string& file) : file_(file) {}
-
-  void OnDocumentStart(const YAML::Mark&) override {}
-  void OnDocumentEnd() override {}
-  void OnNull(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
-  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override {
-    fail(m, "an alias (*name): a sweep file writes each value out; anchors and aliases are not read here");
-  }
-  void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { node(m); }
-  void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
-    node(m);
-    open_.push_back({m, 0, true});
-  }
-  void OnSequenceEnd() override { open_.pop_back(); }
-  void OnMapStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
-    node(m);
-    open_.push_back({m, 0, false});
-  }
-  void OnMapEnd() override { open_.pop_back(); }
-
- private:
-  struct Open {
-    YAML::Mark at;
-    std::uintmax_t items;
-    bool sequence;
-  };
-  [[noreturn]] void fail(const YAML::Mark& m, const std::string& message) const {
-    throw ScenarioError(file_, m.line + 1, m.column + 1, "", message);
-  }
-  void node(const YAML::Mark& m) {
-    if (++nodes_ > kMaxSweepNodes) {
-      fail(m, fmt::format("more than {} values, keys and lists in one sweep file; split the sweep into several files",
-                          kMaxSweepNodes));
-    }
-    if (!open_.empty() && open_.back().sequence && ++open_.back().items > kMaxSweepJobs) {
-      fail(open_.back().at, fmt::format("a list of more than {} items: a sweep makes at most {} jobs, so no list "
-                                        "needs more; split the sweep into several files",
-                                        kMaxSweepJobs, kMaxSweepJobs));
-    }
-  }
-
-  const std::string& file_;
-  std::uintmax_t nodes_ = 0;
-  std::vector<Open> open_;
-};
 
 std::vector<SweepValue> readRange(const Value& v, bool& logSpacing) {
   const MapReader r(v, {"from", "to", "count", "spacing"});
@@ -217,7 +90,7 @@ SweepParameter readParameter(const Value& v, std::vector<std::string>& names) {
     for (const Value& item : items) {
       if (item.isNull()) item.fail("expected a value, got nothing");
       if (item.isMap()) item.fail("expected a value (a number, a name or a list), got a map");
-      p.values.push_back({commandLineText(item.node()), numberOf(item.node()), positionOf(item)});
+      p.values.push_back({detail::commandLineText(item.node()), numberOf(item.node()), positionOf(item)});
     }
   } else {
     p.values = readRange(*range, p.logSpacing);
@@ -334,7 +207,7 @@ void readOptions(const Value& v, SweepSpec& spec) {
       for (auto s = value.node().begin(); s != value.node().end(); ++s) {
         const Value setValue = value.child(s->second, path + "." + s->first.Scalar(), s->first.Mark());
         if (setValue.isNull() || setValue.isMap()) setValue.fail("expected a value for --set, got nothing or a map");
-        spec.sets.emplace_back(s->first.Scalar(), commandLineText(s->second));
+        spec.sets.emplace_back(s->first.Scalar(), detail::commandLineText(s->second));
         spec.setsAt.push_back(positionOf(setValue));
       }
       continue;
@@ -391,22 +264,18 @@ void failInSweep(const SweepSpec& spec, const SweepPosition& at, const std::stri
 }
 
 SweepSpec loadSweepText(std::string_view text, const std::string& file) {
-  YAML::Node root;
-  try {
-    checkFlowListLengths(text, file);
-    const std::string whole(text);
-    {
-      std::istringstream in(whole);
-      YAML::Parser parser(in);
-      SweepShapeCheck shape(file);
-      parser.HandleNextDocument(shape);
-    }
-    root = YAML::Load(whole);
-  } catch (const YAML::ParserException& e) {
-    throw ScenarioError(file, e.mark.line + 1, e.mark.column + 1, "", fmt::format("YAML syntax error: {}", e.msg));
-  } catch (const YAML::Exception& e) {
-    throw ScenarioError(file, 0, 0, "", fmt::format("cannot read YAML: {}", e.msg));
-  }
+  // One parameter with more than kMaxSweepJobs values makes more jobs than any sweep may.
+  const YAML::Node root = detail::loadBoundedDocument(
+      text, file,
+      {.maxNodes = kMaxSweepNodes,
+       .maxListItems = kMaxSweepJobs,
+       .tooManyNodes = fmt::format(
+           "more than {} values, keys and lists in one sweep file; split the sweep into several files", kMaxSweepNodes),
+       .tooLongList = fmt::format("a list of more than {} items: a sweep makes at most {} jobs, so no list needs "
+                                  "more; split the sweep into several files",
+                                  kMaxSweepJobs, kMaxSweepJobs),
+       .alias = "an alias (*name): a sweep file writes each value out; anchors and aliases are not read here",
+       .secondDocument = {}});  // not read
   if (!root.IsDefined() || root.IsNull()) {
     throw ScenarioError(file, 1, 1, "", "the file is empty; expected a sweep (a map with scenarios and command)");
   }
@@ -469,12 +338,7 @@ SweepSpec loadSweepText(std::string_view text, const std::string& file) {
 }
 
 SweepSpec loadSweepFile(const std::filesystem::path& file, std::uintmax_t maxInputMiB) {
-  std::string text;
-  try {
-    text = input::readTextFile(file, maxInputMiB);
-  } catch (const input::ReadError& e) {
-    throw ScenarioError(file.string(), 0, 0, "", e.what());
-  }
+  const std::string text = readScenarioText(file, maxInputMiB);  // any text file, within the limit
   return loadSweepText(text, file.string());
 }
 

@@ -6,6 +6,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdint>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -22,6 +23,27 @@ namespace particles::scenario::detail {
 // second document or at a syntax error. Works around yaml-cpp 0.7's LoadAll, which never returns
 // on some malformed input (yaml-cpp issue 1040).
 YAML::Node loadOneDocument(const std::string& text, const std::string& file);
+
+// The most a file read whole may hold, checked before any of its nodes is built (a sweep file, a
+// golden manifest): each limit's message is the file's own, since it says how to split the file.
+struct ShapeLimits {
+  std::uintmax_t maxNodes = 0;      // values, keys and lists in all
+  std::uintmax_t maxListItems = 0;  // items of one list
+  std::string tooManyNodes;         // the message at the node past maxNodes,
+  std::string tooLongList;          // at the list past maxListItems,
+  std::string alias;                // at an alias (`*name`),
+  std::string secondDocument;       // and at a second document's first node (empty: not read)
+};
+
+// The first document of `text` (null when it has none), after its flow lists are counted in the
+// text and its nodes on the parser's events: a file past `limits` is refused at the node that
+// passes, in constant memory. Throws ScenarioError there, at an alias, at a syntax error, and
+// (when limits.secondDocument is given) at a second document.
+YAML::Node loadBoundedDocument(std::string_view text, const std::string& file, const ShapeLimits& limits);
+
+// A YAML node as it goes on a command line (--set, a sweep's values): a scalar as written,
+// anything else in flow form.
+std::string commandLineText(const YAML::Node& node);
 
 // Where the tree came from: the file, and the key paths that --set replaced (errors in those name
 // the option instead of a line of the file).
