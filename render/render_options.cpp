@@ -6,6 +6,35 @@
 
 namespace particles::render {
 
+namespace {
+
+constexpr std::array<ThemeName, 2> kThemes = {ThemeName::dark, ThemeName::light};                  // as kThemeNames
+constexpr std::array<Raster, 3> kRasters = {Raster::automatic, Raster::triangles, Raster::tiles};  // as kRasterNames
+
+}  // namespace
+
+std::optional<ThemeName> themeFromName(std::string_view name) {
+  for (size_t i = 0; i < kThemes.size(); ++i) {
+    if (kThemeNames[i] == name) return kThemes[i];
+  }
+  return std::nullopt;
+}
+
+std::optional<Raster> rasterFromName(std::string_view name) {
+  for (size_t i = 0; i < kRasters.size(); ++i) {
+    if (kRasterNames[i] == name) return kRasters[i];
+  }
+  return std::nullopt;
+}
+
+std::string_view themeNameOf(ThemeName theme) {
+  return kThemeNames[size_t(std::find(kThemes.begin(), kThemes.end(), theme) - kThemes.begin())];
+}
+
+std::string_view rasterNameOf(Raster raster) {
+  return kRasterNames[size_t(std::find(kRasters.begin(), kRasters.end(), raster) - kRasters.begin())];
+}
+
 void validate(const RenderOptions& o) {
   if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide) {
     throw std::invalid_argument("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +

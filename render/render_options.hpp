@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
+#include <string_view>
 
 #include "core/state.hpp"
 #include "render/theme.hpp"
@@ -63,6 +65,14 @@ struct RenderOptions {
   // colour is interpolated from the at-rest colour.
   double strainForFullColor = 0.2;
 };
+
+// The names the command line and golden manifests give the themes and raster paths, and back.
+inline constexpr std::array<std::string_view, 2> kThemeNames = {"dark", "light"};
+inline constexpr std::array<std::string_view, 3> kRasterNames = {"auto", "triangles", "tiles"};
+std::optional<ThemeName> themeFromName(std::string_view name);
+std::optional<Raster> rasterFromName(std::string_view name);
+std::string_view themeNameOf(ThemeName theme);
+std::string_view rasterNameOf(Raster raster);
 
 // Throws std::invalid_argument when a size, width or sample count is out of range.
 void validate(const RenderOptions& options);

@@ -58,7 +58,7 @@ TEST_CASE("cli: --version and --help") {
   // The Subcommands section lists every command once, by its name, and only those: one line each,
   // "  NAME   summary", up to the blank line that ends it.
   const std::vector<std::string> commands = {"check", "run",    "render", "stability", "compare", "concat",
-                                             "plot",  "schema", "sweep",  "gather",    "job"};
+                                             "plot",  "schema", "sweep",  "gather",    "job",     "golden"};
   std::vector<std::string> listed;
   std::istringstream help(r.out);
   std::string line;
@@ -108,16 +108,17 @@ TEST_CASE("cli: usage errors exit with 2") {
   CHECK(r.code == 2);
 }
 
-// CLI11 alone answered `particles golden --help` with the main help and exit 0, as if the word
-// were not there: a typo in a script went unnoticed.
+// CLI11 alone answered `particles golden --help` (before golden was a command) with the main help and exit 0, as if the
+// word were not there: a typo in a script went unnoticed.
 TEST_CASE("cli: an unknown command is a usage error naming it, with or without --help") {
   Scratch s;
-  for (const std::string args : {"golden --help", "golden", "--help golden", "golden x.yaml -o x.mp4"}) {
+  for (const std::string args :
+       {"frobnicate --help", "frobnicate", "--help frobnicate", "frobnicate x.yaml -o x.mp4"}) {
     CAPTURE(args);
     const Result r = s.run(args);
     CHECK(r.code == 2);
     CHECK(r.out.empty());  // no help
-    CHECK_MESSAGE(r.err.starts_with("unknown command 'golden'; the commands are check, run, render, "), r.err);
+    CHECK_MESSAGE(r.err.starts_with("unknown command 'frobnicate'; the commands are check, run, render, "), r.err);
   }
   // A near miss names the command meant.
   for (const std::string args : {"rnder --help", "rnder x.yaml -o x.mp4", "stabilty x.yaml"}) {

@@ -16,6 +16,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "golden/check.hpp"
 #include "golden/results.hpp"
 #include "output/output_error.hpp"
 #include "render/image.hpp"
@@ -94,17 +95,7 @@ RunFacts sampleRun() {
 }
 
 FrameNumbers numbersOf(const particles::render::ImageComparison& c, int threshold, double maxShare) {
-  FrameNumbers n;
-  n.threshold = threshold;
-  n.maxShare = maxShare;
-  n.differing = c.differing;
-  n.pixels = c.pixels;
-  n.share = c.share;
-  n.largest = c.largestDifference;
-  if (c.box) n.box = std::array<int, 4>{c.box->x0, c.box->y0, c.box->x1, c.box->y1};
-  n.width = c.width;
-  n.height = c.height;
-  return n;
+  return particles::golden::frameNumbersOf(c, {threshold, maxShare});
 }
 
 // Every field set, optionals both present and absent, numbers that need all their digits.

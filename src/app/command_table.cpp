@@ -4,6 +4,7 @@
 #include "app/compare_command.hpp"
 #include "app/concat_command.hpp"
 #include "app/gather_command.hpp"
+#include "app/golden_command.hpp"
 #include "app/job_command.hpp"
 #include "app/plot_command.hpp"
 #include "app/render_command.hpp"
@@ -18,8 +19,8 @@ namespace {
 
 const AddCommand kRows[] = {
     addCommand<kCheckCommand>,   addCommand<kRunCommand>,    addCommand<kRenderCommand>, addCommand<kStabilityCommand>,
-    addCommand<kCompareCommand>, addCommand<kConcatCommand>, addCommand<kPlotCommand>,   addCommand<kSchemaCommand>,
-    addCommand<kSweepCommand>,   addCommand<kGatherCommand>, addCommand<kRunJobCommand>,
+    addCommand<kCompareCommand>, addCommand<kGoldenCommand>, addCommand<kConcatCommand>, addCommand<kPlotCommand>,
+    addCommand<kSchemaCommand>,  addCommand<kSweepCommand>,  addCommand<kGatherCommand>, addCommand<kRunJobCommand>,
 };
 
 }  // namespace

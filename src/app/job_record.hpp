@@ -18,6 +18,7 @@
 
 #include "app/exit_codes.hpp"
 #include "input/text_file.hpp"
+#include "output/shell_words.hpp"
 
 namespace CLI {
 class App;
@@ -53,9 +54,9 @@ struct JobRecord {
 // (`particles job` runs a sweep's job from it); nullopt when the text is not commandText's.
 std::string commandText(const std::vector<std::string>& args);
 std::optional<std::vector<std::string>> splitCommandText(std::string_view text);
-// One word for bash whatever its bytes: as it is, in '…', or in $'…' when it holds control
-// characters. The one quoting function of the program.
-std::string shellQuote(const std::string& arg);
+// shellQuote: output/shell_words.hpp.
+using output::isPlainShellChar;
+using output::shellQuote;
 
 // nullopt when the file is missing or is not a record. A file that cannot be read as one (a
 // FIFO, a device, a file past maxInputMiB, binary bytes) throws input::ReadError: such a thing

@@ -93,16 +93,10 @@ render::RenderOptions lookOf(const scenario::Scenario& s, const RenderCommandOpt
     look.height = h;
   }
   look.msaa = options.msaa;
-  look.raster = options.raster == "tiles"       ? render::Raster::tiles
-                : options.raster == "triangles" ? render::Raster::triangles
-                                                : render::Raster::automatic;
-  if (options.theme == "dark") {
-    look.themeName = render::ThemeName::dark;
-  } else if (options.theme == "light") {
-    look.themeName = render::ThemeName::light;
-  } else {
-    throw InputError(fmt::format("--theme: expected dark or light, not '{}'", options.theme));
-  }
+  look.raster = render::rasterFromName(options.raster).value_or(render::Raster::automatic);  // CLI11 checked it
+  const auto theme = render::themeFromName(options.theme);
+  if (!theme) throw InputError(fmt::format("--theme: expected dark or light, not '{}'", options.theme));
+  look.themeName = *theme;
   if (options.background == "transparent") {
     look.transparentBackground = true;
   } else if (options.background != "theme") {
@@ -346,7 +340,7 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
                                "screen tiles on the CPU, one pass; fast for large scenes) or auto (tiles from {} "
                                "shapes)",
                                render::kTilesFromShapes))
-      ->check(CLI::IsMember({"auto", "triangles", "tiles"}))
+      ->check(CLI::IsMember(std::vector<std::string>(render::kRasterNames.begin(), render::kRasterNames.end())))
       ->capture_default_str();
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
   renderCmd->add_option("--background", render.background, render::backgroundHelp())->capture_default_str();

@@ -28,9 +28,9 @@ struct Descriptor {
                               maxMiB));
 }
 
-}  // namespace
+enum class Content { text, binary };
 
-std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMiB, Accept accept) {
+std::string readFile(const std::filesystem::path& file, std::uintmax_t maxMiB, Accept accept, Content content) {
   const std::uintmax_t limit = maxMiB * 1024 * 1024;
   // Opening a FIFO for reading waits for a writer, unless non-blocking: then it returns at once.
   const int flags = O_RDONLY | O_CLOEXEC | (accept == Accept::regularOnly ? O_NONBLOCK : 0);
@@ -70,7 +70,7 @@ std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMi
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) throw ReadError(ReadError::Reason::readFailed, fmt::format("cannot read: {}", std::strerror(errno)));
     if (n == 0) break;
-    if (const void* nul = std::memchr(text.data() + used, '\0', std::size_t(n))) {
+    if (const void* nul = content == Content::text ? std::memchr(text.data() + used, '\0', std::size_t(n)) : nullptr) {
       const std::size_t at = std::size_t(static_cast<const char*>(nul) - text.data());
       throw ReadError(ReadError::Reason::notText,
                       fmt::format("byte {} is a NUL byte, which no text holds: this is not a text file", at + 1));
@@ -80,6 +80,16 @@ std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMi
   if (used > limit) tooLarge(maxMiB);
   text.resize(used);
   return text;
+}
+
+}  // namespace
+
+std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMiB, Accept accept) {
+  return readFile(file, maxMiB, accept, Content::text);
+}
+
+std::string readBinaryFile(const std::filesystem::path& file, std::uintmax_t maxMiB, Accept accept) {
+  return readFile(file, maxMiB, accept, Content::binary);
 }
 
 }  // namespace particles::input

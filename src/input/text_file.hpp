@@ -41,4 +41,7 @@ enum class Accept { anyFile, regularOnly };
 // message for a file past the limit names the option that raises it, `--max-input MIB`.
 std::string readTextFile(const std::filesystem::path& file, std::uintmax_t maxMiB, Accept accept = Accept::anyFile);
 
+// The same for a file that is not text (a reference frame's PNG): NUL bytes are kept.
+std::string readBinaryFile(const std::filesystem::path& file, std::uintmax_t maxMiB, Accept accept = Accept::anyFile);
+
 }  // namespace particles::input

@@ -260,8 +260,9 @@ struct CheckName {
 
 GoldenEntry readGoldenEntry(const Value& v, bool frames, const std::filesystem::path& directory,
                             const std::string& file, std::vector<CheckName>& names) {
-  const MapReader m = frames ? MapReader(v, {"scenario", "times", "name", "set", "render", "tolerance", "expect"})
-                             : MapReader(v, {"scenario", "times", "name", "set", "state_tolerance"});
+  const MapReader m =
+      frames ? MapReader(v, {"scenario", "times", "name", "set", "render", "tolerance", "expect", "reference"})
+             : MapReader(v, {"scenario", "times", "name", "set", "state_tolerance"});
   GoldenEntry entry;
   entry.at = goldenPositionOf(v);
   const Value scenario = m.required("scenario");
@@ -278,6 +279,15 @@ GoldenEntry readGoldenEntry(const Value& v, bool frames, const std::filesystem::
       const std::string expect = e->string();
       if (expect != "match" && expect != "differ") e->fail(fmt::format("expected match or differ, got '{}'", expect));
       entry.expectDiffer = expect == "differ";
+    }
+    if (auto r = m.optional("reference")) {
+      const std::string reference = r->string();
+      entry.reference = GoldenSetting<std::string>{reference, goldenPositionOf(*r)};
+      if (entry.times.size() != 1) {
+        r->fail(fmt::format("a frame compared with another's reference has one time, not {}", entry.times.size()));
+      }
+      const NamePart literal{NamePart::From::pattern, reference};
+      expandName({literal}, *r, scenario, "", nullptr);  // a file name, as a frame's
     }
   } else if (auto t = m.optional("state_tolerance")) {
     entry.stateTolerance = readStateTolerance(*t);

@@ -18,6 +18,7 @@
 //       render: {raster: tiles}                 # over the defaults, key by key
 //       tolerance: {max_share: 0.0005}
 //       expect: differ                          # a control: passes only when the frame differs
+//       reference: cloth_t2.5                   # compare with that frame's reference, not its own
 //   states:
 //     - scenario: ../scenarios/soft_body.yaml
 //       times: [9, 37.5]
@@ -92,6 +93,11 @@ struct GoldenEntry {
   GoldenFrameTolerance tolerance;       // frames: the entry's own
   GoldenStateTolerance stateTolerance;  // states: the entry's own
   bool expectDiffer = false;            // frames: `expect: differ`
+  // frames: `reference: NAME`, compare with frame NAME's reference rather than a reference of its
+  // own (a control or a rounding check: the same frame with a perturbation; NAME.png in the
+  // references' folder, which may belong to another manifest). One time only; NAME a file name as
+  // a frame's. `golden update` never writes it.
+  std::optional<GoldenSetting<std::string>> reference;
   GoldenPosition at;                    // the entry
 };
 

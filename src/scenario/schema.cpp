@@ -302,6 +302,8 @@ Json goldenEntrySchema(bool frames) {
                             withDefault(withDescription({{"enum", {"match", "differ"}}},
                                                         "differ: a control, passing only when the frame differs"),
                                         "match"));
+    properties.emplace_back(
+        "reference", withDescription(text(), "compare with the reference NAME.png of another frame (one time only)"));
   } else {
     properties.emplace_back("state_tolerance", goldenStateToleranceSchema());
   }

@@ -1,0 +1,317 @@
+// `particles golden`: see golden_command.hpp.
+#include "app/golden_command.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+#include <stdexcept>
+#include <thread>
+
+#include "app/cli_support.hpp"
+#include "app/gl_options.hpp"
+#include "golden/check.hpp"
+#include "golden/references.hpp"
+#include "golden/results.hpp"
+#include "output/output_error.hpp"
+#include "output/staging_directory.hpp"
+#include "render/image_compare.hpp"
+#include "scenario/golden_manifest.hpp"
+
+namespace particles::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void addRunOptions(CLI::App& command, GoldenRunOptions& o) {
+  command.add_option("manifest", o.manifest, "The golden manifest (YAML, golden/README.md)")->capture_default_str();
+  command.add_option("-j,--jobs", o.jobs, "Entries simulated at once (default: half the cores, at least 1)")
+      ->check(CLI::Range(1, 256));
+  command
+      .add_option("--gl", o.gl,
+                  fmt::format("GL backend: auto (EGL, else OSMesa), egl or osmesa (default: ${}, else auto)",
+                              kGlEnvironmentVariable))
+      ->check(CLI::IsMember(render::glBackendNames()));
+  addMaxInputOption(command, o.maxInputMiB, "a manifest, scenario or reference");
+  command.add_flag("-q,--quiet", o.quiet, "No progress and no list of failures; the summary line is still printed");
+}
+
+void addGoldenOptions(CLI::App& command, GoldenOptions& o) {
+  command.require_subcommand(1);
+  command.footer(
+      "Guide: golden/README.md (golden-test your own scenarios in CI). Each subcommand's options:\n"
+      "  particles golden check --help\n");
+  CLI::App* check = command.add_subcommand("check", "Compare the manifest's frames and states with their references");
+  o.checkCommand = check;
+  addRunOptions(*check, o.check.run);
+  check->add_option("-o,--output", o.check.output, "The report folder: report.html, junit.xml, results.json")
+      ->capture_default_str();
+  check->add_option("--shard", o.check.shard, "Only the K-th of N near-equal parts of the checks (CI jobs: 1/2, 2/2)")
+      ->type_name("K/N");
+  check->add_option("--only", o.check.only, "Only this frame or state (repeatable)")
+      ->type_name("NAME")
+      ->allow_extra_args(false);
+  check->add_option("--raster", o.check.raster, "The raster path for entries that do not set their own")
+      ->check(CLI::IsMember(std::vector<std::string>(render::kRasterNames.begin(), render::kRasterNames.end())));
+  check->add_option("--threshold", o.check.threshold, "The threshold for entries that do not set their own (0 … 255)")
+      ->check(CLI::Range(0, 255));
+  check->add_option("--max-share", o.check.maxShare, "The share bound for entries that do not set their own (0 … 1)")
+      ->check(CLI::Range(0.0, 1.0));
+  check->footer(fmt::format(
+      "Exit codes: 0 every check passed, 1 one failed or has no reference yet, 2 a bad manifest or usage or an\n"
+      "unusable reference (a FIFO, too large, not a PNG: the report is still written), 3 the report could not be\n"
+      "written. Guide: golden/README.md.\n"
+      "Examples:\n"
+      "  particles golden check\n"
+      "  particles golden check golden/golden.yaml -o golden-report --gl egl\n"
+      "  particles golden check --shard 1/2 -o report-1 && particles golden check --shard 2/2 -o report-2\n"
+      "  particles golden check --only cloth_t2.5 --raster tiles --max-share 0.0005\n"));
+
+  CLI::App* update = command.add_subcommand("update", "Write references: render them, or accept a report's (--from)");
+  o.updateCommand = update;
+  addRunOptions(*update, o.update.run);
+  update->add_option("names", o.update.names, "Only these frames and states (after the manifest)")->type_name("NAME");
+  update
+      ->add_option("--from", o.update.from,
+                   "Accept the actual frames and states of this report folder without rendering (repeatable: "
+                   "folders that disagree are refused)")
+      ->allow_extra_args(false);
+  update->add_flag("--missing", o.update.missing, "Only the references that do not exist yet");
+  update->footer(
+      "Exit codes: 0 written (or unchanged), 1 a check could not be rendered or a --from folder's frames were\n"
+      "refused, 2 a bad manifest, name or folder, 3 a reference could not be written.\n"
+      "Examples:\n"
+      "  particles golden update --missing\n"
+      "  particles golden update golden/golden.yaml cloth_t2.5 soft_body\n"
+      "  particles golden update --from ~/Downloads/golden-report\n");
+
+  CLI::App* report = command.add_subcommand("report", "Merge the report folders of shards into one report");
+  o.reportCommand = report;
+  report->add_option("folders", o.report.folders, "The shards' report folders")->required();
+  report->add_option("-o,--output", o.report.output, "The merged report folder")->capture_default_str();
+  addMaxInputOption(*report, o.report.maxInputMiB, "a results.json or kept file");
+  report->add_flag("-q,--quiet", o.report.quiet, "Only the summary line");
+  report->footer("Example:\n  particles golden report report-1 report-2 -o golden-report\n");
+}
+
+// How the commands that reproduce a result spell this program: its path relative to here when it
+// is below, else absolute (a report is read where the check ran).
+std::string programPath() {
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) return "particles";
+  const fs::path relative = self.lexically_relative(fs::current_path(ec));
+  if (!ec && !relative.empty() && *relative.begin() != "..") return relative.string();
+  return self.string();
+}
+
+scenario::GoldenManifest loadManifest(const GoldenRunOptions& o) {
+  scenario::GoldenManifest m = scenario::loadGoldenManifestFile(o.manifest, o.maxInputMiB);
+  golden::checkRenderSettings(m);
+  return m;
+}
+
+golden::CheckOptions checkOptionsOf(const GoldenRunOptions& o) {
+  golden::CheckOptions c;
+  c.manifestGiven = o.manifest;
+  c.gl = glRequestOf(o.gl, false);
+  c.jobs = o.jobs > 0 ? o.jobs : std::max(1, int(std::thread::hardware_concurrency() / 2));
+  c.maxInputMiB = o.maxInputMiB;
+  c.program = programPath();
+  return c;
+}
+
+std::optional<std::pair<int, int>> shardOf(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  int k = 0, n = 0;
+  const char* end = text.data() + text.size();
+  auto [p, ec] = std::from_chars(text.data(), end, k);
+  if (ec == std::errc() && p < end && *p == '/') {
+    auto [q, ec2] = std::from_chars(p + 1, end, n);
+    if (ec2 == std::errc() && q == end && n >= 1 && k >= 1 && k <= n) return std::pair{k, n};
+  }
+  throw InputError(fmt::format("--shard {}: expected K/N with 1 ≤ K ≤ N, e.g. 1/2", text));
+}
+
+// The report folder: replaced whole when it holds an earlier report (or nothing); anything else
+// there is refused, not overwritten. It may not hold the manifest or the references.
+void checkReportFolder(const fs::path& folder, const std::vector<fs::path>& inputs) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(folder, ec);
+  if (st.type() != fs::file_type::not_found) {
+    if (st.type() != fs::file_type::directory) {
+      throw InputError(fmt::format("-o {}: not a folder; the report is a folder", folder.string()));
+    }
+    const bool empty = fs::is_empty(folder, ec);
+    if (!empty && fs::symlink_status(folder / golden::kResultsJson, ec).type() != fs::file_type::regular) {
+      throw InputError(
+          fmt::format("-o {}: a folder that holds something other than a golden report; choose another "
+                      "or empty it (it is replaced whole)",
+                      folder.string()));
+    }
+  }
+  const fs::path out = fs::weakly_canonical(fs::absolute(folder), ec);
+  for (const fs::path& input : inputs) {
+    const fs::path in = fs::weakly_canonical(fs::absolute(input), ec);
+    const fs::path rel = in.lexically_relative(out);
+    if (in == out || (!rel.empty() && *rel.begin() != "..")) {
+      throw InputError(fmt::format("-o {}: it holds {}, which the check reads; the report folder is replaced whole",
+                                   folder.string(), input.string()));
+    }
+  }
+}
+
+// Moves the staged report into place: the earlier one out of the way first, removed last.
+void publish(output::StagingDirectory& staged, const fs::path& folder) {
+  std::error_code ec;
+  fs::path previous;
+  if (fs::exists(fs::symlink_status(folder, ec))) {
+    previous = folder;
+    previous += fmt::format(".previous-{}", ::getpid());
+    fs::rename(folder, previous, ec);
+    if (ec) throw output::OutputError(fmt::format("cannot replace {}: {}", folder.string(), ec.message()));
+  }
+  fs::rename(staged.path(), folder, ec);
+  if (ec) {
+    if (!previous.empty()) fs::rename(previous, folder);
+    throw output::OutputError(fmt::format("cannot write {}: {}", folder.string(), ec.message()));
+  }
+  if (!previous.empty()) fs::remove_all(previous, ec);
+}
+
+void printFailures(const golden::GoldenResults& r) {
+  for (const golden::FrameResult& f : r.frames) {
+    if (f.outcome != golden::Outcome::passed)
+      fmt::print("{} {}: {}\n", golden::outcomeName(f.outcome), f.name, f.message);
+  }
+  for (const golden::StateResult& s : r.states) {
+    if (s.outcome != golden::Outcome::passed)
+      fmt::print("{} {}: {}\n", golden::outcomeName(s.outcome), s.name, s.message);
+  }
+}
+
+// Runs the checks into `folder` with progress on a terminal; the options' errors are bad input.
+golden::CheckRun runChecks(const scenario::GoldenManifest& manifest, const fs::path& folder, golden::CheckOptions c,
+                           bool quiet) {
+  Progress progress(!quiet, "checks");
+  c.progress = [&](long done, long total, const std::string& name) { progress.update(done, total, name); };
+  try {
+    return golden::runCheck(manifest, folder, c);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+}
+
+int goldenCheck(const GoldenCheckOptions& o) {
+  const scenario::GoldenManifest manifest = loadManifest(o.run);
+  golden::CheckOptions c = checkOptionsOf(o.run);
+  c.shard = shardOf(o.shard);
+  c.only = o.only;
+  if (!o.raster.empty()) c.overrides.raster = render::rasterFromName(o.raster);
+  c.overrides.threshold = o.threshold;
+  c.overrides.maxShare = o.maxShare;
+  const fs::path folder = o.output;
+  checkReportFolder(folder, {o.run.manifest, manifest.references});
+  output::StagingDirectory staged(folder);
+  const auto start = std::chrono::steady_clock::now();
+  golden::CheckRun run = runChecks(manifest, staged.path(), c, o.run.quiet);
+  golden::RunFacts& facts = run.results.runs.front();
+  facts.manifest = o.run.manifest;
+  facts.program = fmt::format("particles {}", PARTICLES_VERSION);
+  if (const char* threads = std::getenv("LP_NUM_THREADS")) facts.lpNumThreads = threads;
+  facts.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  golden::writeReport(staged.path(), run.results);
+  publish(staged, folder);
+  if (!o.run.quiet) printFailures(run.results);
+  fmt::print("{}\n", golden::summaryLine(run.results, folder));
+  if (run.badReference) return kBadInput;
+  return run.results.allPassed() ? kOk : kSimulationFailed;
+}
+
+int printUpdate(const golden::UpdateOutcome& u, bool quiet) {
+  long created = 0, changed = 0, unchanged = 0;
+  for (const golden::ReferenceChange& c : u.changes) {
+    switch (c.kind) {
+      case golden::ReferenceChange::Kind::created:
+        ++created;
+        fmt::print("created {}{}\n", c.name, c.from.empty() ? "" : " from " + c.from);
+        break;
+      case golden::ReferenceChange::Kind::changed:
+        ++changed;
+        fmt::print("changed {}: {}{}\n", c.name, c.how, c.from.empty() ? "" : " (from " + c.from + ")");
+        break;
+      case golden::ReferenceChange::Kind::unchanged:
+        ++unchanged;
+        if (!quiet) fmt::print("unchanged {}\n", c.name);
+        break;
+    }
+  }
+  for (const golden::Refusal& r : u.refused) fmt::print("refused {}: {}\n", r.name, r.why);
+  for (const std::string& e : u.errors) fmt::print("error {}\n", e);
+  fmt::print("golden update: {} created, {} changed, {} unchanged{}{}\n", created, changed, unchanged,
+             u.refused.empty() ? "" : fmt::format(", {} refused", u.refused.size()),
+             u.errors.empty() ? "" : fmt::format(", {} could not be made", u.errors.size()));
+  return u.refused.empty() && u.errors.empty() ? kOk : kSimulationFailed;
+}
+
+int goldenUpdate(const GoldenUpdateOptions& o) {
+  const scenario::GoldenManifest manifest = loadManifest(o.run);
+  if (!o.from.empty()) {
+    if (o.missing) throw InputError("--missing and --from: --from accepts what the report failed on, missing or not");
+    std::vector<fs::path> folders(o.from.begin(), o.from.end());
+    try {
+      return printUpdate(golden::acceptReferences(manifest, folders, o.names, o.run.maxInputMiB), o.run.quiet);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
+  }
+  golden::CheckOptions c = checkOptionsOf(o.run);
+  c.only = o.names;
+  c.missingOnly = o.missing;
+  c.keepAll = true;
+  const fs::path references = manifest.references.empty() ? fs::path(".") : manifest.references;
+  std::error_code ec;
+  fs::create_directories(references, ec);
+  if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", references.string(), ec.message()));
+  output::StagingDirectory staged(references / ".golden-update");
+  const golden::CheckRun run = runChecks(manifest, staged.path(), c, o.run.quiet);
+  return printUpdate(golden::writeRenderedReferences(manifest, staged.path(), run, o.run.maxInputMiB), o.run.quiet);
+}
+
+int goldenReport(const GoldenReportOptions& o) {
+  const fs::path folder = o.output;
+  std::vector<fs::path> inputs(o.folders.begin(), o.folders.end());
+  checkReportFolder(folder, inputs);
+  output::StagingDirectory staged(folder);
+  golden::GoldenResults merged;
+  try {
+    merged = golden::mergeReports(inputs, staged.path(), o.maxInputMiB);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  golden::writeReport(staged.path(), merged);
+  publish(staged, folder);
+  if (!o.quiet) printFailures(merged);
+  fmt::print("{}\n", golden::summaryLine(merged, folder));
+  return merged.allPassed() ? kOk : kSimulationFailed;
+}
+
+int goldenCommand(const GoldenOptions& o) {
+  if (o.checkCommand && o.checkCommand->parsed()) return goldenCheck(o.check);
+  if (o.updateCommand && o.updateCommand->parsed()) return goldenUpdate(o.update);
+  return goldenReport(o.report);
+}
+
+}  // namespace
+
+const CommandDescriptor<GoldenOptions> kGoldenCommand = {
+    .name = "golden",
+    .summary = "Golden tests of a manifest's frames and states: check, update references, merge reports",
+    .addOptions = addGoldenOptions,
+    .run = goldenCommand,
+};
+
+}  // namespace particles::app

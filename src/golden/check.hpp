@@ -1,0 +1,85 @@
+#pragma once
+// Checking a golden manifest (golden/README.md): each entry's scenario is loaded once (with its
+// --set overrides) and simulated once, through all of its times in increasing order, each frame
+// drawn and compared with its reference PNG as `particles compare` does, each state compared with
+// its reference CSV (golden/state_table.hpp). A frame is the same pixels as
+// `particles render SCENARIO --at T` with the entry's render settings: the same stepper reaches
+// each time by the same steps (core/solver.hpp).
+//
+// Nothing here prints, parses the command line or writes the report's pages: the program does
+// (src/app/golden_command.cpp, golden/results.hpp). What this writes is the files kept for the
+// report (actual, expected, diff) into the folder it is given.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "golden/results.hpp"
+#include "render/gl_backend.hpp"
+#include "render/image_compare.hpp"
+#include "render/render_options.hpp"
+#include "scenario/golden_manifest.hpp"
+
+namespace particles::golden {
+
+// Settings of the command line over the manifest's defaults (an entry that sets its own keeps it):
+// another raster path or tolerance for a run whose pixels are expected to differ a little (the tile
+// path, another backend).
+struct CheckOverrides {
+  std::optional<render::Raster> raster;
+  std::optional<int> threshold;
+  std::optional<double> maxShare;
+  bool any() const { return raster || threshold || maxShare; }
+  std::string text() const;  // "--raster tiles --max-share 0.0005", as the command line writes them
+};
+
+struct CheckOptions {
+  std::string manifestGiven;                 // the manifest as given on the command line, for commands
+  std::optional<std::pair<int, int>> shard;  // K, N: the K-th of N near-equal blocks of the checks, 1 ≤ K ≤ N
+  std::vector<std::string> only;             // names of frames and states; empty: all
+  bool missingOnly = false;                  // only the checks whose reference is absent (update --missing)
+  render::GlRequest gl;
+  CheckOverrides overrides;
+  int jobs = 1;                     // entries simulated at once, each on its own thread and GL context
+  std::uintmax_t maxInputMiB = 64;  // scenarios, reference PNGs and state files
+  // Keep the actual frame or state of every check, passing or not (update writes them as references).
+  bool keepAll = false;
+  std::string program = "particles";  // how the commands that reproduce a result spell the program
+  // After each check: done of total.
+  std::function<void(long done, long total, const std::string& name)> progress;
+};
+
+// What a run makes: results in manifest order (frames, then states), and whether a reference was
+// unusable (not a regular file, past the size limit, not a PNG or state file, another size): bad
+// input, exit 2, though every check ran and is reported.
+struct CheckRun {
+  GoldenResults results;
+  bool badReference = false;
+};
+
+// The names of every check of the manifest, frames then states, in manifest order.
+std::vector<std::string> checkNames(const scenario::GoldenManifest& manifest);
+
+// Throws ScenarioError in the manifest for render settings the renderer does not know (a theme,
+// a raster path, a background), for every entry, before anything runs.
+void checkRenderSettings(const scenario::GoldenManifest& manifest);
+
+// Runs the checks the options select into `folder` (which exists): kept files under frames/ and
+// states/. Throws std::invalid_argument for --only names the manifest does not have (with the
+// closest one) or a shard out of range; OutputError when a kept file cannot be written. A scenario
+// that does not load, a simulation that blows up or a GL error is that entry's `error` result.
+CheckRun runCheck(const scenario::GoldenManifest& manifest, const std::filesystem::path& folder,
+                  const CheckOptions& options);
+
+// A comparison's numbers as the results hold them.
+FrameNumbers frameNumbersOf(const render::ImageComparison& comparison, const render::CompareTolerance& tolerance);
+
+// The reference file of a frame (NAME.png) or state (NAME.csv).
+std::filesystem::path frameReference(const scenario::GoldenManifest& manifest, const std::string& name);
+std::filesystem::path stateReference(const scenario::GoldenManifest& manifest, const std::string& name);
+
+}  // namespace particles::golden

@@ -1,0 +1,268 @@
+// Writing references and merging report folders: see references.hpp.
+#include "golden/references.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+
+#include "golden/state_table.hpp"
+#include "input/text_file.hpp"
+#include "output/output_file.hpp"
+#include "render/png_io.hpp"
+
+namespace particles::golden {
+
+namespace fs = std::filesystem;
+using scenario::GoldenEntry;
+using scenario::GoldenManifest;
+
+namespace {
+
+// A check of the manifest by name: whether it is a frame, and whether update may write its reference.
+struct Named {
+  bool frame = true;
+  bool writable = true;  // not a control, not compared with another's reference
+  fs::path reference;
+};
+
+std::map<std::string, Named> checksByName(const GoldenManifest& m) {
+  std::map<std::string, Named> out;
+  for (const GoldenEntry& e : m.frames) {
+    for (const scenario::GoldenTime& t : e.times) {
+      out[t.frameName] = {true, !e.expectDiffer && !e.reference, frameReference(m, t.frameName)};
+    }
+  }
+  for (const GoldenEntry& e : m.states) out[e.stateName] = {false, true, stateReference(m, e.stateName)};
+  return out;
+}
+
+std::string readWhole(const fs::path& file, std::uintmax_t maxInputMiB) {
+  try {
+    return input::readBinaryFile(file, maxInputMiB, input::Accept::regularOnly);
+  } catch (const input::ReadError& e) {
+    throw std::invalid_argument(fmt::format("{}: {}", file.string(), e.what()));
+  }
+}
+
+// The file's bytes once they are known to be what a reference of this kind holds.
+void checkContent(const std::string& bytes, bool frame, const std::string& label) {
+  if (frame) {
+    render::readPngBytes({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, label);
+  } else {
+    if (bytes.find('\0') != std::string::npos) throw std::invalid_argument(label + " holds a NUL byte");
+    parseStateText(bytes, label);
+  }
+}
+
+// Writes `bytes` as the reference when they differ from what is there; says what it did.
+ReferenceChange writeReference(const fs::path& reference, const std::string& bytes, const std::string& name,
+                               std::uintmax_t maxInputMiB) {
+  ReferenceChange change;
+  change.name = name;
+  std::error_code ec;
+  const bool exists = fs::symlink_status(reference, ec).type() != fs::file_type::not_found;
+  if (exists) {
+    std::string old;
+    try {
+      old = input::readBinaryFile(reference, maxInputMiB, input::Accept::regularOnly);
+    } catch (const input::ReadError&) {  // unreadable: replaced
+    }
+    if (old == bytes) return change;
+    change.kind = ReferenceChange::Kind::changed;
+  } else {
+    change.kind = ReferenceChange::Kind::created;
+  }
+  fs::create_directories(reference.parent_path().empty() ? fs::path(".") : reference.parent_path(), ec);
+  output::OutputFile out(reference);
+  out.write(bytes);
+  out.commit();
+  return change;
+}
+
+std::string frameChange(const FrameResult& r) {
+  if (!r.numbers) return r.message;
+  const FrameNumbers& n = *r.numbers;
+  return fmt::format("{:.4f} % of the pixels differ by more than {} ({} of {}), largest difference {}", 100.0 * n.share,
+                     n.threshold, n.differing, n.pixels, n.largest);
+}
+
+std::string stateChange(const StateResult& r) {
+  if (!r.largest) return r.message;
+  const StateDeviation& d = *r.largest;
+  return fmt::format("largest difference {:.3g} in {} of {} at t = {} ({} → {})", d.difference, d.quantity, d.point,
+                     d.time, d.expected, d.actual);
+}
+
+}  // namespace
+
+UpdateOutcome writeRenderedReferences(const GoldenManifest& manifest, const fs::path& folder, const CheckRun& run,
+                                      std::uintmax_t maxInputMiB) {
+  const std::map<std::string, Named> named = checksByName(manifest);
+  UpdateOutcome out;
+  auto take = [&](const std::string& name, Outcome outcome, const std::string& message, const KeptFiles& files,
+                  const std::string& how) {
+    const Named& n = named.at(name);
+    if (!n.writable) return;
+    if (outcome == Outcome::error || files.actual.empty()) {
+      out.errors.push_back(fmt::format("{}: {}", name, message));
+      return;
+    }
+    ReferenceChange c = writeReference(n.reference, readWhole(folder / files.actual, maxInputMiB), name, maxInputMiB);
+    if (c.kind == ReferenceChange::Kind::changed) c.how = how;
+    out.changes.push_back(std::move(c));
+  };
+  for (const FrameResult& r : run.results.frames) take(r.name, r.outcome, r.message, r.files, frameChange(r));
+  for (const StateResult& r : run.results.states) take(r.name, r.outcome, r.message, r.files, stateChange(r));
+  return out;
+}
+
+UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector<fs::path>& folders,
+                               const std::vector<std::string>& names, std::uintmax_t maxInputMiB) {
+  const std::map<std::string, Named> named = checksByName(manifest);
+  for (const std::string& name : names) {
+    if (!named.count(name))
+      throw std::invalid_argument(fmt::format("{}: the manifest has no frame or state of that name", name));
+  }
+  // Per check: what each folder says of it.
+  struct Seen {
+    fs::path folder;
+    bool passed = false;
+    std::string actual;  // the kept file, when it failed or was missing
+    std::string how;
+  };
+  std::map<std::string, std::vector<Seen>> seen;
+  std::vector<std::string> order;
+  std::vector<Refusal> refused;
+  for (const fs::path& folder : folders) {
+    const GoldenResults results = readResults(folder, maxInputMiB);
+    const bool ownSettings =
+        std::all_of(results.runs.begin(), results.runs.end(), [](const RunFacts& f) { return f.overrides.empty(); });
+    auto note = [&](const std::string& name, Outcome outcome, const KeptFiles& files, const std::string& how,
+                    bool control) {
+      if (!names.empty() && std::find(names.begin(), names.end(), name) == names.end()) return;
+      if (control) return;  // a control's frame is never a reference
+      if (!named.count(name)) {
+        refused.push_back({name, fmt::format("{} has it, the manifest no longer does", folder.string())});
+        return;
+      }
+      if (!seen.count(name)) order.push_back(name);
+      Seen s{folder, outcome == Outcome::passed, "", how};
+      if ((outcome == Outcome::failed || outcome == Outcome::missing) && !files.actual.empty()) {
+        if (!ownSettings) {
+          refused.push_back({name, fmt::format("{} was rendered with {}, not the manifest's own settings",
+                                               folder.string(), results.runs.front().overrides)});
+          return;
+        }
+        s.actual = files.actual;
+      } else if (outcome != Outcome::passed) {
+        s.how = "error";
+      }
+      seen[name].push_back(std::move(s));
+    };
+    for (const FrameResult& r : results.frames) note(r.name, r.outcome, r.files, frameChange(r), r.expectDiffer);
+    for (const StateResult& r : results.states) note(r.name, r.outcome, r.files, stateChange(r), false);
+  }
+  UpdateOutcome out;
+  out.refused = std::move(refused);
+  for (const std::string& name : order) {
+    const std::vector<Seen>& all = seen.at(name);
+    const Named& n = named.at(name);
+    if (!n.writable) continue;
+    const bool anyActual = std::any_of(all.begin(), all.end(), [](const Seen& s) { return !s.actual.empty(); });
+    if (!anyActual) continue;  // passed everywhere: nothing to accept
+    const Seen* first = nullptr;
+    std::string bytes;
+    std::string why;
+    for (const Seen& s : all) {
+      if (s.actual.empty()) {
+        why = fmt::format("{} {} where {} failed", s.folder.string(), s.passed ? "passed" : "could not check it",
+                          all.front().folder.string());
+        break;
+      }
+      try {
+        std::string these = readWhole(s.folder / s.actual, maxInputMiB);
+        if (!first) {
+          checkContent(these, n.frame, (s.folder / s.actual).string());
+          first = &s;
+          bytes = std::move(these);
+        } else if (these != bytes) {
+          why = fmt::format("{} and {} hold different actual {}s", (first->folder / first->actual).string(),
+                            (s.folder / s.actual).string(), n.frame ? "frame" : "state");
+          break;
+        }
+      } catch (const std::invalid_argument& e) {
+        why = e.what();
+        break;
+      } catch (const std::runtime_error& e) {  // a PNG that does not decode
+        why = e.what();
+        break;
+      }
+    }
+    if (!why.empty()) {
+      out.refused.push_back({name, why});
+      continue;
+    }
+    ReferenceChange c = writeReference(n.reference, bytes, name, maxInputMiB);
+    c.from = (first->folder / first->actual).string();
+    if (c.kind == ReferenceChange::Kind::changed) c.how = first->how;
+    out.changes.push_back(std::move(c));
+  }
+  return out;
+}
+
+GoldenResults mergeReports(const std::vector<fs::path>& folders, const fs::path& into, std::uintmax_t maxInputMiB) {
+  struct Part {
+    fs::path folder;
+    GoldenResults results;
+    int shard = 0;
+  };
+  std::vector<Part> parts;
+  for (const fs::path& folder : folders) {
+    Part p{folder, readResults(folder, maxInputMiB)};
+    if (p.results.runs.size() == 1 && !p.results.runs[0].shard.empty()) {
+      p.shard = std::atoi(p.results.runs[0].shard.c_str());
+    }
+    parts.push_back(std::move(p));
+  }
+  if (std::all_of(parts.begin(), parts.end(), [](const Part& p) { return p.shard > 0; })) {
+    std::stable_sort(parts.begin(), parts.end(), [](const Part& a, const Part& b) { return a.shard < b.shard; });
+  }
+  GoldenResults merged;
+  std::map<std::string, fs::path> owner;
+  auto claim = [&](const std::string& name, const fs::path& folder) {
+    const auto [it, fresh] = owner.emplace(name, folder);
+    if (!fresh) {
+      throw std::invalid_argument(fmt::format("{} and {} both hold {}: merge the shards of one run, each once",
+                                              it->second.string(), folder.string(), name));
+    }
+  };
+  auto copy = [&](const fs::path& folder, const KeptFiles& files) {
+    for (const std::string* f : {&files.actual, &files.expected, &files.diff}) {
+      if (f->empty()) continue;
+      const std::string bytes = readWhole(folder / *f, maxInputMiB);
+      std::error_code ec;
+      fs::create_directories((into / *f).parent_path(), ec);
+      output::OutputFile out(into / *f);
+      out.write(bytes);
+      out.commit();
+    }
+  };
+  for (Part& p : parts) {
+    merged.runs.insert(merged.runs.end(), p.results.runs.begin(), p.results.runs.end());
+    for (FrameResult& r : p.results.frames) {
+      claim(r.name, p.folder);
+      copy(p.folder, r.files);
+      merged.frames.push_back(std::move(r));
+    }
+    for (StateResult& r : p.results.states) {
+      claim(r.name, p.folder);
+      copy(p.folder, r.files);
+      merged.states.push_back(std::move(r));
+    }
+  }
+  return merged;
+}
+
+}  // namespace particles::golden
