@@ -274,11 +274,23 @@ PngSize readPngSize(const std::filesystem::path& path) {
   return openPng(path, file).size();
 }
 
-Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name) {
+namespace {
+
+PngDecoder openPngBytes(std::span<const std::uint8_t> bytes, const std::string& name, MemoryReader& reader) {
   if (!hasPngSignature(bytes)) throw OutputError(name + " is not a PNG file");
+  return PngDecoder(name, bytes.size(), [&](png_structp png) { png_set_read_fn(png, &reader, readFromMemory); });
+}
+
+}  // namespace
+
+Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name) {
   MemoryReader reader{bytes};
-  return PngDecoder(name, bytes.size(), [&](png_structp png) { png_set_read_fn(png, &reader, readFromMemory); })
-      .decode();
+  return openPngBytes(bytes, name, reader).decode();
+}
+
+PngSize readPngBytesSize(std::span<const std::uint8_t> bytes, const std::string& name) {
+  MemoryReader reader{bytes};
+  return openPngBytes(bytes, name, reader).size();
 }
 
 }  // namespace particles::render

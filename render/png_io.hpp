@@ -45,5 +45,7 @@ struct PngSize {
 PngSize readPngSize(const std::filesystem::path& path);
 // The same from the bytes of a PNG file in memory; `name` labels messages.
 Image readPngBytes(std::span<const std::uint8_t> bytes, const std::string& name = "PNG data");
+// Its size from the header, as readPngSize.
+PngSize readPngBytesSize(std::span<const std::uint8_t> bytes, const std::string& name = "PNG data");
 
 }  // namespace particles::render

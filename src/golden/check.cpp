@@ -344,21 +344,26 @@ class CheckRunner {
       r.files.actual = actualFile;
       return;
     }
-    render::Image expected;
+    // The reference's header first: a size other than the frame's is a failure told without
+    // decoding its pixels (a header may claim 16384² pixels, 1 GiB).
     std::string bytes;
+    render::Image expected;
+    std::string mismatch;
     try {
       bytes = readReference(reference, o_.maxInputMiB);
-      expected = render::readPngBytes({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()},
-                                      shownPath(reference));
+      const std::span<const std::uint8_t> pngBytes(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+      const render::PngSize size = render::readPngBytesSize(pngBytes, r.reference);
+      mismatch = render::sizeMismatch(size.width, size.height, actual.width, actual.height);
+      if (mismatch.empty()) expected = render::readPngBytes(pngBytes, r.reference);
+    } catch (const std::bad_alloc&) {
+      throw;
     } catch (const std::exception& ex) {
-      if (dynamic_cast<const std::bad_alloc*>(&ex)) throw;
       r.outcome = Outcome::error;
       r.message = fmt::format("the reference cannot be used: {}", ex.what());
       std::lock_guard lock(mutex_);
       badReference_ = true;
       return;
     }
-    const std::string mismatch = render::sizeMismatch(expected, actual);
     r.reproduce.insert(r.reproduce.begin() + 1,
                        shellCommand({o_.program, "compare", r.reference, r.name + ".png", "--threshold",
                                      fmt::format("{}", tolerance.threshold), "--max-share",

@@ -195,6 +195,13 @@ reference.write_bytes(b"\x89PNG\r\n\x1a\n" + b"\x00\x00\x00\x0dIHDR" + b"\xff" *
 p = run("check", MANIFEST, "-o", "report", timeout=120)
 check(p.returncode == 2 and by_name(results("report"))["rod_pendulum_t1"]["outcome"] == "error",
       "a PNG with a bad header: exit 2, the check's outcome is error")
+# A reference of another size is a failure (the frame changed size), told from its header alone.
+subprocess.run([str(PARTICLES), "render", "scenarios/rod_pendulum.yaml", "-o", str(reference), "--at", "1",
+                "--size", "80x60", "-q"], cwd=SCRATCH, check=True, timeout=120)
+p = run("check", MANIFEST, "-o", "report", timeout=120)
+r = by_name(results("report"))["rod_pendulum_t1"]
+check(p.returncode == 1 and r["outcome"] == "failed" and "80" in r["message"] and "160" in r["message"],
+      "a reference of another size: exit 1, failed, both sizes named")
 reference.write_bytes(good)
 
 # 7. Bad input.
