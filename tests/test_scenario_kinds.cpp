@@ -1,7 +1,8 @@
 // Every registered kind (core/kinds.cpp) is documented, described by the schema and validated by
 // the loader from its one description (core/kind.hpp): docs/scenarios.md holds each kind's key
 // table exactly as `particles schema --markdown` prints it, docs/scenario.schema.json is what
-// `particles schema` prints, and every bound a kind declares is the bound the loader enforces.
+// `particles schema` prints (and docs/golden-manifest.schema.json what `particles schema --golden`
+// prints), and every bound a kind declares is the bound the loader enforces.
 #include <doctest/doctest.h>
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "core/kind.hpp"
+#include "scenario/golden_manifest.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/schema.hpp"
 
@@ -88,6 +90,11 @@ TEST_CASE("docs/scenarios.md holds every registered kind's key table, as the kin
 TEST_CASE("docs/scenario.schema.json is what `particles schema` prints") {
   // On failure: particles schema > docs/scenario.schema.json
   CHECK(readSource("docs/scenario.schema.json") == scenarioJsonSchema());
+}
+
+TEST_CASE("docs/golden-manifest.schema.json is what `particles schema --golden` prints") {
+  // On failure: particles schema --golden > docs/golden-manifest.schema.json
+  CHECK(readSource("docs/golden-manifest.schema.json") == goldenManifestJsonSchema());
 }
 
 TEST_CASE("every kind loads from its required keys alone, and rejects a key it does not declare") {
