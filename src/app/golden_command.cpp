@@ -61,7 +61,8 @@ void addGoldenOptions(CLI::App& command, GoldenOptions& o) {
   check->add_option("--max-share", o.check.maxShare, "The share bound for entries that do not set their own (0 … 1)")
       ->check(CLI::Range(0.0, 1.0));
   check->footer(fmt::format(
-      "Exit codes: 0 every check passed, 1 one failed or has no reference yet, 2 a bad manifest or usage or an\n"
+      "Exit codes: 0 every check passed, 1 one failed, has no reference yet or could not run (its scenario or\n"
+      "simulation failed), 2 a bad manifest or usage or an\n"
       "unusable reference (a FIFO, too large, not a PNG: the report is still written), 3 the report could not be\n"
       "written. Guide: golden/README.md.\n"
       "Examples:\n"
@@ -142,6 +143,10 @@ void checkReportFolder(const fs::path& folder, const std::vector<fs::path>& inpu
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(folder, ec);
   if (st.type() != fs::file_type::not_found) {
+    if (st.type() == fs::file_type::symlink) {
+      throw InputError(
+          fmt::format("-o {}: a symbolic link; give the folder itself (it is replaced whole)", folder.string()));
+    }
     if (st.type() != fs::file_type::directory) {
       throw InputError(fmt::format("-o {}: not a folder; the report is a folder", folder.string()));
     }
@@ -162,6 +167,14 @@ void checkReportFolder(const fs::path& folder, const std::vector<fs::path>& inpu
                                    folder.string(), input.string()));
     }
   }
+}
+
+// The folder the report folder goes in, made when it is not there (a build tree's golden/).
+void makeParent(const fs::path& folder) {
+  const fs::path parent = fs::absolute(folder).parent_path();
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", parent.string(), ec.message()));
 }
 
 // Moves the staged report into place: the earlier one out of the way first, removed last.
@@ -215,6 +228,7 @@ int goldenCheck(const GoldenCheckOptions& o) {
   c.overrides.maxShare = o.maxShare;
   const fs::path folder = o.output;
   checkReportFolder(folder, {o.run.manifest, manifest.references});
+  makeParent(folder);
   output::StagingDirectory staged(folder);
   const auto start = std::chrono::steady_clock::now();
   golden::CheckRun run = runChecks(manifest, staged.path(), c, o.run.quiet);
@@ -249,6 +263,7 @@ int printUpdate(const golden::UpdateOutcome& u, bool quiet) {
         break;
     }
   }
+  for (const std::string& note : u.notes) fmt::print("{}\n", note);
   for (const golden::Refusal& r : u.refused) fmt::print("refused {}: {}\n", r.name, r.why);
   for (const std::string& e : u.errors) fmt::print("error {}\n", e);
   fmt::print("golden update: {} created, {} changed, {} unchanged{}{}\n", created, changed, unchanged,
@@ -285,6 +300,7 @@ int goldenReport(const GoldenReportOptions& o) {
   const fs::path folder = o.output;
   std::vector<fs::path> inputs(o.folders.begin(), o.folders.end());
   checkReportFolder(folder, inputs);
+  makeParent(folder);
   output::StagingDirectory staged(folder);
   golden::GoldenResults merged;
   try {

@@ -310,7 +310,7 @@ class CheckRunner {
         }
         if (t.seconds > s.system.time()) stepper.advanceTo(t.seconds);
         const render::Image actual = renderer.render(s.system.draw(), camera);
-        compareFrame(r, actual, tolerance, png);
+        compareFrame(e, r, actual, tolerance, png);
         finish(r);
       }
     } catch (const output::OutputError&) {
@@ -326,8 +326,8 @@ class CheckRunner {
     render::writePng(folder_ / relative, image, png);
   }
 
-  void compareFrame(FrameResult& r, const render::Image& actual, const render::CompareTolerance& tolerance,
-                    const render::PngOptions& png) {
+  void compareFrame(const GoldenEntry& e, FrameResult& r, const render::Image& actual,
+                    const render::CompareTolerance& tolerance, const render::PngOptions& png) {
     const fs::path reference = r.reference;
     const std::string actualFile = "frames/" + r.name + ".actual.png";
     const std::string expectedFile = "frames/" + r.name + ".expected.png";
@@ -338,8 +338,13 @@ class CheckRunner {
     }
     if (referenceAbsent(reference)) {
       r.outcome = Outcome::missing;
-      r.message = fmt::format("no reference {} yet: create it with {}", shownPath(reference),
-                              shellCommand({o_.program, "golden", "update", o_.manifestGiven, "--missing"}));
+      r.message = e.reference
+                      ? fmt::format(
+                            "no reference {} yet: this check compares with frame {}'s reference, which "
+                            "`golden update` writes for the manifest that has frame {}",
+                            shownPath(reference), e.reference->value, e.reference->value)
+                      : fmt::format("no reference {} yet: create it with {}", shownPath(reference),
+                                    shellCommand({o_.program, "golden", "update", o_.manifestGiven, "--missing"}));
       if (!o_.keepAll) keep(actualFile, actual, png);
       r.files.actual = actualFile;
       return;
@@ -577,7 +582,7 @@ CheckRun runCheck(const GoldenManifest& manifest, const fs::path& folder, const 
   for (const std::string& name : options.only) {
     if (std::find(all.begin(), all.end(), name) == all.end()) {
       const std::string closest = input::closestName(name, all);
-      throw std::invalid_argument(fmt::format("--only {}: the manifest has no frame or state of that name{}", name,
+      throw std::invalid_argument(fmt::format("no frame or state of the manifest is named '{}'{}", name,
                                               closest.empty() ? "" : fmt::format("; did you mean {}?", closest)));
     }
   }

@@ -54,8 +54,9 @@ struct CheckOptions {
 };
 
 // What a run makes: results in manifest order (frames, then states), and whether a reference was
-// unusable (not a regular file, past the size limit, not a PNG or state file, another size): bad
-// input, exit 2, though every check ran and is reported.
+// unusable (not a regular file, past the size limit, not a PNG or state file): bad input, exit 2,
+// though every check ran and is reported. A reference of another size than its frame is usable: the
+// frame changed size, a failure.
 struct CheckRun {
   GoldenResults results;
   bool badReference = false;

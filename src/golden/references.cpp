@@ -104,7 +104,13 @@ UpdateOutcome writeRenderedReferences(const GoldenManifest& manifest, const fs::
   auto take = [&](const std::string& name, Outcome outcome, const std::string& message, const KeptFiles& files,
                   const std::string& how) {
     const Named& n = named.at(name);
-    if (!n.writable) return;
+    if (!n.writable) {
+      out.notes.push_back(
+          fmt::format("{}: a control or a check against another frame's reference: it has no "
+                      "reference of its own to write",
+                      name));
+      return;
+    }
     if (outcome == Outcome::error || files.actual.empty()) {
       out.errors.push_back(fmt::format("{}: {}", name, message));
       return;
@@ -135,10 +141,27 @@ UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector
   std::map<std::string, std::vector<Seen>> seen;
   std::vector<std::string> order;
   std::vector<Refusal> refused;
+  std::vector<std::string> notes;
   for (const fs::path& folder : folders) {
     const GoldenResults results = readResults(folder, maxInputMiB);
-    const bool ownSettings =
-        std::all_of(results.runs.begin(), results.runs.end(), [](const RunFacts& f) { return f.overrides.empty(); });
+    // Folders whose pixels are not the manifest's own (another raster path or tolerance), or that
+    // are reports of another manifest, say nothing for or against: set aside, and said so.
+    const auto overridden =
+        std::find_if(results.runs.begin(), results.runs.end(), [](const RunFacts& f) { return !f.overrides.empty(); });
+    if (overridden != results.runs.end()) {
+      notes.push_back(fmt::format("ignored {}: checked with {}, not the manifest's own settings", folder.string(),
+                                  overridden->overrides));
+      continue;
+    }
+    const bool thisManifest = std::any_of(results.runs.begin(), results.runs.end(), [&](const RunFacts& f) {
+      return fs::path(f.manifest).lexically_normal() == fs::path(manifest.file).lexically_normal();
+    });
+    if (!thisManifest) {
+      notes.push_back(fmt::format("ignored {}: a report of {}, not {}", folder.string(),
+                                  results.runs.empty() ? std::string("no manifest") : results.runs.front().manifest,
+                                  manifest.file));
+      continue;
+    }
     auto note = [&](const std::string& name, Outcome outcome, const KeptFiles& files, const std::string& how,
                     bool control) {
       if (!names.empty() && std::find(names.begin(), names.end(), name) == names.end()) return;
@@ -150,11 +173,6 @@ UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector
       if (!seen.count(name)) order.push_back(name);
       Seen s{folder, outcome == Outcome::passed, "", how};
       if ((outcome == Outcome::failed || outcome == Outcome::missing) && !files.actual.empty()) {
-        if (!ownSettings) {
-          refused.push_back({name, fmt::format("{} was rendered with {}, not the manifest's own settings",
-                                               folder.string(), results.runs.front().overrides)});
-          return;
-        }
         s.actual = files.actual;
       } else if (outcome != Outcome::passed) {
         s.how = "error";
@@ -166,7 +184,11 @@ UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector
   }
   UpdateOutcome out;
   out.refused = std::move(refused);
+  out.notes = std::move(notes);
   for (const std::string& name : order) {
+    const bool refusedAlready =
+        std::any_of(out.refused.begin(), out.refused.end(), [&](const Refusal& r) { return r.name == name; });
+    if (refusedAlready) continue;
     const std::vector<Seen>& all = seen.at(name);
     const Named& n = named.at(name);
     if (!n.writable) continue;

@@ -30,6 +30,7 @@ struct UpdateOutcome {
   std::vector<ReferenceChange> changes;
   std::vector<Refusal> refused;     // --from: checks whose folders disagree or hold nothing usable
   std::vector<std::string> errors;  // checks that could not be rendered or simulated: `NAME: why`
+  std::vector<std::string> notes;   // --from: folders set aside (another manifest, other settings), and why
 };
 
 // Writes the actual frame or state of every result of `run` (made with keepAll into `folder`) as
@@ -40,11 +41,11 @@ UpdateOutcome writeRenderedReferences(const scenario::GoldenManifest& manifest, 
 
 // Accepts the actual frames and states of report folders (`check -o DIR`, downloaded from CI) as
 // references, without rendering: every check of `names` (all when empty) that failed or had no
-// reference in a folder whose run used the manifest's own settings (no --raster, --threshold or
-// --max-share). A check is refused, and named, when the folders disagree on it (one passed,
-// another failed, or their actual files differ), when its file is not a PNG or state file, or
-// when the manifest no longer has it. Throws std::invalid_argument for a folder that is not a
-// report (readResults) and OutputError when a reference cannot be written.
+// reference. Folders of another manifest's run, or of a run with settings over the manifest's
+// (--raster, --threshold, --max-share), are set aside with a note. A check is refused, and named, when the folders
+// disagree on it (one passed, another failed, or their actual files differ), when its file is not a PNG or state file,
+// or when the manifest no longer has it. Throws std::invalid_argument for a folder that is not a report (readResults)
+// and OutputError when a reference cannot be written.
 UpdateOutcome acceptReferences(const scenario::GoldenManifest& manifest,
                                const std::vector<std::filesystem::path>& folders, const std::vector<std::string>& names,
                                std::uintmax_t maxInputMiB);

@@ -148,8 +148,19 @@ for r in merged["frames"] + merged["states"]:
 p = run("report", "shard-1", "shard-1", "-o", "merged-twice")
 check(p.returncode == 2, "merging a shard with itself is refused: exit 2")
 
-# 4. Accepted from the report.
-p = run("update", MANIFEST, "--from", "report")
+# A folder checked with settings over the manifest's (another raster path) is set aside, not
+# taken or counted against the others; a report folder may be nested in folders not yet there.
+p = run("check", MANIFEST, "--raster", "tiles", "--max-share", "0.0005", "-o", "runs/tiles/report")
+check(p.returncode == 1 and (SCRATCH / "runs" / "tiles" / "report" / "report.html").is_file(),
+      "check -o into folders not there yet makes them")
+before = (SCRATCH / "golden" / "springs_t2.png").read_bytes()
+p = run("update", MANIFEST, "--from", "runs/tiles/report")
+check(p.returncode == 0 and "ignored runs/tiles/report: checked with --raster tiles --max-share 0.0005" in p.stdout
+      and (SCRATCH / "golden" / "springs_t2.png").read_bytes() == before,
+      "update --from a folder checked with --raster tiles sets it aside and writes nothing")
+
+# 4. Accepted from the report (the tiles folder beside it changes nothing).
+p = run("update", MANIFEST, "--from", "runs/tiles/report", "--from", "report")
 check(p.returncode == 0, "update --from the report: exit 0")
 check("changed springs_t2" in p.stdout and "changed springs:" in p.stdout, "update --from names what changed")
 check("rod_pendulum_t1" not in p.stdout.replace("unchanged", ""), "a passing frame is not rewritten")

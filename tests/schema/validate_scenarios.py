@@ -4,7 +4,8 @@ python3-jsonschema, draft 7): every file in scenarios/ must pass, every file in 
 must fail it (each bad file's first line says why), and the loader must reject those too
 (`particles check` exits 2), so the schema and the loader agree on both sides.
 
-Golden manifests the same way against `particles schema --golden`: tests/schema/golden/*.yaml pass,
+Golden manifests the same way against `particles schema --golden`: tests/schema/golden/*.yaml and
+golden/*.yaml (the project's) pass,
 tests/schema/golden/bad/*.yaml fail (the loader's side of both is tests/test_golden_manifest.cpp's,
 as no command reads a manifest alone).
 
@@ -66,7 +67,9 @@ def main():
                    sorted(glob.glob(os.path.join(source, "tests", "schema", "bad", "*.yaml"))), failures,
                    check_refuses)
     golden = os.path.join(source, "tests", "schema", "golden")
-    passed += check(validator_of(particles, "--golden"), sorted(glob.glob(os.path.join(golden, "*.yaml"))),
+    # The project's own manifests too (golden/golden.yaml, golden/controls.yaml).
+    manifests = sorted(glob.glob(os.path.join(golden, "*.yaml")) + glob.glob(os.path.join(source, "golden", "*.yaml")))
+    passed += check(validator_of(particles, "--golden"), manifests,
                     sorted(glob.glob(os.path.join(golden, "bad", "*.yaml"))), failures)
 
     for failure in failures:
