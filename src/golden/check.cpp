@@ -202,6 +202,11 @@ class CheckRunner {
     out.results.frames = std::move(frames_);
     out.results.states = std::move(states_);
     out.badReference = badReference_;
+    RunFacts facts;
+    facts.gl = gl_;
+    facts.overrides = o_.overrides.text();
+    if (o_.shard) facts.shard = fmt::format("{}/{}", o_.shard->first, o_.shard->second);
+    out.results.runs.push_back(facts);
     return out;
   }
 
@@ -230,10 +235,8 @@ class CheckRunner {
 
   std::vector<std::string> checkCommand(const std::string& name) const {
     std::vector<std::string> args = {o_.program, "golden", "check", o_.manifestGiven, "--only", name};
-    if (o_.overrides.raster)
-      args.insert(args.end(), {"--raster", std::string(render::rasterNameOf(*o_.overrides.raster))});
-    if (o_.overrides.threshold) args.insert(args.end(), {"--threshold", fmt::format("{}", *o_.overrides.threshold)});
-    if (o_.overrides.maxShare) args.insert(args.end(), {"--max-share", fmt::format("{}", *o_.overrides.maxShare)});
+    const std::vector<std::string> overrides = o_.overrides.args();
+    args.insert(args.end(), overrides.begin(), overrides.end());
     if (o_.gl.backend != render::GlBackend::automatic) {
       args.insert(args.end(), {"--gl", std::string(render::glBackendName(o_.gl.backend))});
     }
@@ -245,10 +248,6 @@ class CheckRunner {
     if (gl_.empty()) gl_ = render::describe(info);
   }
 
- public:
-  std::string gl() const { return gl_; }
-
- private:
   void runFrames(const std::vector<const Check*>& unit) {
     const GoldenEntry& e = m_.frames[unit.front()->entry];
     auto start = std::chrono::steady_clock::now();
@@ -530,12 +529,16 @@ FrameNumbers frameNumbersOf(const render::ImageComparison& c, const render::Comp
   return n;
 }
 
-std::string CheckOverrides::text() const {
+std::vector<std::string> CheckOverrides::args() const {
   std::vector<std::string> words;
   if (raster) words.insert(words.end(), {"--raster", std::string(render::rasterNameOf(*raster))});
   if (threshold) words.insert(words.end(), {"--threshold", fmt::format("{}", *threshold)});
   if (maxShare) words.insert(words.end(), {"--max-share", fmt::format("{}", *maxShare)});
-  return fmt::format("{}", fmt::join(words, " "));
+  return words;
+}
+
+std::string CheckOverrides::text() const {
+  return fmt::format("{}", fmt::join(args(), " "));
 }
 
 fs::path frameReference(const GoldenManifest& manifest, const std::string& name) {
@@ -619,14 +622,7 @@ CheckRun runCheck(const GoldenManifest& manifest, const fs::path& folder, const 
   if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", (folder / "frames").string(), ec.message()));
   fs::create_directories(folder / "states", ec);
   if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", (folder / "states").string(), ec.message()));
-  CheckRunner runner(manifest, folder, options, std::move(selected));
-  CheckRun run = runner.run();
-  RunFacts facts;
-  facts.gl = runner.gl();
-  facts.overrides = options.overrides.text();
-  if (options.shard) facts.shard = fmt::format("{}/{}", options.shard->first, options.shard->second);
-  run.results.runs.push_back(facts);
-  return run;
+  return CheckRunner(manifest, folder, options, std::move(selected)).run();
 }
 
 }  // namespace particles::golden

@@ -34,7 +34,9 @@ struct CheckOverrides {
   std::optional<int> threshold;
   std::optional<double> maxShare;
   bool any() const { return raster || threshold || maxShare; }
-  std::string text() const;  // "--raster tiles --max-share 0.0005", as the command line writes them
+  std::vector<std::string> args()
+      const;                 // {"--raster", "tiles", "--max-share", "0.0005"}, as the command line has them
+  std::string text() const;  // the same joined by spaces
 };
 
 struct CheckOptions {
