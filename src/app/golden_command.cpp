@@ -125,6 +125,7 @@ golden::CheckOptions checkOptionsOf(const GoldenRunOptions& o) {
   return c;
 }
 
+// K/N as written; its range is runCheck's to check.
 std::optional<std::pair<int, int>> shardOf(const std::string& text) {
   if (text.empty()) return std::nullopt;
   int k = 0, n = 0;
@@ -132,13 +133,13 @@ std::optional<std::pair<int, int>> shardOf(const std::string& text) {
   auto [p, ec] = std::from_chars(text.data(), end, k);
   if (ec == std::errc() && p < end && *p == '/') {
     auto [q, ec2] = std::from_chars(p + 1, end, n);
-    if (ec2 == std::errc() && q == end && n >= 1 && k >= 1 && k <= n) return std::pair{k, n};
+    if (ec2 == std::errc() && q == end) return std::pair{k, n};
   }
   throw InputError(fmt::format("--shard {}: expected K/N with 1 ≤ K ≤ N, e.g. 1/2", text));
 }
 
 // The report folder: replaced whole when it holds an earlier report (or nothing); anything else
-// there is refused, not overwritten. It may not hold the manifest or the references.
+// there is refused, not overwritten. It may not hold what the command reads.
 void checkReportFolder(const fs::path& folder, const std::vector<fs::path>& inputs) {
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(folder, ec);
@@ -227,7 +228,11 @@ int goldenCheck(const GoldenCheckOptions& o) {
   c.overrides.threshold = o.threshold;
   c.overrides.maxShare = o.maxShare;
   const fs::path folder = o.output;
-  checkReportFolder(folder, {o.run.manifest, manifest.references});
+  std::vector<fs::path> inputs = {o.run.manifest, manifest.references};
+  for (const auto* entries : {&manifest.frames, &manifest.states}) {
+    for (const scenario::GoldenEntry& e : *entries) inputs.push_back(e.scenario);
+  }
+  checkReportFolder(folder, inputs);
   makeParent(folder);
   output::StagingDirectory staged(folder);
   const auto start = std::chrono::steady_clock::now();
