@@ -31,6 +31,9 @@ else
     http://deb.debian.org/debian >"$out/debootstrap.log"
 fi
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+# debootstrap writes no /etc/hosts, which every installed or container machine has: without it
+# "localhost" does not resolve (Selenium reaches chromedriver by that name).
+[ -e "$root/etc/hosts" ] || printf '127.0.0.1\tlocalhost\n::1\tlocalhost ip6-localhost ip6-loopback\n' >"$root/etc/hosts"
 mounted=()
 cleanup() {
   local m
