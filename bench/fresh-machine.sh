@@ -34,6 +34,12 @@ cp /etc/resolv.conf "$root/etc/resolv.conf"
 # debootstrap writes no /etc/hosts, which every installed or container machine has: without it
 # "localhost" does not resolve (Selenium reaches chromedriver by that name).
 [ -e "$root/etc/hosts" ] || printf '127.0.0.1\tlocalhost\n::1\tlocalhost ip6-localhost ip6-loopback\n' >"$root/etc/hosts"
+# The CAs this machine adds to Debian's (a network's proxy, say): a machine of the same network
+# has them too, and without them nothing reaches https:// (npm's registry).
+if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
+  cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
+  chroot "$root" update-ca-certificates >/dev/null
+fi
 mounted=()
 cleanup() {
   local m
