@@ -59,6 +59,9 @@ TEST_CASE("golden state file: a file that is not one is refused with its line") 
         "ref.csv:3: vx: 'x3' is not a number");
   CHECK(message("t,name,x,y,vx,vy,angle,omega\n1,\"a,1,2,3,4,5,6\n") == "ref.csv:2: a quoted field does not end");
   CHECK(message("t,name,x,y,vx,vy,angle,omega\r\n1,a,1,2,3,4,5,6\r\n") == "accepted");
+  constexpr char withNul[] = "t,name,x,y,vx,vy,angle,omega\n1,a\0,1,2,3,4,5,6\n";
+  CHECK(message(std::string(withNul, sizeof withNul - 1)) ==
+        "ref.csv: byte 33 is a NUL byte, which no state file holds");
 }
 
 TEST_CASE("golden state comparison: the first value beyond its tolerance, in file order") {

@@ -93,6 +93,9 @@ std::string stateText(const std::vector<StateRow>& rows) {
 }
 
 std::vector<StateRow> parseStateText(std::string_view text, const std::string& file) {
+  if (const size_t nul = text.find('\0'); nul != std::string_view::npos) {
+    throw std::invalid_argument(fmt::format("{}: byte {} is a NUL byte, which no state file holds", file, nul + 1));
+  }
   const size_t headerEnd = text.find('\n');
   std::string_view header = text.substr(0, headerEnd);
   if (!header.empty() && header.back() == '\r') header.remove_suffix(1);
