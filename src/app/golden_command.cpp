@@ -8,8 +8,8 @@
 #include <charconv>
 #include <filesystem>
 #include <stdexcept>
-#include <thread>
 
+#include "app/available_cores.hpp"
 #include "app/cli_support.hpp"
 #include "app/gl_options.hpp"
 #include "golden/check.hpp"
@@ -28,7 +28,9 @@ namespace {
 
 void addRunOptions(CLI::App& command, GoldenRunOptions& o) {
   command.add_option("manifest", o.manifest, "The golden manifest (YAML, golden/README.md)")->capture_default_str();
-  command.add_option("-j,--jobs", o.jobs, "Entries simulated at once (default: half the cores, at least 1)")
+  command
+      .add_option("-j,--jobs", o.jobs,
+                  "Entries simulated at once (default: half the CPUs this process may use, at least 1)")
       ->check(CLI::Range(1, 256));
   command
       .add_option("--gl", o.gl,
@@ -119,7 +121,7 @@ golden::CheckOptions checkOptionsOf(const GoldenRunOptions& o) {
   golden::CheckOptions c;
   c.manifestGiven = o.manifest;
   c.gl = glRequestOf(o.gl, false);
-  c.jobs = o.jobs > 0 ? o.jobs : std::max(1, int(std::thread::hardware_concurrency() / 2));
+  c.jobs = o.jobs > 0 ? o.jobs : std::max(1, availableCores() / 2);
   c.maxInputMiB = o.maxInputMiB;
   c.program = programPath();
   return c;

@@ -16,8 +16,8 @@
 #include <cstring>
 #include <fstream>
 #include <map>
-#include <thread>
 
+#include "app/available_cores.hpp"
 #include "app/cli_support.hpp"
 #include "app/exit_codes.hpp"
 #include "app/gather_command.hpp"
@@ -186,7 +186,8 @@ void addSweepOptions(CLI::App& command, SweepOptions& o) {
   command.add_option("spec", o.spec, "The sweep file (YAML, see docs/sweeps.md)")->required();
   command.add_option("-o,--out", o.out,
                      "The output folder: jobs.csv, a folder per job, results.csv (default ./sweep-NAME)");
-  command.add_option("-j,--jobs", o.jobs, "Jobs at once here (0: one per core)")->check(CLI::Range(0, 4096));
+  command.add_option("-j,--jobs", o.jobs, "Jobs at once here (0: one per CPU this process may use)")
+      ->check(CLI::Range(0, 4096));
   command
       .add_option("--emit", o.emit,
                   "Write the jobs for another engine and run nothing: parallel (jobs.txt for GNU parallel) or slurm "
@@ -228,7 +229,7 @@ int sweepCommand(const SweepOptions& o) {
     return kOk;
   }
 
-  const int parallel = o.jobs > 0 ? o.jobs : int(std::max(1u, std::thread::hardware_concurrency()));
+  const int parallel = o.jobs > 0 ? o.jobs : availableCores();
   if (!o.quiet) {
     fmt::print(stderr, "{}: {} ({}), {} at once → {}\n", o.spec, plural(plan.jobs.size(), "job", "jobs"), spec.command,
                parallel, plan.outDir.string());
