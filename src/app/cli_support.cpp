@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/thread_count.hpp"
 #include "core/system.hpp"
 #include "plot/errors.hpp"
 #include "plot/figure.hpp"
@@ -32,8 +33,11 @@ scenario::SceneLimits sceneLimitsOf(const CommonOptions& o) {
 }
 
 scenario::Scenario loadScenario(const CommonOptions& o) {
+  const int threads = threadCountOf(o.threads);  // a bad PARTICLES_THREADS before any work
   const auto overrides = overridesOf(o);
-  return scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB, sceneLimitsOf(o));
+  scenario::Scenario s = scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB, sceneLimitsOf(o));
+  s.system.setThreads(threads);
+  return s;
 }
 
 void addCommonOptions(CLI::App& command, CommonOptions& o) {
@@ -46,6 +50,12 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);
   command.add_flag("-q,--quiet", o.quiet, "No progress and no summary; errors are still printed");
+  command
+      .add_option("--threads", o.threads,
+                  fmt::format("Threads the simulation runs on (default: {}, else one per CPU this process may use); "
+                              "the results are the same bits for every count",
+                              kThreadsEnvironmentVariable))
+      ->check(CLI::Range(1, kMaxThreads));
   addMaxInputOption(command, o.maxInputMiB, "a scenario file");
   command
       .add_option("--limit", o.limits,

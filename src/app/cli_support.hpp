@@ -31,6 +31,7 @@ struct CommonOptions {
   std::vector<std::string> sets;                               // --set path=value, in order
   std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;     // --max-input
   std::vector<std::string> limits;                             // --limit NAME=N, in order
+  int threads = 0;                                             // --threads N; 0: app/thread_count.hpp's default
   bool quiet = false;
 };
 
@@ -42,7 +43,9 @@ std::vector<scenario::Override> overridesOf(const CommonOptions& o);
 // The scene limits: the defaults with each --limit NAME=N applied, in order.
 scenario::SceneLimits sceneLimitsOf(const CommonOptions& o);
 
-// Loads the scenario with the overrides. Throws scenario::ScenarioError for bad input.
+// Loads the scenario with the overrides, its System set to run on --threads' threads (or
+// PARTICLES_THREADS', or one per CPU this process may use). Throws scenario::ScenarioError for bad
+// input, InputError for a bad PARTICLES_THREADS.
 scenario::Scenario loadScenario(const CommonOptions& o);
 
 // Refuses (InputError, exit 2) a figure path that plot/ cannot write (.svg, .png or .pdf), so that

@@ -13,6 +13,7 @@
 
 #include "app/cli_support.hpp"
 #include "app/job_record.hpp"
+#include "app/thread_count.hpp"
 #include "core/stability.hpp"
 #include "output/output_file.hpp"
 #include "plot/stability_figure.hpp"
@@ -144,7 +145,8 @@ int stabilityCommand(const StabilityOptionsCli& options) {
   study.minDt = minDt;
   study.maxDt = options.maxDt;
   study.costDtCap = 1.0 / s.render.fps;
-  study.threads = options.threads;
+  // --threads (or PARTICLES_THREADS, or the CPUs this process may use): the study's trial runs share them.
+  study.threads = threadCountOf(common.threads);
 
   if (!common.quiet) {
     fmt::print(
@@ -256,8 +258,6 @@ void addStabilityOptions(CLI::App& command, StabilityOptionsCli& stability) {
   command.add_option("--min-dt", stability.minDt,
                      fmt::format("Smallest dt tried, s (default: the scenario's dt / {})", kMinDtDivisor));
   command.add_option("--max-dt", stability.maxDt, "Largest dt tried, s")->capture_default_str();
-  command.add_option("--threads", stability.threads, "Integrators studied at once (0: one per core)")
-      ->capture_default_str();
   command.footer(
       "Criteria and the report's results: docs/stability.md.\n"
       "Examples:\n"

@@ -31,7 +31,6 @@ struct StabilityOptionsCli {
   double shakeThreshold = StabilityCriteria{}.shakeThreshold;
   double minDt = 0;  // 0: the scenario's dt / kMinDtDivisor
   double maxDt = StabilityOptions{}.maxDt;
-  int threads = StabilityOptions{}.threads;
   JobOptions job;
 };
 

@@ -10,6 +10,7 @@
 #include "core/force_jacobians.hpp"
 #include "core/kind.hpp"
 #include "core/model.hpp"
+#include "core/worker_pool.hpp"
 
 namespace particles {
 
@@ -20,6 +21,16 @@ class Force {
   // labels the force's potential energy in energy reports.
   virtual std::string_view kind() const = 0;
   virtual void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const = 0;
+  // A force that acts point by point (gravity, drag, springs between particles) can instead be
+  // applied chunk by chunk of points, fused with its neighbours in the force order into one pass
+  // over the points on the System's threads (System::derivEval). Such a force returns true here;
+  // preparePoints does the work that is not per point first (a spring's force, per spring, on the
+  // pool), then applyToPoints adds the force on points [begin, end) to `force` (2 per point),
+  // touching no other point, with the same additions in the same order as apply.
+  virtual bool actsPointwise() const { return false; }
+  virtual void preparePoints(const Model&, const StateView&, double, WorkerPool*) const {}
+  virtual void applyToPoints(const Model&, const StateView&, double, double* /*force*/, int /*begin*/,
+                             int /*end*/) const {}
   // Potential energy stored by this force, joules; zero for dissipative forces.
   virtual double potentialEnergy(const Model& model, const StateView& s, double t) const = 0;
   // An energy this force can plausibly put into the system, joules: the explosion guard's yardstick.

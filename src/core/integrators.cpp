@@ -93,6 +93,7 @@ bool projectsConstraints(Integrator integrator) { return entry(integrator).proje
 std::string_view integratorSummary(Integrator integrator) { return entry(integrator).summary; }
 
 void integrate(Integrator integrator, System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
+  w.pool = system.pool();
   entry(integrator).step(system, y, t, h, w);
 }
 

@@ -8,19 +8,18 @@
 //
 // A new integrator: its file pair, an enum value below, and one row in the table of integrators.cpp.
 
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
 #include <array>
 #include <functional>
 #include <optional>
 #include <span>
 #include <string_view>
 
-#include <Eigen/Core>
-#include <Eigen/SparseCore>
-
-#include <Eigen/SparseCholesky>
-
 #include "core/constraint.hpp"
 #include "core/force_jacobians.hpp"
+#include "core/worker_pool.hpp"
 
 namespace particles {
 
@@ -64,6 +63,8 @@ struct AssemblyPattern {
 // Scratch kept between steps, so stepping does not allocate, and what an integrator carries from
 // one step to the next (Verlet's last evaluation, backward Euler's last Δv as CG's first guess).
 struct IntegratorScratch {
+  // The System's threads, for the whole-vector updates (set by integrate; null: serial).
+  WorkerPool* pool = nullptr;
   Eigen::VectorXd k1, k2, k3, k4, tmp;
 
   // Verlet: f at (verletY, verletT), valid when verletValid.

@@ -8,26 +8,81 @@
 
 namespace particles {
 
+namespace {
+constexpr size_t kPointChunk = 4096;  // points per chunk of the pointwise passes
+}
+
+void System::setThreads(int threads) {
+  if (threads <= 1) {
+    pool_.reset();
+  } else if (!pool_ || pool_->threads() != threads) {
+    pool_.reset();  // its threads end before the new ones start
+    pool_ = std::make_unique<WorkerPool>(threads);
+  }
+}
+
 void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt, ConstraintForces constraintForces) {
   const StateLayout& layout = model_.layout;
   const StateView s(layout, y);
-  // 1. clear accumulators
-  acc_.clear();
-  // 2. force objects
-  for (const auto& force : forces_) force->apply(model_, s, t, acc_);
+  const int points = layout.numPoints();
+  const Eigen::Index p2 = 2 * Eigen::Index(points);
+  const int b = layout.numBodies;
+  dydt.resize(layout.size());
+  WorkerPool* pool = pool_.get();
+  double* force = acc_.force.data();
+  const double* velocity = y.data() + layout.velocityOffset();
+  const double* invMass = model_.invMass.data();
+  // 5. d/dt [x, v] = [v, F/m] for points [begin, end).
+  double* derivative = dydt.data();
+  auto pointDerivative = [&](int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      derivative[2 * i] = velocity[2 * i];
+      derivative[2 * i + 1] = velocity[2 * i + 1];
+      derivative[p2 + 2 * i] = force[2 * i] * invMass[i];
+      derivative[p2 + 2 * i + 1] = force[2 * i + 1] * invMass[i];
+    }
+  };
+  const bool solveConstraints = constraintForces == ConstraintForces::solve && !constraints_.empty();
+  const bool lastStageIsForces = colliders_.empty() && !solveConstraints;
+
+  // 1–2. clear the accumulators and apply the force objects, in order. A run of forces that act
+  // point by point is one pass over chunks of points (each force's additions for a point in the
+  // force order, as a loop over the forces would make them); the pass that clears, and stage 5
+  // when nothing comes between, join it.
+  acc_.torque.setZero();
+  bool cleared = false;
+  bool derived = false;
+  for (size_t first = 0; first < forces_.size();) {
+    if (!forces_[first]->actsPointwise()) {
+      if (!cleared)
+        forChunks(pool, size_t(p2), kPointChunk * 2, [&](size_t i, size_t e) { std::fill(force + i, force + e, 0.0); });
+      cleared = true;
+      forces_[first++]->apply(model_, s, t, acc_);
+      continue;
+    }
+    size_t last = first;
+    while (last < forces_.size() && forces_[last]->actsPointwise()) forces_[last++]->preparePoints(model_, s, t, pool);
+    const bool clear = !cleared;
+    const bool derive = last == forces_.size() && lastStageIsForces;
+    forChunks(pool, size_t(points), kPointChunk, [&](size_t chunkBegin, size_t chunkEnd) {
+      const int begin = int(chunkBegin), end = int(chunkEnd);
+      if (clear) std::fill(force + 2 * begin, force + 2 * end, 0.0);
+      for (size_t k = first; k < last; ++k) forces_[k]->applyToPoints(model_, s, t, force, begin, end);
+      if (derive) pointDerivative(begin, end);
+    });
+    cleared = true;
+    derived = derive;
+    first = last;
+  }
+  if (!cleared) acc_.force.setZero();
   // 3. collisions: before constraints, which must see every other force
   applyCollisions(model_, s, colliders_, acc_);
   // 4. constraint forces Q̂ = Jᵀλ
   if (constraintForces == ConstraintForces::solve) lastSolve_ = constraintSolver_.solve(model_, s, constraints_, acc_);
   // 5. d/dt [x, v, θ, ω] = [v, F/m, ω, τ/I]
-  const Eigen::Index p2 = 2 * Eigen::Index(layout.numPoints());
-  const int b = layout.numBodies;
-  dydt.resize(layout.size());
-  dydt.head(p2) = y.segment(layout.velocityOffset(), p2);
-  for (int i = 0; i < layout.numPoints(); ++i) {
-    dydt[p2 + 2 * i] = acc_.force[2 * i] * model_.invMass[i];
-    dydt[p2 + 2 * i + 1] = acc_.force[2 * i + 1] * model_.invMass[i];
-  }
+  if (!derived)
+    forChunks(pool, size_t(points), kPointChunk,
+              [&](size_t begin, size_t end) { pointDerivative(int(begin), int(end)); });
   dydt.segment(layout.angleOffset(), b) = y.segment(layout.omegaOffset(), b);
   dydt.segment(layout.omegaOffset(), b) = acc_.torque.cwiseProduct(model_.invInertia);
 }

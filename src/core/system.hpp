@@ -14,6 +14,7 @@
 #include "core/constraint_solver.hpp"
 #include "core/force.hpp"
 #include "core/model.hpp"
+#include "core/worker_pool.hpp"
 
 namespace particles {
 
@@ -76,6 +77,12 @@ class System {
     projectionSolver_.projectVelocities(model_, y, constraints_);
   }
 
+  // The threads derivEval, the integrators and the solvers share (core/worker_pool.hpp); 1 (the
+  // default) starts none. Results are the same bits for every count.
+  void setThreads(int threads);
+  int threads() const { return pool_ ? pool_->threads() : 1; }
+  WorkerPool* pool() { return pool_.get(); }
+
   double kineticEnergy(const Eigen::VectorXd& y) const;
   EnergyReport energy(const Eigen::VectorXd& y, double t) const;
   EnergyReport energy() const { return energy(y_, t_); }
@@ -108,6 +115,7 @@ class System {
   ConstraintSolver projectionSolver_;  // its own, so the multipliers' warm start stays untouched
   ForceAccumulator acc_;
   ConstraintSolveStats lastSolve_;
+  std::unique_ptr<WorkerPool> pool_;  // null: one thread
   double energyScale_ = 0.0;
 };
 

@@ -20,6 +20,9 @@ void DampedSpringForce::add(const SpringSpec& spring) {
   ks_.push_back(spring.ks);
   kd_.push_back(spring.kd);
   allParticles_ = allParticles_ && spring.a.isParticle() && spring.b.isParticle();
+  endA_.push_back(2 * spring.a.particle);
+  endB_.push_back(2 * spring.b.particle);
+  incidenceStart_.clear();
 }
 
 void DampedSpringForce::reserve(size_t n) {
@@ -28,6 +31,8 @@ void DampedSpringForce::reserve(size_t n) {
   rest_.reserve(n);
   ks_.reserve(n);
   kd_.reserve(n);
+  endA_.reserve(n);
+  endB_.reserve(n);
 }
 
 double DampedSpringForce::strain(const StateView& s, size_t i) const {
@@ -35,30 +40,13 @@ double DampedSpringForce::strain(const StateView& s, size_t i) const {
   return rest_[i] > 0.0 ? len / rest_[i] - 1.0 : 0.0;
 }
 
-void DampedSpringForce::apply(const Model&, const StateView& s, double, ForceAccumulator& acc) const {
-  const size_t n = a_.size();
+void DampedSpringForce::apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const {
   if (allParticles_) {
-    // Hot path (cloth): read positions and velocities straight from the flat state.
-    const double* y = s.vector().data();
-    const double* v = y + s.layout().velocityOffset();
-    double* f = acc.force.data();
-    for (size_t i = 0; i < n; ++i) {
-      const int ia = 2 * a_[i].particle;
-      const int ib = 2 * b_[i].particle;
-      const double lx = y[ia] - y[ib], ly = y[ia + 1] - y[ib + 1];
-      const double len = std::sqrt(lx * lx + ly * ly);
-      if (len < kMinLength) continue;
-      const double ldotl = (v[ia] - v[ib]) * lx + (v[ia + 1] - v[ib + 1]) * ly;
-      const double mag = (ks_[i] * (len - rest_[i]) + kd_[i] * ldotl / len) / len;
-      const double fx = -mag * lx, fy = -mag * ly;
-      f[ia] += fx;
-      f[ia + 1] += fy;
-      f[ib] -= fx;
-      f[ib + 1] -= fy;
-    }
+    preparePoints(model, s, t, nullptr);
+    applyToPoints(model, s, t, acc.force.data(), 0, model.layout.numPoints());
     return;
   }
-  for (size_t i = 0; i < n; ++i) {
+  for (size_t i = 0; i < a_.size(); ++i) {
     const Vec2 l = endpointPosition(s, a_[i]) - endpointPosition(s, b_[i]);
     const double len = l.norm();
     if (len < kMinLength) continue;
@@ -66,6 +54,68 @@ void DampedSpringForce::apply(const Model&, const StateView& s, double, ForceAcc
     const Vec2 fa = -(ks_[i] * (len - rest_[i]) + kd_[i] * ldot.dot(l) / len) * (l / len);
     applyForceAt(s, a_[i], fa, acc);
     applyForceAt(s, b_[i], -fa, acc);
+  }
+}
+
+namespace {
+constexpr size_t kSpringChunk = 8192;  // springs per chunk: ~40 µs of work
+}
+
+void DampedSpringForce::preparePoints(const Model& model, const StateView& s, double, WorkerPool* pool) const {
+  const size_t n = a_.size();
+  const int points = model.layout.numPoints();
+  if (incidenceStart_.size() != size_t(points) + 1) {
+    // Counting sort of the spring ends by point; springs are visited in order, so each point's
+    // list comes out in spring order.
+    incidenceStart_.assign(size_t(points) + 1, 0);
+    for (size_t i = 0; i < n; ++i) {
+      ++incidenceStart_[size_t(endA_[i] / 2) + 1];
+      ++incidenceStart_[size_t(endB_[i] / 2) + 1];
+    }
+    for (size_t p = 0; p < size_t(points); ++p) incidenceStart_[p + 1] += incidenceStart_[p];
+    incidence_.resize(2 * n);
+    std::vector<int> fill(incidenceStart_.begin(), incidenceStart_.end() - 1);
+    for (size_t i = 0; i < n; ++i) {
+      incidence_[size_t(fill[size_t(endA_[i] / 2)]++)] = int(2 * i);
+      incidence_[size_t(fill[size_t(endB_[i] / 2)]++)] = int(2 * i + 1);
+    }
+    springForce_.resize(2 * n);
+  }
+  const double* y = s.vector().data();
+  const double* v = y + s.layout().velocityOffset();
+  double* out = springForce_.data();
+  forChunks(pool, n, kSpringChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const int ia = endA_[i], ib = endB_[i];
+      const double lx = y[ia] - y[ib], ly = y[ia + 1] - y[ib + 1];
+      const double len = std::sqrt(lx * lx + ly * ly);
+      double mag = 0.0;
+      if (len >= kMinLength) {
+        const double ldotl = (v[ia] - v[ib]) * lx + (v[ia + 1] - v[ib + 1]) * ly;
+        mag = (ks_[i] * (len - rest_[i]) + kd_[i] * ldotl / len) / len;
+      }
+      out[2 * i] = -mag * lx;
+      out[2 * i + 1] = -mag * ly;
+    }
+  });
+}
+
+void DampedSpringForce::applyToPoints(const Model&, const StateView&, double, double* force, int begin, int end) const {
+  const int* start = incidenceStart_.data();
+  const int* ends = incidence_.data();
+  const double* fa = springForce_.data();
+  for (int p = begin; p < end; ++p) {
+    double fx = force[2 * p], fy = force[2 * p + 1];
+    for (int k = start[p]; k < start[p + 1]; ++k) {
+      const int e = ends[k];
+      const double* f = fa + (e & ~1);  // spring e/2's (x, y)
+      // f_a at its a end, −f_a at its b end: x − y is x + (−1)·y exactly.
+      const double sign = (e & 1) ? -1.0 : 1.0;
+      fx += sign * f[0];
+      fy += sign * f[1];
+    }
+    force[2 * p] = fx;
+    force[2 * p + 1] = fy;
   }
 }
 

@@ -6,6 +6,11 @@
 // velocity, and the force also gives a torque, docs/physics.md §7).
 // Potential: U = ½ k_s (|l| − r)² per spring.
 // When |l| falls below 1e-12 m the direction is undefined and the spring exerts no force.
+// Between particles only (the cloth's case), the force is found in two passes that threads can
+// share without ever adding into the same number: first every spring's f_a (chunks of springs, each
+// writing its own), then every particle's sum over the springs that touch it, in spring order
+// (chunks of particles): the same additions in the same order as one loop over the springs that
+// adds f_a at a and −f_a at b.
 // Jacobians for backward Euler (Baraff & Witkin 1998 §5.2), with l̂ = l/|l|:
 //   ∂f_a/∂x_a = −k_s [ l̂l̂ᵀ + max(0, 1 − r/|l|) (I − l̂l̂ᵀ) ],   ∂f_a/∂v_a = −k_d l̂l̂ᵀ
 // and [b −b; −b b] over the two ends. The exact transverse term (1 − r/|l|) turns positive
@@ -42,6 +47,10 @@ class DampedSpringForce final : public Force {
   bool isSpringSet() const override { return true; }
   double maxStretchRatio(const StateView& s) const override;
   void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
+  bool actsPointwise() const override { return allParticles_; }
+  void preparePoints(const Model& model, const StateView& s, double t, WorkerPool* pool) const override;
+  void applyToPoints(const Model& model, const StateView& s, double t, double* force, int begin,
+                     int end) const override;
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
   double energyScale(const Model& model, const StateView& s) const override;
   void draw(const StateView& s, double t, Drawing& out) const override;
@@ -52,6 +61,11 @@ class DampedSpringForce final : public Force {
   std::vector<Endpoint> a_, b_;
   std::vector<double> rest_, ks_, kd_;
   bool allParticles_ = true;  // every end is a particle: the hot loop skips anchor kinematics
+  // The particle-only path's arrays: each spring's ends as offsets 2·particle, and per point the
+  // springs that touch it (2·spring, +1 at its b end), in spring order, from incidenceStart_[p].
+  std::vector<int> endA_, endB_;
+  mutable std::vector<int> incidenceStart_, incidence_;
+  mutable std::vector<double> springForce_;  // f_a per spring (x, y), filled by preparePoints
 };
 
 // How scenario files write it (`{type: spring, a, b, rest, ks, kd}`: every explicit spring joins one shared DampedSpringForce).

@@ -4,12 +4,16 @@
 
 namespace particles {
 
-void DragForce::apply(const Model& model, const StateView& s, double, ForceAccumulator& acc) const {
-  const Eigen::Index n = 2 * Eigen::Index(model.layout.numPoints());
-  acc.force.head(n) -= kd_ * s.vector().segment(model.layout.velocityOffset(), n);
+void DragForce::apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const {
+  applyToPoints(model, s, t, acc.force.data(), 0, model.layout.numPoints());
   if (angularKd_ != 0.0) {
     acc.torque -= angularKd_ * s.vector().segment(model.layout.omegaOffset(), model.layout.numBodies);
   }
+}
+
+void DragForce::applyToPoints(const Model& model, const StateView& s, double, double* force, int begin, int end) const {
+  const double* v = s.vector().data() + model.layout.velocityOffset();
+  for (int i = 2 * begin; i < 2 * end; ++i) force[i] -= kd_ * v[i];
 }
 
 void DragForce::addJacobians(const Model& model, const StateView&, double, ForceJacobians& out) const {

@@ -14,6 +14,10 @@ class DragForce final : public Force {
 
   std::string_view kind() const override { return "drag"; }
   void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
+  // Point by point when there is no angular term (which acts on the torques).
+  bool actsPointwise() const override { return angularKd_ == 0.0; }
+  void applyToPoints(const Model& model, const StateView& s, double t, double* force, int begin,
+                     int end) const override;
   double potentialEnergy(const Model&, const StateView&, double) const override { return 0.0; }
   double energyScale(const Model&, const StateView&) const override { return 0.0; }
   bool isDissipative() const override { return true; }

@@ -4,11 +4,16 @@
 
 namespace particles {
 
-void GravityForce::apply(const Model& model, const StateView&, double, ForceAccumulator& acc) const {
-  const int n = model.layout.numPoints();
-  for (int i = 0; i < n; ++i) {
-    acc.force[2 * i] += model.mass[i] * g_.x();
-    acc.force[2 * i + 1] += model.mass[i] * g_.y();
+void GravityForce::apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const {
+  applyToPoints(model, s, t, acc.force.data(), 0, model.layout.numPoints());
+}
+
+void GravityForce::applyToPoints(const Model& model, const StateView&, double, double* force, int begin,
+                                 int end) const {
+  const double* mass = model.mass.data();
+  for (int i = begin; i < end; ++i) {
+    force[2 * i] += mass[i] * g_.x();
+    force[2 * i + 1] += mass[i] * g_.y();
   }
 }
 

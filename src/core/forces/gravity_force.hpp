@@ -13,6 +13,9 @@ class GravityForce final : public Force {
 
   std::string_view kind() const override { return "gravity"; }
   void apply(const Model& model, const StateView& s, double t, ForceAccumulator& acc) const override;
+  bool actsPointwise() const override { return true; }
+  void applyToPoints(const Model& model, const StateView& s, double t, double* force, int begin,
+                     int end) const override;
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
   void draw(const StateView&, double, Drawing&) const override {}  // nothing to show
   // M |g| (extent + 1 m): the work gravity does when everything falls across the scene.

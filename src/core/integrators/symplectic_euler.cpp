@@ -8,9 +8,15 @@ void integrateSymplecticEuler(const DerivFn& f, const StateLayout& layout, Eigen
                               IntegratorScratch& w, const VelocityProjection& projectVelocities) {
   f(y, t, w.k1);
   const auto blocks = layout.secondOrderBlocks();
-  for (const auto& b : blocks) y.segment(b.velocity, b.length) += h * w.k1.segment(b.velocity, b.length);
+  for (const auto& b : blocks) {
+    forSegments(w.pool, b.length,
+                [&](long i, long n) { y.segment(b.velocity + i, n) += h * w.k1.segment(b.velocity + i, n); });
+  }
   if (projectVelocities) projectVelocities(y);
-  for (const auto& b : blocks) y.segment(b.position, b.length) += h * y.segment(b.velocity, b.length);
+  for (const auto& b : blocks) {
+    forSegments(w.pool, b.length,
+                [&](long i, long n) { y.segment(b.position + i, n) += h * y.segment(b.velocity + i, n); });
+  }
 }
 
 }  // namespace particles

@@ -22,21 +22,25 @@ void integrateVerlet(const DerivFn& f, const StateLayout& layout, Eigen::VectorX
                       sameState(w.verletY, y);
   if (!cached) f(y, t, w.verletF);
   const Eigen::VectorXd& a0 = w.verletF;
-  w.tmp = y;
+  w.tmp.resize(y.size());
   for (const auto& b : layout.secondOrderBlocks()) {
-    const auto v0 = y.segment(b.velocity, b.length);
-    const auto acc0 = a0.segment(b.velocity, b.length);
-    w.tmp.segment(b.position, b.length) += h * v0 + (0.5 * h * h) * acc0;
-    w.tmp.segment(b.velocity, b.length) += h * acc0;  // the prediction a₁ is evaluated at
+    forSegments(w.pool, b.length, [&](long i, long n) {
+      const auto v0 = y.segment(b.velocity + i, n);
+      const auto acc0 = a0.segment(b.velocity + i, n);
+      w.tmp.segment(b.position + i, n) = y.segment(b.position + i, n) + (h * v0 + (0.5 * h * h) * acc0);
+      w.tmp.segment(b.velocity + i, n) = v0 + h * acc0;  // the prediction a₁ is evaluated at
+    });
   }
   f(w.tmp, t + h, w.k2);
   for (const auto& b : layout.secondOrderBlocks()) {
-    y.segment(b.position, b.length) = w.tmp.segment(b.position, b.length);
-    y.segment(b.velocity, b.length) +=
-        (0.5 * h) * (a0.segment(b.velocity, b.length) + w.k2.segment(b.velocity, b.length));
+    forSegments(w.pool, b.length, [&](long i, long n) {
+      y.segment(b.position + i, n) = w.tmp.segment(b.position + i, n);
+      y.segment(b.velocity + i, n) += (0.5 * h) * (a0.segment(b.velocity + i, n) + w.k2.segment(b.velocity + i, n));
+    });
   }
   w.verletF.swap(w.k2);
-  w.verletY = y;
+  w.verletY.resize(y.size());
+  forSegments(w.pool, y.size(), [&](long i, long n) { w.verletY.segment(i, n) = y.segment(i, n); });
   w.verletT = t + h;
   w.verletValid = true;
 }
