@@ -115,7 +115,6 @@ TEST_CASE("cli help: stability states the study's defaults") {
   CHECK(numberAt(help, R"(--stretch-factor FLOAT=([\d.e+-]+))") == StabilityOptions{}.stretchFactor);
   CHECK(numberAt(help, R"(--shake-threshold FLOAT=([\d.e+-]+))") == StabilityCriteria{}.shakeThreshold);
   CHECK(numberAt(help, R"(--max-dt FLOAT=([\d.e+-]+))") == StabilityOptions{}.maxDt);
-  CHECK(numberAt(help, R"(--threads INT=(\d+))") == StabilityOptions{}.threads);
   CHECK(numberAt(help, R"(the scenario's dt / (\d+)\))") == app::kMinDtDivisor);
   CHECK(numberAt(help, R"(halved up to (\d+) times)") == app::kReferenceHalvings);
 }
