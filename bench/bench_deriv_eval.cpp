@@ -111,9 +111,32 @@ void BM_SpringForce_Apply(benchmark::State& state) {
   setCounters(state, cloth);
 }
 
+// The same evaluation on T threads (System::setThreads; the second argument): wall time, since the
+// work is spread over threads, and the process's CPU time beside it. Issue 28's target: at 316²,
+// 2 threads ≥ 1.8× one.
+void BM_DerivEval_ClothThreads(benchmark::State& state) {
+  Cloth cloth = makeCloth(int(state.range(0)), false);
+  System& sys = cloth.system;
+  sys.setThreads(int(state.range(1)));
+  const Eigen::VectorXd y = sys.state();
+  Eigen::VectorXd dydt(y.size());
+  for (auto _ : state) {
+    sys.derivEval(y, sys.time(), dydt);
+    benchmark::DoNotOptimize(dydt.data());
+    benchmark::ClobberMemory();
+  }
+  setCounters(state, cloth);
+  state.counters["threads"] = sys.threads();
+}
+
 // 25: the report's cloth; 316² ≈ 10⁵ particles, 2·10⁵ springs.
 BENCHMARK(BM_DerivEval_ClothOnRail)->Arg(25)->Arg(100)->Arg(316)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DerivEval_Cloth)->Arg(25)->Arg(100)->Arg(316)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SpringForce_Apply)->Arg(25)->Arg(100)->Arg(316)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DerivEval_ClothThreads)
+    ->ArgsProduct({{25, 316}, {1, 2}})
+    ->UseRealTime()
+    ->MeasureProcessCPUTime()
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

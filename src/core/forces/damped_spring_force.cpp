@@ -22,7 +22,7 @@ void DampedSpringForce::add(const SpringSpec& spring) {
   allParticles_ = allParticles_ && spring.a.isParticle() && spring.b.isParticle();
   endA_.push_back(2 * spring.a.particle);
   endB_.push_back(2 * spring.b.particle);
-  incidenceStart_.clear();
+  endStart_.clear();
 }
 
 void DampedSpringForce::reserve(size_t n) {
@@ -64,20 +64,20 @@ constexpr size_t kSpringChunk = 8192;  // springs per chunk: ~40 µs of work
 void DampedSpringForce::preparePoints(const Model& model, const StateView& s, double, WorkerPool* pool) const {
   const size_t n = a_.size();
   const int points = model.layout.numPoints();
-  if (incidenceStart_.size() != size_t(points) + 1) {
+  if (endStart_.size() != size_t(points) + 1) {
     // Counting sort of the spring ends by point; springs are visited in order, so each point's
     // list comes out in spring order.
-    incidenceStart_.assign(size_t(points) + 1, 0);
+    endStart_.assign(size_t(points) + 1, 0);
     for (size_t i = 0; i < n; ++i) {
-      ++incidenceStart_[size_t(endA_[i] / 2) + 1];
-      ++incidenceStart_[size_t(endB_[i] / 2) + 1];
+      ++endStart_[size_t(endA_[i] / 2) + 1];
+      ++endStart_[size_t(endB_[i] / 2) + 1];
     }
-    for (size_t p = 0; p < size_t(points); ++p) incidenceStart_[p + 1] += incidenceStart_[p];
-    incidence_.resize(2 * n);
-    std::vector<int> fill(incidenceStart_.begin(), incidenceStart_.end() - 1);
+    for (size_t p = 0; p < size_t(points); ++p) endStart_[p + 1] += endStart_[p];
+    endOf_.resize(2 * n);
+    std::vector<int> fill(endStart_.begin(), endStart_.end() - 1);
     for (size_t i = 0; i < n; ++i) {
-      incidence_[size_t(fill[size_t(endA_[i] / 2)]++)] = int(2 * i);
-      incidence_[size_t(fill[size_t(endB_[i] / 2)]++)] = int(2 * i + 1);
+      endOf_[size_t(fill[size_t(endA_[i] / 2)]++)] = int(2 * i);
+      endOf_[size_t(fill[size_t(endB_[i] / 2)]++)] = int(2 * i + 1);
     }
     springForce_.resize(2 * n);
   }
@@ -88,11 +88,13 @@ void DampedSpringForce::preparePoints(const Model& model, const StateView& s, do
     for (size_t i = begin; i < end; ++i) {
       const int ia = endA_[i], ib = endB_[i];
       const double lx = y[ia] - y[ib], ly = y[ia + 1] - y[ib + 1];
-      const double len = std::sqrt(lx * lx + ly * ly);
+      const double len2 = lx * lx + ly * ly;
+      const double len = std::sqrt(len2);
+      // |f| / |l| = [k_s (|l| − r) + k_d (l̇·l)/|l|] / |l| = [k_s (|l| − r) |l| + k_d l̇·l] / |l|²: one division
       double mag = 0.0;
       if (len >= kMinLength) {
         const double ldotl = (v[ia] - v[ib]) * lx + (v[ia + 1] - v[ib + 1]) * ly;
-        mag = (ks_[i] * (len - rest_[i]) + kd_[i] * ldotl / len) / len;
+        mag = (ks_[i] * (len - rest_[i]) * len + kd_[i] * ldotl) / len2;
       }
       out[2 * i] = -mag * lx;
       out[2 * i + 1] = -mag * ly;
@@ -101,15 +103,15 @@ void DampedSpringForce::preparePoints(const Model& model, const StateView& s, do
 }
 
 void DampedSpringForce::applyToPoints(const Model&, const StateView&, double, double* force, int begin, int end) const {
-  const int* start = incidenceStart_.data();
-  const int* ends = incidence_.data();
-  const double* fa = springForce_.data();
+  const int* start = endStart_.data();
+  const int* ends = endOf_.data();
+  const double* springForce = springForce_.data();
   for (int p = begin; p < end; ++p) {
     double fx = force[2 * p], fy = force[2 * p + 1];
     for (int k = start[p]; k < start[p + 1]; ++k) {
       const int e = ends[k];
-      const double* f = fa + (e & ~1);  // spring e/2's (x, y)
-      // f_a at its a end, −f_a at its b end: x − y is x + (−1)·y exactly.
+      const double* f = springForce + (e & ~1);  // spring e / 2's f_a
+      // −f_a at a b end: x − y and x + (−1)·y round alike.
       const double sign = (e & 1) ? -1.0 : 1.0;
       fx += sign * f[0];
       fy += sign * f[1];

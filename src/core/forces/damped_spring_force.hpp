@@ -7,10 +7,10 @@
 // Potential: U = ½ k_s (|l| − r)² per spring.
 // When |l| falls below 1e-12 m the direction is undefined and the spring exerts no force.
 // Between particles only (the cloth's case), the force is found in two passes that threads can
-// share without ever adding into the same number: first every spring's f_a (chunks of springs, each
-// writing its own), then every particle's sum over the springs that touch it, in spring order
-// (chunks of particles): the same additions in the same order as one loop over the springs that
-// adds f_a at a and −f_a at b.
+// share without ever adding into the same number: first every spring's f_a (chunks of springs,
+// each writing its own), then every particle's sum of f_a over the springs whose a end it is and
+// −f_a over those whose b end it is, in spring order (chunks of particles): the same additions in
+// the same order as one loop over the springs that adds f_a at a and −f_a at b.
 // Jacobians for backward Euler (Baraff & Witkin 1998 §5.2), with l̂ = l/|l|:
 //   ∂f_a/∂x_a = −k_s [ l̂l̂ᵀ + max(0, 1 − r/|l|) (I − l̂l̂ᵀ) ],   ∂f_a/∂v_a = −k_d l̂l̂ᵀ
 // and [b −b; −b b] over the two ends. The exact transverse term (1 − r/|l|) turns positive
@@ -62,9 +62,9 @@ class DampedSpringForce final : public Force {
   std::vector<double> rest_, ks_, kd_;
   bool allParticles_ = true;  // every end is a particle: the hot loop skips anchor kinematics
   // The particle-only path's arrays: each spring's ends as offsets 2·particle, and per point the
-  // springs that touch it (2·spring, +1 at its b end), in spring order, from incidenceStart_[p].
+  // springs that touch it (2·spring, +1 at its b end), in spring order, from endStart_[p].
   std::vector<int> endA_, endB_;
-  mutable std::vector<int> incidenceStart_, incidence_;
+  mutable std::vector<int> endStart_, endOf_;
   mutable std::vector<double> springForce_;  // f_a per spring (x, y), filled by preparePoints
 };
 
