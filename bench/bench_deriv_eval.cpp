@@ -74,9 +74,11 @@ void setCounters(benchmark::State& state, const Cloth& cloth) {
   state.counters["time_per_spring"] = timePerSpring(cloth.springs->size());
 }
 
-void derivEval(benchmark::State& state, bool rail) {
+void derivEval(benchmark::State& state, bool rail, int threads = 1) {
   Cloth cloth = makeCloth(int(state.range(0)), rail);
   System& sys = cloth.system;
+  sys.setThreads(threads);
+  state.counters["threads"] = sys.threads();
   const Eigen::VectorXd y = sys.state();
   Eigen::VectorXd dydt(y.size());
   for (auto _ : state) {
@@ -115,18 +117,7 @@ void BM_SpringForce_Apply(benchmark::State& state) {
 // work is spread over threads, and the process's CPU time beside it. Issue 28's target: at 316²,
 // 2 threads ≥ 1.8× one.
 void BM_DerivEval_ClothThreads(benchmark::State& state) {
-  Cloth cloth = makeCloth(int(state.range(0)), false);
-  System& sys = cloth.system;
-  sys.setThreads(int(state.range(1)));
-  const Eigen::VectorXd y = sys.state();
-  Eigen::VectorXd dydt(y.size());
-  for (auto _ : state) {
-    sys.derivEval(y, sys.time(), dydt);
-    benchmark::DoNotOptimize(dydt.data());
-    benchmark::ClobberMemory();
-  }
-  setCounters(state, cloth);
-  state.counters["threads"] = sys.threads();
+  derivEval(state, false, int(state.range(1)));
 }
 
 // 25: the report's cloth; 316² ≈ 10⁵ particles, 2·10⁵ springs.
