@@ -9,10 +9,11 @@
 // that would break this, damped_spring_force.hpp). A force that adds nothing is treated
 // explicitly by backward Euler: exact for gravity, whose Jacobians are zero.
 
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <vector>
+
+#include "core/worker_pool.hpp"
 
 namespace particles {
 
@@ -20,6 +21,8 @@ struct ForceJacobians {
   using Triplets = std::vector<Eigen::Triplet<double>>;
   Triplets dfdx;  // K, N/m
   Triplets dfdv;  // D, N·s/m
+  // The System's threads, which a force may fill its own fixed range of entries on (null: serial).
+  WorkerPool* pool = nullptr;
 
   void clear() {
     dfdx.clear();
@@ -40,6 +43,19 @@ struct ForceJacobians {
     addBlock(to, bPoint, bPoint, b);
     addBlock(to, a, bPoint, -b);
     addBlock(to, bPoint, a, -b);
+  }
+  // The 16 entries addPair adds, written at `at` (which must hold 16) in the same order.
+  static constexpr int kPairEntries = 16;
+  static void writePair(Eigen::Triplet<double>* at, int a, int bPoint, const Eigen::Matrix2d& b) {
+    const int rows[4] = {a, bPoint, a, bPoint}, cols[4] = {a, bPoint, bPoint, a};
+    for (int block = 0; block < 4; ++block) {
+      const double sign = block < 2 ? 1.0 : -1.0;
+      for (int r = 0; r < 2; ++r) {
+        for (int c = 0; c < 2; ++c) {
+          *at++ = Eigen::Triplet<double>(2 * rows[block] + r, 2 * cols[block] + c, sign * b(r, c));
+        }
+      }
+    }
   }
 };
 

@@ -45,6 +45,7 @@ using DerivFn = std::function<void(const Eigen::VectorXd& y, double t, Eigen::Ve
 // Backward Euler's projected CG (integrators/backward_euler.cpp).
 struct ProjectedCgScratch {
   Eigen::VectorXd dinv, c, r, g, p, ap, jz, lambda;
+  std::vector<double> partials;  // the chunk sums of the dot products (sumChunks)
   // J row by row: up to four (column, value) pairs (two particles × x, y); column −1 is unused.
   std::vector<std::array<int, 4>> rowColumns;
   std::vector<std::array<double, 4>> rowValues;
@@ -58,6 +59,11 @@ struct ProjectedCgScratch {
 struct AssemblyPattern {
   bool valid = false;
   std::vector<int> dfdvKeys, dfdxKeys, dfdvSlots, dfdxSlots, diagonalSlots;
+  // The same read the other way, so that threads fill whole values and rows, each summing in the
+  // triplets' order (the order a serial scatter adds in): per value slot, the entries that land
+  // there (k < |D|: D's k-th, else K's (k − |D|)-th) from slotStart[slot], and the coordinate
+  // whose diagonal it is (−1: none); per row of K, its entries' indices from kRowStart[row].
+  std::vector<int> slotStart, slotEntries, slotDiagonal, kRowStart, kRowEntries;
 };
 
 // Scratch kept between steps, so stepping does not allocate, and what an integrator carries from

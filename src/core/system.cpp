@@ -90,6 +90,7 @@ void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt
 void System::forceJacobians(const Eigen::VectorXd& y, double t, ForceJacobians& out) const {
   const StateView s(model_.layout, y);
   out.clear();
+  out.pool = pool_.get();
   for (const auto& force : forces_) force->addJacobians(model_, s, t, out);
   addCollisionJacobians(model_, s, colliders_, out);
 }

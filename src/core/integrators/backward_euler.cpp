@@ -13,6 +13,34 @@ struct ProjectedCgStats {
   int iterations = 0;
 };
 
+constexpr size_t kRowChunk = 8192;  // rows or value slots per chunk of the threaded loops
+
+// out = A x for a symmetric A (compressed, column-major): out_i = Σ_k A(k, i) x_k, column i's
+// entries summed in their stored order, so that threads take whole columns and the bits do not
+// depend on how many there are.
+void multiplySymmetric(WorkerPool* pool, const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& x,
+                       Eigen::VectorXd& out) {
+  out.resize(a.cols());
+  const int* outer = a.outerIndexPtr();
+  const int* inner = a.innerIndexPtr();
+  const double* values = a.valuePtr();
+  forChunks(pool, size_t(a.cols()), kRowChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      double sum = 0.0;
+      for (int k = outer[i]; k < outer[i + 1]; ++k) sum += values[k] * x[inner[k]];
+      out[Eigen::Index(i)] = sum;
+    }
+  });
+}
+
+// x·y in fixed chunks added in order (core/worker_pool.hpp): the same bits for every thread count.
+double dotChunks(WorkerPool* pool, const Eigen::VectorXd& x, const Eigen::VectorXd& y, std::vector<double>& partials) {
+  return sumChunks(pool, size_t(x.size()), kVectorChunk, partials, [&](size_t begin, size_t end) {
+    const Eigen::Index n = Eigen::Index(end - begin);
+    return x.segment(Eigen::Index(begin), n).dot(y.segment(Eigen::Index(begin), n));
+  });
+}
+
 // Projected preconditioned conjugate gradients (Gould, Hribar & Nocedal 2001; Baraff & Witkin
 // 1998 §5.3's "filter" is its one-particle case): solves A x = b over the x with J x = c, where
 // J's rows are the constraints'. The preconditioned residual is projected onto J's null space,
@@ -24,13 +52,18 @@ struct ProjectedCgStats {
 // update keeps r small instead: r ← r − Jᵀ S⁻¹ J D⁻¹ r (twice, the second refining the first),
 // then g = D⁻¹ r. Without constraints this is Jacobi-preconditioned CG. Eigen's
 // ConjugateGradient takes no such projection, hence this loop.
-ProjectedCgStats solveProjectedCg(const Model& model, const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& b,
-                                  const std::vector<ConstraintRow>& rows, const Eigen::VectorXd& v0,
-                                  Eigen::VectorXd& x, double tolerance, ProjectedCgScratch& w) {
+ProjectedCgStats solveProjectedCg(WorkerPool* pool, const Model& model, const Eigen::SparseMatrix<double>& a,
+                                  const Eigen::VectorXd& b, const std::vector<ConstraintRow>& rows,
+                                  const Eigen::VectorXd& v0, Eigen::VectorXd& x, double tolerance,
+                                  ProjectedCgScratch& w) {
   const Eigen::Index n = b.size();
   const int m = int(rows.size());
   w.dinv.resize(n);
-  for (Eigen::Index i = 0; i < n; ++i) w.dinv[i] = model.invMass[i / 2] == 0.0 ? 0.0 : 1.0 / a.coeff(i, i);
+  forSegments(pool, n, [&](long first, long count) {
+    for (Eigen::Index i = first; i < first + count; ++i) {
+      w.dinv[i] = model.invMass[i / 2] == 0.0 ? 0.0 : 1.0 / a.coeff(i, i);
+    }
+  });
 
   // J (m × n) and c = −J v₀; a row on fixed particles only cannot be met by any Δv and is dropped.
   // J is kept twice: sparse, to form S once, and row by row, for the products in the loop (each
@@ -92,7 +125,9 @@ ProjectedCgStats solveProjectedCg(const Model& model, const Eigen::SparseMatrix<
   };
   // r ← r − Jᵀ S⁻¹ J D⁻¹ r, twice; then g = D⁻¹ r = P r with r kept small (see above).
   auto project = [&](Eigen::VectorXd& r, Eigen::VectorXd& g) {
-    g = w.dinv.cwiseProduct(r);
+    g.resize(n);
+    forSegments(pool, n,
+                [&](long i, long len) { g.segment(i, len) = w.dinv.segment(i, len).cwiseProduct(r.segment(i, len)); });
     for (int pass = 0; m > 0 && pass < 2; ++pass) {
       multiplyJ(g, w.jz);
       w.lambda = w.ldlt.solve(w.jz);
@@ -120,23 +155,32 @@ ProjectedCgStats solveProjectedCg(const Model& model, const Eigen::SparseMatrix<
     if (w.dinv[i] == 0.0) x[i] = 0.0;
   }
   feasible(x);  // from the last step's Δv
+  // The products, dot products and updates below are split over the threads: A x by columns,
+  // dot products in fixed chunks, the rest elementwise.
+  auto dot = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) { return dotChunks(pool, u, v, w.partials); };
   w.r = b;
   project(w.r, w.g);
-  const double reference = std::abs(w.r.dot(w.g));  // ‖b‖² in P's metric: the stopping scale
-  w.r = a * x - b;
+  const double reference = std::abs(dot(w.r, w.g));  // ‖b‖² in P's metric: the stopping scale
+  multiplySymmetric(pool, a, x, w.r);
+  forSegments(pool, n, [&](long i, long len) { w.r.segment(i, len) -= b.segment(i, len); });
   project(w.r, w.g);
-  w.p = -w.g;
-  double rg = w.r.dot(w.g);
+  w.p.resize(n);
+  forSegments(pool, n, [&](long i, long len) { w.p.segment(i, len) = -w.g.segment(i, len); });
+  double rg = dot(w.r, w.g);
   ProjectedCgStats stats;
   const int maxIterations = int(std::max<Eigen::Index>(2 * n, 10));
   while (stats.iterations < maxIterations && std::abs(rg) > tolerance * tolerance * reference) {
-    w.ap = a * w.p;
-    const double alpha = rg / w.p.dot(w.ap);
-    x += alpha * w.p;
-    w.r += alpha * w.ap;
+    multiplySymmetric(pool, a, w.p, w.ap);
+    const double alpha = rg / dot(w.p, w.ap);
+    forSegments(pool, n, [&](long i, long len) {
+      x.segment(i, len) += alpha * w.p.segment(i, len);
+      w.r.segment(i, len) += alpha * w.ap.segment(i, len);
+    });
     project(w.r, w.g);
-    const double rgNext = w.r.dot(w.g);
-    w.p = -w.g + (rgNext / rg) * w.p;
+    const double rgNext = dot(w.r, w.g);
+    const double beta = rgNext / rg;
+    forSegments(pool, n,
+                [&](long i, long len) { w.p.segment(i, len) = -w.g.segment(i, len) + beta * w.p.segment(i, len); });
     rg = rgNext;
     ++stats.iterations;
   }
@@ -163,12 +207,18 @@ void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double
   // sequence is the one it was built from (a full setFromTriplets costs several times more).
   const ForceJacobians& jac = w.jacobians;
   AssemblyPattern& pattern = w.pattern;
+  WorkerPool* pool = system.pool();
   auto samePattern = [&](const ForceJacobians::Triplets& from, const std::vector<int>& keys) {
     if (2 * from.size() != keys.size()) return false;
-    for (size_t k = 0; k < from.size(); ++k) {
-      if (from[k].row() != keys[2 * k] || from[k].col() != keys[2 * k + 1]) return false;
-    }
-    return true;
+    std::vector<double>& partials = w.cg.partials;
+    const double mismatches = sumChunks(pool, from.size(), kRowChunk, partials, [&](size_t begin, size_t end) {
+      double count = 0.0;
+      for (size_t k = begin; k < end; ++k) {
+        count += (from[k].row() != keys[2 * k] || from[k].col() != keys[2 * k + 1]) ? 1.0 : 0.0;
+      }
+      return count;
+    });
+    return mismatches == 0.0;
   };
   if (!pattern.valid || w.matrix.rows() != n || !samePattern(jac.dfdv, pattern.dfdvKeys) ||
       !samePattern(jac.dfdx, pattern.dfdxKeys)) {
@@ -204,38 +254,74 @@ void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double
     slotsOf(jac.dfdx, pattern.dfdxSlots);
     pattern.diagonalSlots.clear();
     for (Eigen::Index i = 0; i < n; ++i) pattern.diagonalSlots.push_back(slotOf(i, i));
+    // The reverse maps (see AssemblyPattern), by counting sorts that keep the triplets' order.
+    const size_t slots = size_t(w.matrix.nonZeros());
+    pattern.slotDiagonal.assign(slots, -1);
+    for (Eigen::Index i = 0; i < n; ++i) pattern.slotDiagonal[size_t(pattern.diagonalSlots[size_t(i)])] = int(i);
+    auto invert = [](size_t buckets, const std::vector<int>& bucketOf, std::vector<int>& start,
+                     std::vector<int>& entries) {
+      start.assign(buckets + 1, 0);
+      for (int b : bucketOf) {
+        if (b >= 0) ++start[size_t(b) + 1];
+      }
+      for (size_t k = 0; k < buckets; ++k) start[k + 1] += start[k];
+      entries.resize(size_t(start[buckets]));
+      std::vector<int> fill(start.begin(), start.end() - 1);
+      for (size_t k = 0; k < bucketOf.size(); ++k) {
+        if (bucketOf[k] >= 0) entries[size_t(fill[size_t(bucketOf[k])]++)] = int(k);
+      }
+    };
+    std::vector<int> slotOfEntry(pattern.dfdvSlots);
+    slotOfEntry.insert(slotOfEntry.end(), pattern.dfdxSlots.begin(), pattern.dfdxSlots.end());
+    invert(slots, slotOfEntry, pattern.slotStart, pattern.slotEntries);
+    std::vector<int> rowOfEntry;
+    rowOfEntry.reserve(jac.dfdx.size());
+    for (const auto& e : jac.dfdx) rowOfEntry.push_back(int(e.row()));
+    invert(size_t(n), rowOfEntry, pattern.kRowStart, pattern.kRowEntries);
     pattern.valid = true;
   }
+  // A's values, slot by slot: the diagonal's M (1 for a fixed coordinate), then −h D and −h² K in
+  // the triplets' order.
   double* values = w.matrix.valuePtr();
-  std::fill(values, values + w.matrix.nonZeros(), 0.0);
-  for (Eigen::Index i = 0; i < n; ++i) values[pattern.diagonalSlots[size_t(i)]] = fixedDof(i) ? 1.0 : model.mass[i / 2];
-  auto scatter = [&](const ForceJacobians::Triplets& from, const std::vector<int>& slots, double scale) {
-    for (size_t k = 0; k < from.size(); ++k) {
-      if (slots[k] >= 0) values[slots[k]] += scale * from[k].value();
+  const int dCount = int(jac.dfdv.size());
+  forChunks(pool, size_t(w.matrix.nonZeros()), kRowChunk, [&](size_t begin, size_t end) {
+    for (size_t slot = begin; slot < end; ++slot) {
+      const int diagonal = pattern.slotDiagonal[slot];
+      double value = diagonal < 0 ? 0.0 : (fixedDof(diagonal) ? 1.0 : model.mass[diagonal / 2]);
+      for (int k = pattern.slotStart[slot]; k < pattern.slotStart[slot + 1]; ++k) {
+        const int entry = pattern.slotEntries[size_t(k)];
+        value +=
+            entry < dCount ? -h * jac.dfdv[size_t(entry)].value() : (-h * h) * jac.dfdx[size_t(entry - dCount)].value();
+      }
+      values[slot] = value;
     }
-  };
-  scatter(jac.dfdv, pattern.dfdvSlots, -h);
-  scatter(jac.dfdx, pattern.dfdxSlots, -h * h);
+  });
 
-  // b = h (f₀ + h K v₀); K v₀ straight from K's triplets.
+  // b = h (f₀ + h K v₀), row by row; K v₀ straight from K's triplets, in their order.
   w.rhs.resize(n);
-  for (Eigen::Index i = 0; i < n; ++i) w.rhs[i] = model.mass[i / 2] * w.k1[vOff + i];
-  for (const auto& e : w.jacobians.dfdx) w.rhs[e.row()] += h * e.value() * y[vOff + e.col()];
-  w.rhs *= h;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (fixedDof(i)) w.rhs[i] = 0.0;
-  }
+  forChunks(pool, size_t(n), kRowChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      double value = model.mass[Eigen::Index(i / 2)] * w.k1[vOff + Eigen::Index(i)];
+      for (int k = pattern.kRowStart[i]; k < pattern.kRowStart[i + 1]; ++k) {
+        const auto& e = jac.dfdx[size_t(pattern.kRowEntries[size_t(k)])];
+        value += h * e.value() * y[vOff + e.col()];
+      }
+      w.rhs[Eigen::Index(i)] = fixedDof(Eigen::Index(i)) ? 0.0 : h * value;
+    }
+  });
 
   // Δv with J Δv = −J v₀, so that v₁ keeps every constraint's Ċ = 0 (J at x₀).
   w.constraintRows.clear();
   const StateView s0(layout, y);
   for (const auto& c : system.constraints()) w.constraintRows.push_back(c->evaluate(s0));
-  ProjectedCgStats stats = solveProjectedCg(model, w.matrix, w.rhs, w.constraintRows, y.segment(vOff, n), w.dv,
+  ProjectedCgStats stats = solveProjectedCg(pool, model, w.matrix, w.rhs, w.constraintRows, y.segment(vOff, n), w.dv,
                                             options.tolerance, w.cg);
   w.cgIterations = stats.iterations;
 
-  y.segment(vOff, n) += w.dv;
-  y.head(n) += h * y.segment(vOff, n);
+  forSegments(pool, n, [&](long i, long len) {
+    y.segment(vOff + i, len) += w.dv.segment(i, len);
+    y.segment(i, len) += h * y.segment(vOff + i, len);
+  });
   // Rotation: explicit (see the header).
   const int bodies = layout.numBodies;
   y.segment(layout.omegaOffset(), bodies) += h * w.k1.segment(layout.omegaOffset(), bodies);
