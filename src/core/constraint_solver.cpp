@@ -4,6 +4,10 @@
 
 namespace particles {
 
+namespace {
+constexpr size_t kConstraintRowChunk = 4096;  // rows per chunk of the per-row loops
+}
+
 template <class Precond>
 void ConstraintSolver::runCg(Eigen::VectorXd& x, ConstraintSolveStats& stats) {
   // A local solver: it keeps a reference to a_, which must not outlive a move of this object.
@@ -52,8 +56,13 @@ void ConstraintSolver::assemble(const Model& model, const StateView& s, const Co
   diag_.assign(size_t(m), 0.0);
   inert_.assign(size_t(m), 0);
   double diagSum = 0.0;
+  // Each row on its own (threads take chunks of rows); the compact columns below are numbered in
+  // row order, so that part stays on one thread.
+  forChunks(pool_, size_t(m), kConstraintRowChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) rows_[i] = constraints[i]->evaluate(s);
+  });
   for (int i = 0; i < m; ++i) {
-    ConstraintRow& row = rows_[size_t(i)] = constraints[size_t(i)]->evaluate(s);
+    ConstraintRow& row = rows_[size_t(i)];
     for (int k = 0; k < row.count; ++k) {
       const int p = row.particle[size_t(k)];
       const Vec2& jk = row.J[size_t(k)];
@@ -118,17 +127,19 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
   if (m == 0) return stats;
   assemble(model, s, constraints);
   rhs_.resize(m);
-  for (int i = 0; i < m; ++i) {
-    const ConstraintRow& row = rows_[size_t(i)];
-    double jdotQdot = 0.0, jwq = 0.0;
-    for (int k = 0; k < row.count; ++k) {
-      const int p = row.particle[size_t(k)];
-      jdotQdot += row.Jdot[size_t(k)].dot(s.vel(p));
-      jwq += model.invMass[p] * row.J[size_t(k)].dot(acc.forceOn(p));
+  forChunks(pool_, size_t(m), kConstraintRowChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const ConstraintRow& row = rows_[i];
+      double jdotQdot = 0.0, jwq = 0.0;
+      for (int k = 0; k < row.count; ++k) {
+        const int p = row.particle[size_t(k)];
+        jdotQdot += row.Jdot[size_t(k)].dot(s.vel(p));
+        jwq += model.invMass[p] * row.J[size_t(k)].dot(acc.forceOn(p));
+      }
+      const ConstraintFeedback& feedback = constraints[i]->feedback();
+      rhs_[Eigen::Index(i)] = -jdotQdot - jwq - feedback.ks * row.C - feedback.kd * row.Cdot;
     }
-    const ConstraintFeedback& feedback = constraints[size_t(i)]->feedback();
-    rhs_[i] = -jdotQdot - jwq - feedback.ks * row.C - feedback.kd * row.Cdot;
-  }
+  });
   solveAssembled(model, lambda_, stats);
 
   // Q̂ = Jᵀ λ

@@ -28,6 +28,7 @@
 #include "core/constraint.hpp"
 #include "core/force_accumulator.hpp"
 #include "core/model.hpp"
+#include "core/worker_pool.hpp"
 
 namespace particles {
 
@@ -56,6 +57,8 @@ using ConstraintList = std::vector<std::unique_ptr<Constraint>>;
 class ConstraintSolver {
  public:
   explicit ConstraintSolver(ConstraintSolverOptions options = {}) : options_(options) {}
+  // The System's threads, for the per-row work (evaluating rows, the right-hand side); null: serial.
+  void setPool(WorkerPool* pool) { pool_ = pool; }
   // Adds the constraint force Q̂ = Jᵀλ to acc (which must already hold every other force).
   ConstraintSolveStats solve(const Model& model, const StateView& s, const ConstraintList& constraints,
                              ForceAccumulator& acc);
@@ -90,6 +93,7 @@ class ConstraintSolver {
   Preconditioner automaticPreconditioner(const Model& model);
 
   ConstraintSolverOptions options_;
+  WorkerPool* pool_ = nullptr;
   std::vector<ConstraintRow> rows_;
   // Compact column numbering: only particles some constraint touches get columns, so a few
   // constraints on a large cloth cost per constraint, not per particle.

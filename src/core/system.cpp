@@ -19,6 +19,8 @@ void System::setThreads(int threads) {
     pool_.reset();  // its threads end before the new ones start
     pool_ = std::make_unique<WorkerPool>(threads);
   }
+  constraintSolver_.setPool(pool_.get());
+  projectionSolver_.setPool(pool_.get());
 }
 
 void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt, ConstraintForces constraintForces) {
