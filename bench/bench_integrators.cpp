@@ -40,8 +40,10 @@ scenario::Scenario loadCloth(const std::string& file, int n) {
   return scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/" + file, overrides);
 }
 
-void BM_IntegratorStep(benchmark::State& state, const std::string& file, int n, Integrator integrator, double dt) {
+void BM_IntegratorStep(benchmark::State& state, const std::string& file, int n, Integrator integrator, double dt,
+                       int threads = 1) {
   scenario::Scenario s = loadCloth(file, n);
+  s.system.setThreads(threads);
   const bool stiff = file == "cloth_stiff.yaml";
   Stepper(s.system, stiff ? Integrator::BackwardEuler : Integrator::Rk4, stiff ? 1.0 / 60.0 : 0.01).advanceTo(1.0);
   Solver solver(integrator);
@@ -103,6 +105,23 @@ const bool kRegistered = [] {
     benchmark::RegisterBenchmark(name.c_str(), [c](benchmark::State& state) {
       BM_IntegratorStep(state, c.scene, c.n, c.integrator, c.dt);
     })->Unit(c.n > 100 ? benchmark::kMillisecond : benchmark::kMicrosecond);
+  }
+  // Issue 28's step targets: the 316² cloth on 1 and 2 threads (System::setThreads), wall time.
+  for (Integrator integrator : {Integrator::Rk4, Integrator::SymplecticEuler, Integrator::BackwardEuler}) {
+    for (const Case& c : kCases) {
+      if (c.n != 316 || c.integrator != integrator) continue;
+      for (int threads : {1, 2}) {
+        const std::string name =
+            fmt::format("BM_IntegratorStepThreads/cloth/316/{}/threads:{}", integratorName(integrator), threads);
+        benchmark::RegisterBenchmark(name.c_str(),
+                                     [c, threads](benchmark::State& state) {
+                                       BM_IntegratorStep(state, c.scene, c.n, c.integrator, c.dt, threads);
+                                     })
+            ->UseRealTime()
+            ->MeasureProcessCPUTime()
+            ->Unit(benchmark::kMillisecond);
+      }
+    }
   }
   return true;
 }();
