@@ -20,23 +20,15 @@
 #include <thread>
 #include <vector>
 
+#include "sanitizer.hpp"
+
 namespace particles::test {
 
 namespace fs = std::filesystem;
 
 // Built with AddressSanitizer (the program next to the tests is too): its shadow memory needs far
 // more address space than any cap, and it slows and grows the run.
-#if defined(__SANITIZE_ADDRESS__)
-inline constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-inline constexpr bool kSanitized = true;
-#else
-inline constexpr bool kSanitized = false;
-#endif
-#else
-inline constexpr bool kSanitized = false;
-#endif
+inline constexpr bool kSanitized = kUnderAddressSanitizer;
 
 struct Result {
   int code = -1;
