@@ -69,7 +69,9 @@ struct StabilityOptions {
   double minDt = 1e-6;            // below this the search gives up: nothing is stable
   double maxDt = 10.0;            // above this the search stops growing: stable beyond measure
   double relativePrecision = 0.005;  // bisection stops when (hi − lo) ≤ this × lo: 2 significant digits
-  int threads = 0;                // 0: one per integrator, up to the hardware's cores
+  // Trial runs at once (below 1: one), each on one thread; the caller decides (the program: --threads).
+  // The table is the same for every count; only the wall-clock timings may differ.
+  int threads = 1;
   double timingBudget = 0.5;      // s of timed runs per integrator (at least one run); 0: no timing
   // Costs of an integrator still smooth at maxDt are given at this step instead (the frame
   // interval, 1/fps: an animation takes at least one step per frame); 0: at maxDt.
@@ -115,7 +117,9 @@ double findLargestDt(const std::function<RunAssessment(double)>& run, const std:
 // Rounds down to two significant digits (0.0137 → 0.013): the precision the search guarantees.
 double roundDownTwoDigits(double x);
 
-// Throws std::runtime_error when the reference run itself is not stable (its dt is too large).
+// Runs the reference, then every integrator's search (searchIntegrator in the .cpp) and timing on
+// options.threads threads: the same table, bit for bit, on any number of them. Throws
+// std::runtime_error when the reference run itself is not stable (its dt is too large).
 StabilityStudy findStabilityLimits(const SystemFactory& make, double duration, const std::vector<Integrator>& integrators,
                                    const StabilityOptions& options);
 
