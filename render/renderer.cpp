@@ -69,10 +69,12 @@ const Image& Renderer::render(const Drawing& frame, const Camera& camera) {
   Impl& m = *impl_;
   // automatic: a frame that cannot reach the threshold goes straight to triangles; one that may
   // is built as tiles first and decided on the shapes it really has (some may be off-screen).
-  bool tiled = m.options.raster == Raster::tiles ||
-               (m.options.raster == Raster::automatic && frameShapeCount(frame) >= kTilesFromShapes);
+  const size_t shapes = frameShapeCount(frame);
+  bool tiled =
+      m.options.raster == Raster::tiles || (m.options.raster == Raster::automatic && shapes >= kTilesFromShapes);
   if (tiled) {
     m.bins.reset(m.options.width, m.options.height);
+    m.bins.reserve(shapes);
     buildFrameMesh(frame, camera, m.options, m.colors, m.bins);
     tiled = m.options.raster == Raster::tiles || m.bins.shapes().size() >= kTilesFromShapes;
   }

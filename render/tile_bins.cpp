@@ -32,6 +32,11 @@ void TileBins::reset(int width, int height) {
   clear();
 }
 
+void TileBins::reserve(size_t shapes) {
+  shapes_.reserve(shapes);
+  reach_.reserve(shapes);
+}
+
 void TileBins::clear() {
   shapes_.clear();
   reach_.clear();

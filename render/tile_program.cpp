@@ -139,10 +139,12 @@ void TileProgram::draw(const TileBins& bins, Rgb background, bool transparent) c
     gl.glBindBuffer(GL_TEXTURE_BUFFER, buffers_[i]);
     // The store grows (by half again, so a growing scene reallocates rarely) and is otherwise
     // refilled in place: the previous frame was read back, so GL no longer reads it, and a new
-    // store each frame would cost its page faults again (a 300,000-shape frame's are 19 MB).
+    // store each frame would cost its page faults again (a 300,000-shape frame's are 19 MB). The
+    // first store is the first frame's size: most scenes keep their shape count, and a half
+    // spare was 96 MB of the million-particle cloth's shapes alone (issue 28).
     const size_t size = bytes[i] ? bytes[i] : sizeof kZero;
     if (size > capacity_[i]) {
-      capacity_[i] = size + size / 2;
+      capacity_[i] = capacity_[i] == 0 ? size : size + size / 2;
       gl.glBufferData(GL_TEXTURE_BUFFER, GLsizeiptr(capacity_[i]), nullptr, GL_DYNAMIC_DRAW);
       gl.glBindTexture(GL_TEXTURE_BUFFER, textures_[i]);
       gl.glTexBuffer(GL_TEXTURE_BUFFER, kFormats[i], buffers_[i]);

@@ -200,6 +200,23 @@ TEST_CASE("tile bins: the demos' frames bin exactly (every reached tile listed)"
   }
 }
 
+TEST_CASE("tile bins: frameShapeCount makes room for every record of a demo frame at once") {
+  // Renderer::render reserves it, so that a large frame's records are not grown by doubling.
+  for (const auto& [name, at] :
+       {std::pair<std::string, double>{"cloth", 2.5}, {"soft_body", 20.0}, {"rigid_chain", 3.0}}) {
+    CAPTURE(name);
+    const DemoFrame f = demoFrame(name, at);
+    const RenderOptions o = options(160, 120, 4, Raster::tiles);
+    TileBins bins;
+    bins.reset(o.width, o.height);
+    const size_t shapes = frameShapeCount(f.drawing);
+    bins.reserve(shapes);
+    buildFrameMesh(f.drawing, f.camera, o, theme(o.themeName), bins);
+    CHECK(bins.shapes().size() <= shapes);
+    CHECK(bins.shapes().capacity() == shapes);
+  }
+}
+
 TEST_CASE("tile path: the demos' pixels are the triangle path's within the golden tolerance") {
   // Measured at 1280×720 (golden/README.md, "The tile path"): only samples lying exactly on an edge
   // differ by more than 16, which float rounding decides either way in the two paths. At 1 sample
