@@ -1,5 +1,7 @@
 // Every scenario in scenarios/ runs headless for its full duration without exploding, with its
-// worst constraint error and penetration below the bounds documented in docs/scenarios.md.
+// worst constraint error and penetration below the bounds documented in docs/scenarios.md; the
+// million-particle cloth, whose one second takes minutes, only loads and takes a few steps here
+// (its whole run is bench/million.sh's).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -31,6 +33,10 @@ const std::map<std::string, Bounds> kBounds{
 };
 constexpr Bounds kDefault{1e-4, 0.05};
 
+// Too large to run whole in a test: 6000 steps of a million particles, minutes on the 2-core
+// machine (bench/README.md, "A million particles"). Checked by the test case named after it.
+const std::string kMillion = "cloth_million";
+
 Scenario load(const std::string& name) {
   return loadScenarioFile(kScenarios / (name + ".yaml"));
 }
@@ -44,6 +50,7 @@ TEST_CASE("demos: every scenario runs its full duration within its bounds") {
     ++count;
     const std::string stem = entry.path().stem().string();
     CAPTURE(stem);
+    if (stem == kMillion) continue;
     Scenario s = loadScenarioFile(entry.path());
     CHECK(s.name == stem);
     RunSummary summary;
@@ -74,6 +81,37 @@ TEST_CASE("demos: the cloth is the report's 25×25 with 2×25×24 structural spr
   CHECK(springCount(s.system) == 2 * 25 * 24);
   CHECK(s.system.constraints().size() == 25);
   CHECK(mouseScriptCount(s.system) >= 1);
+}
+
+TEST_CASE("demos: the million-particle cloth is the demo at 1000², within the default scene limits") {
+  // Loaded with the default limits (SceneLimits{}): it must not need a --limit option.
+  const Override threeSteps[] = {{"simulation.duration", "0.0005", "test"}};
+  Scenario s = loadScenarioFile(kScenarios / (kMillion + ".yaml"), threeSteps);
+  CHECK(s.system.layout().numParticles == 1'000'000);
+  CHECK(springCount(s.system) == 2 * 1000 * 999);
+  CHECK(s.system.constraints().size() == 1000);
+  CHECK(s.simulation.integrator == Integrator::SymplecticEuler);
+  // 100 steps a 60 fps frame, so that every frame of the video is drawn at its exact time.
+  CHECK(1.0 / (60.0 * s.simulation.dt) == doctest::Approx(100.0).epsilon(1e-12));
+  // A few steps (the whole second is bench/million.sh's): finite, and the top row on its rail.
+  RunSummary summary;
+  REQUIRE_NOTHROW(summary = runScenario(s));
+  CHECK(summary.steps == 3);
+  CHECK(s.system.state().allFinite());
+  CHECK(summary.worstConstraintError <= kDefault.constraintError);
+}
+
+TEST_CASE("demos: a cloth past a million particles is refused by default, naming the option that raises it") {
+  const Override wider[] = {{"grids.0.size", "[1001, 1000]", "--set grids.0.size"}};
+  try {
+    loadScenarioFile(kScenarios / (kMillion + ".yaml"), wider);
+    FAIL("a 1001 × 1000 cloth loaded under the default limits");
+  } catch (const ScenarioError& e) {
+    CHECK(e.keyPath() == "grids[0].size");
+    CHECK(e.message() ==
+          "this makes 1001000 particles, more than the limit of 1000000 (counted before anything is built); if the "
+          "scene is meant to be this large, raise the limit with --limit particles=N");
+  }
 }
 
 TEST_CASE("demos: the soft-body man has 56 particles and 189 springs, RK4 at h = 0.15") {
