@@ -75,6 +75,10 @@ class TileBins final : public ShapeSink {
   };
   void addReach(float x0, float y0, float x1, float y1);
   bool reachesTile(size_t shape, int tx, int ty) const;
+  // Calls visit(tile, shape) for each tile each shape reaches, shape by shape in the order they
+  // were added, each shape's tiles row by row.
+  template <typename Visit>
+  void forEachReachedTile(Visit&& visit) const;
   bool coversTile(size_t shape, int tx, int ty) const;
 
   int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
@@ -82,7 +86,6 @@ class TileBins final : public ShapeSink {
   std::vector<Reach> reach_;  // per shape
   std::vector<std::uint32_t> tiles_, items_;
   std::vector<float> runs_;
-  std::vector<std::uint64_t> pairs_;  // (tile << 32 | shape) while binning, storage reused
   std::vector<std::uint32_t> scratch_;
 };
 
