@@ -6,10 +6,14 @@
 #include <doctest/doctest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <map>
+#include <set>
+#include <sstream>
 
+#include "app/available_cores.hpp"
 #include "cli_support.hpp"
 #include "support/video_probe.hpp"
 
@@ -399,4 +403,235 @@ TEST_CASE("job record: done by this very binary counts, by another build, or wit
   r = s.run(job);
   CHECK(r.err.find("done before") == std::string::npos);
   CHECK(fs::exists(s.dir / "s.csv"));
+}
+
+namespace {
+
+// Runs `argv` (argv[0] a path) in `dir` with no shell between, its environment this process's
+// without the names in `unset` and with `set` (NAME=VALUE) added; stdout and stderr into files
+// there. Waits for that one process.
+particles::test::Result runDirect(const fs::path& dir, const std::vector<std::string>& argv,
+                                  const std::vector<std::string>& set = {},
+                                  const std::vector<std::string>& unset = {}) {
+  std::vector<std::string> environment;
+  for (char** e = environ; *e != nullptr; ++e) {
+    const std::string entry = *e;
+    const std::string name = entry.substr(0, entry.find('='));
+    const auto named = [&](const std::string& s) { return s == name || s.rfind(name + "=", 0) == 0; };
+    if (std::none_of(unset.begin(), unset.end(), named) && std::none_of(set.begin(), set.end(), named)) {
+      environment.push_back(entry);
+    }
+  }
+  environment.insert(environment.end(), set.begin(), set.end());
+  std::vector<std::string> args = argv;
+  std::vector<char*> argvPointers, environmentPointers;
+  for (std::string& a : args) argvPointers.push_back(a.data());
+  argvPointers.push_back(nullptr);
+  for (std::string& e : environment) environmentPointers.push_back(e.data());
+  environmentPointers.push_back(nullptr);
+  const std::string out = (dir / "direct_out.txt").string(), err = (dir / "direct_err.txt").string();
+  // The child's freopen would flush what this process still buffers into its own output.
+  std::fflush(stdout);
+  std::fflush(stderr);
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    if (::chdir(dir.c_str()) != 0 || !std::freopen(out.c_str(), "w", stdout) ||
+        !std::freopen(err.c_str(), "w", stderr)) {
+      ::_exit(127);
+    }
+    ::execve(argvPointers[0], argvPointers.data(), environmentPointers.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  REQUIRE(::waitpid(pid, &status, 0) == pid);
+  particles::test::Result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+// A stand-in for the program a sweep runs (--program): it appends its arguments to OUT/starts.txt,
+// one line per job in the order the jobs start, then runs the real program (a link beside it) with
+// them. Fixed text: it names no path.
+void writeLoggingProgram(const Scratch& s) {
+  const fs::path script = s.write("logging-particles",
+                                  "#!/bin/sh\n"
+                                  "printf '%s\\n' \"$*\" >> \"$2/starts.txt\"\n"
+                                  "exec \"${0%/*}/real-particles\" \"$@\"\n");
+  fs::permissions(script, fs::perms::owner_exec, fs::perm_options::add);
+  fs::create_symlink(fs::read_symlink("/proc/self/exe").parent_path() / "particles", s.dir / "real-particles");
+}
+
+// The jobs' start lines, `job OUT INDEX [--force] [--threads N]`, as (index, threads), threads 0
+// when not given.
+std::vector<std::pair<int, int>> starts(const fs::path& out) {
+  std::vector<std::pair<int, int>> seen;
+  for (const std::string& line : lines(slurp(out / "starts.txt"))) {
+    std::istringstream words(line);
+    std::string job, folder, word;
+    int index = -1, threads = 0;
+    words >> job >> folder >> index;
+    while (words >> word) {
+      if (word == "--threads") words >> threads;
+    }
+    seen.emplace_back(index, threads);
+  }
+  return seen;
+}
+
+// What two runs of the same jobs must agree on: each record without its time (seconds, and the
+// wall time a run reports), and results.csv without its timing columns.
+std::string withoutTimings(const fs::path& out, size_t jobs) {
+  std::string text;
+  for (size_t i = 0; i < jobs; ++i) {
+    for (const std::string& line : lines(slurp(out / "jobs" / jobDir(int(i)) / "record.txt"))) {
+      if (line.rfind("seconds: ", 0) != 0 && line.rfind("value.wall_seconds: ", 0) != 0) text += line + "\n";
+    }
+  }
+  const auto rows = lines(slurp(out / "results.csv"));
+  const auto header = fields(rows.at(0));
+  for (const std::string& row : rows) {
+    const auto f = fields(row);
+    for (size_t k = 0; k < f.size(); ++k) {
+      if (header[k] != "seconds" && header[k] != "wall_seconds") text += f[k] + ",";
+    }
+    text += "\n";
+  }
+  return text;
+}
+
+// Four cloth runs whose costs differ by their steps (dt) and evaluations per step (integrator):
+// estimated 1 : 10 : 1 : 2 (scaled steps × evaluations), so they start 1, 3, then 0 and 2 (a tie,
+// in their own order).
+const std::string kUnequalSweep = "scenarios: [" + kSource +
+                                  "/scenarios/cloth.yaml]\n"
+                                  "command: run\n"
+                                  "options: {duration: 0.2, integrator: euler}\n"
+                                  "parameters:\n"
+                                  "  - {key: dt, values: [0.01, 0.001, 0.01, 0.005]}\n";
+
+}  // namespace
+
+TEST_CASE("sweep: the longest jobs start first, each with its share of the cores, and the records do not change") {
+  Scratch s;
+  writeLoggingProgram(s);
+  s.write("unequal.yaml", kUnequalSweep);
+  const int cores = particles::app::availableCores();
+  const std::string program = (s.dir / "logging-particles").string();
+  const std::string exe = (s.dir / "real-particles").string();
+  const std::vector<std::string> sweep = {exe, "sweep", "unequal.yaml", "-o", "out", "--program", program, "--force"};
+  auto run = [&](const std::string& jobs, const std::vector<std::string>& set) {
+    fs::remove(s.dir / "out/starts.txt");
+    std::vector<std::string> argv = sweep;
+    argv.insert(argv.end(), {"--jobs", jobs});
+    const auto r = runDirect(s.dir, argv, set, {"PARTICLES_THREADS"});
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    return starts(s.dir / "out");
+  };
+
+  // One at a time: in decreasing cost, each job with every core.
+  const auto one = run("1", {});
+  const std::vector<std::pair<int, int>> expected = {{1, cores}, {3, cores}, {0, cores}, {2, cores}};
+  CHECK(one == expected);
+  const std::string reference = withoutTimings(s.dir / "out", 4);
+  const std::string jobsCsv = slurp(s.dir / "out/jobs.csv");
+
+  // Two at once: jobs 1 and 3 first, then 0 and 2 as they end. Two jobs started together log in
+  // either order, but the second pair starts only after one of the first has ended, so after both
+  // logged. While two or more remain to start, half the cores each (at least one); the last job
+  // may get them all.
+  const auto two = run("2", {});
+  REQUIRE(two.size() == 4);
+  using Pair = std::set<int>;
+  CHECK(Pair{two[0].first, two[1].first} == Pair{1, 3});
+  CHECK(Pair{two[2].first, two[3].first} == Pair{0, 2});
+  for (size_t k = 0; k < two.size(); ++k) {
+    CAPTURE(k);
+    CHECK(two[k].second >= std::max(1, cores / 2));
+    CHECK(two[k].second <= (k < 2 ? std::max(1, cores / 2) : cores));
+  }
+  // The same records and results, whatever the order and threads: those of a serial run too.
+  CHECK(withoutTimings(s.dir / "out", 4) == reference);
+  run("1", {"PARTICLES_THREADS=1"});
+  CHECK(withoutTimings(s.dir / "out", 4) == reference);
+  CHECK(slurp(s.dir / "out/jobs.csv") == jobsCsv);
+}
+
+TEST_CASE("sweep: an explicit thread count is respected: the sweep file's, else PARTICLES_THREADS") {
+  Scratch s;
+  writeLoggingProgram(s);
+  s.write("unequal.yaml", kUnequalSweep);
+  s.write(
+      "given.yaml",
+      std::string(kUnequalSweep).replace(kUnequalSweep.find("integrator: euler"), 17, "integrator: euler, threads: 3"));
+  const std::string program = (s.dir / "logging-particles").string();
+  const std::string exe = (s.dir / "real-particles").string();
+
+  // The sweep file's threads: on every job's command line (jobs.csv), and the sweep adds none.
+  auto r = runDirect(s.dir, {exe, "sweep", "given.yaml", "-o", "given", "--jobs", "2", "--program", program}, {},
+                     {"PARTICLES_THREADS"});
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  CHECK_MESSAGE(r.err.find("threads: the sweep file's") != std::string::npos, r.err);
+  for (const auto& [index, threads] : starts(s.dir / "given")) CHECK(threads == 0);
+  for (const auto& row : table(s.dir / "given/jobs.csv"))
+    CHECK(row.at("command").find(" --threads 3 ") != std::string::npos);
+  // `particles job` keeps the line's own --threads over its option, and records the line alone.
+  r = runDirect(s.dir, {exe, "job", "given", "0", "--threads", "2", "--force"});
+  CHECK_MESSAGE(r.code == 0, r.err);
+  const auto jobs = table(s.dir / "given/jobs.csv");
+  const std::string record = slurp(s.dir / "given/jobs/000000/record.txt");
+  const std::string line = jobs[0].at("command");
+  CHECK_MESSAGE(record.find("command: " + line.substr(line.find(" run ") + 1) + "\n") != std::string::npos, record);
+
+  // PARTICLES_THREADS in the sweep's environment: the jobs inherit it, the sweep adds none.
+  r = runDirect(s.dir, {exe, "sweep", "unequal.yaml", "-o", "inherited", "--jobs", "2", "--program", program},
+                {"PARTICLES_THREADS=1"});
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  CHECK_MESSAGE(r.err.find("threads: PARTICLES_THREADS") != std::string::npos, r.err);
+  for (const auto& [index, threads] : starts(s.dir / "inherited")) CHECK(threads == 0);
+  // ... checked before anything is written.
+  r = runDirect(s.dir, {exe, "sweep", "unequal.yaml", "-o", "refused", "--program", program},
+                {"PARTICLES_THREADS=many"});
+  CHECK(r.code == 2);
+  CHECK_MESSAGE(r.err.find("PARTICLES_THREADS") != std::string::npos, r.err);
+  CHECK_FALSE(fs::exists(s.dir / "refused"));
+}
+
+TEST_CASE("sweep: a Slurm task runs its job on the CPUs Slurm gives it, as one checked argument") {
+  Scratch s;
+  writeLoggingProgram(s);
+  s.write("unequal.yaml", kUnequalSweep);
+  const std::string exe = (s.dir / "real-particles").string();
+  auto r = runDirect(s.dir, {exe, "sweep", "unequal.yaml", "-o", "array", "--emit", "slurm", "--program",
+                             (s.dir / "logging-particles").string()});
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  const std::string script = (s.dir / "array/sweep.sbatch").string();
+  struct Task {
+    particles::test::Result result;
+    std::vector<std::pair<int, int>> started;
+  };
+  auto task = [&](const std::vector<std::string>& set) {
+    fs::remove(s.dir / "array/starts.txt");
+    Task t;
+    t.result = runDirect(s.dir, {"/bin/bash", script}, set, {"PARTICLES_THREADS", "SLURM_CPUS_PER_TASK"});
+    t.started = starts(s.dir / "array");
+    return t;
+  };
+  using Started = std::vector<std::pair<int, int>>;
+  // --cpus-per-task=2: the job's --threads.
+  const Task withCpus = task({"SLURM_ARRAY_TASK_ID=1", "SLURM_CPUS_PER_TASK=2"});
+  CHECK_MESSAGE(withCpus.result.code == 0, withCpus.result.err);
+  CHECK(withCpus.started == Started{{1, 2}});
+  // No CPUs asked for: the job's default (the CPUs the task is bound to).
+  CHECK(task({"SLURM_ARRAY_TASK_ID=2"}).started == Started{{2, 0}});
+  // PARTICLES_THREADS set: that.
+  CHECK(task({"SLURM_ARRAY_TASK_ID=2", "SLURM_CPUS_PER_TASK=2", "PARTICLES_THREADS=1"}).started == Started{{2, 0}});
+  // Slurm's value is data: shell text in it is one argument, refused as a thread count.
+  const Task hostile = task({"SLURM_ARRAY_TASK_ID=0", "SLURM_CPUS_PER_TASK=2; touch PWNED"});
+  CHECK(hostile.result.code == 2);
+  CHECK_MESSAGE(hostile.result.err.find("--threads") != std::string::npos, hostile.result.err);
+  CHECK_FALSE(fs::exists(s.dir / "PWNED"));
+  CHECK_FALSE(fs::exists(s.dir / "array/PWNED"));
 }

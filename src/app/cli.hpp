@@ -25,7 +25,8 @@ class Cli {
   // `particles golden --help` with the main help and success).
   void parse(const std::vector<std::string>& args);
   // Runs the parsed command (with its job record, when it has --record) and returns the exit
-  // code; errors are printed and mapped by runReportingErrors. `args` is argv without argv[0].
+  // code; errors are printed and mapped by runReportingErrors. `args` is argv without argv[0], as the
+  // job record names the command (`particles job` leaves out the --threads it adds: job_command.hpp).
   int dispatch(const std::vector<std::string>& args);
   // The parsed command's files, --record aside. gather has none here: its inputs are the records
   // its job table lists, which it checks once it has read the table.

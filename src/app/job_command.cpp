@@ -5,12 +5,14 @@
 
 #include <CLI/CLI.hpp>
 #include <charconv>
+#include <memory>
 
 #include "app/cli.hpp"
 #include "app/cli_support.hpp"
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
+#include "app/thread_count.hpp"
 
 namespace particles::app {
 
@@ -26,6 +28,11 @@ void addRunJobOptions(CLI::App& command, RunJobOptions& o) {
   command.add_option("outdir", o.outDir, "The sweep's output folder (with jobs.csv)")->required();
   command.add_option("index", o.index, "The job's index: 0 for the first row of jobs.csv")->required();
   command.add_flag("--force", o.force, "Run the job even when its record says it is done");
+  command
+      .add_option("--threads", o.threads,
+                  "Threads for the job's command, unless its line in jobs.csv sets --threads (not recorded: the "
+                  "results are the same for every count)")
+      ->check(CLI::Range(1, kMaxThreads));
   addMaxInputOption(command, o.maxInputMiB, "a job table or record");
   command.footer(
       "The job lists that 'particles sweep --emit' writes are lines of this command: GNU parallel and Slurm\n"
@@ -56,14 +63,27 @@ int runJobCommand(const RunJobOptions& o) {
   }
   if (o.force) args.push_back("--force");
 
-  Cli cli;
-  try {
-    cli.parse(args);
-  } catch (const CLI::ParseError& e) {
-    throw InputError(fmt::format("{}:{}: job {}'s command line: {}", table.file, table.rowLines[index], index,
-                                 e.get_exit_code() == 0 ? "--help and --version are not jobs" : e.what()));
+  auto parsed = [&](const std::vector<std::string>& line) {
+    auto cli = std::make_unique<Cli>();
+    try {
+      cli->parse(line);
+    } catch (const CLI::ParseError& e) {
+      throw InputError(fmt::format("{}:{}: job {}'s command line: {}", table.file, table.rowLines[index], index,
+                                   e.get_exit_code() == 0 ? "--help and --version are not jobs" : e.what()));
+    }
+    return cli;
+  };
+  std::unique_ptr<Cli> cli = parsed(args);
+  if (o.threads > 0) {
+    const CLI::Option* threads = cli->app.get_subcommand(command)->get_option_no_throw("--threads");
+    if (threads != nullptr && threads->count() == 0) {
+      std::vector<std::string> withThreads = args;
+      withThreads.insert(withThreads.end(), {"--threads", std::to_string(o.threads)});
+      cli = parsed(withThreads);
+    }
   }
-  return cli.dispatch(args);
+  // The record names the job's own line, `args`, whatever threads it runs on.
+  return cli->dispatch(args);
 }
 
 }  // namespace

@@ -11,8 +11,10 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -24,6 +26,8 @@
 #include "app/job_record.hpp"
 #include "app/stop_signal.hpp"
 #include "app/sweep_plan.hpp"
+#include "app/sweep_schedule.hpp"
+#include "app/thread_count.hpp"
 #include "input/text_file.hpp"
 #include "output/output_error.hpp"
 #include "scenario/sweep_spec.hpp"
@@ -39,11 +43,13 @@ std::string thisProgram() {
   return self.string();
 }
 
-// Starts job `index` as `program job OUT INDEX`, exactly the line the emitted lists hold, with its
-// output in `log`; the child gets SIGTERM if the sweep dies.
-pid_t startJob(const SweepPlan& plan, size_t index, const std::filesystem::path& log, bool force) {
+// Starts job `index` as `program job OUT INDEX`, exactly the line the emitted lists hold (with
+// `--threads N` when `threads` > 0: its share of the cores, which is no part of the job's record),
+// with its output in `log`; the child gets SIGTERM if the sweep dies.
+pid_t startJob(const SweepPlan& plan, size_t index, const std::filesystem::path& log, bool force, int threads) {
   std::vector<std::string> all = {plan.program, "job", plan.outDir.string(), std::to_string(index)};
   if (force) all.push_back("--force");
+  if (threads > 0) all.insert(all.end(), {"--threads", std::to_string(threads)});
   std::vector<char*> argv;
   for (std::string& a : all) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -119,11 +125,44 @@ struct RunTally {
   std::vector<std::string> failures;
 };
 
-// Runs jobs [from, to) with at most `parallel` at once. Returns false when interrupted.
-bool runJobs(const SweepPlan& plan, size_t from, size_t to, int parallel, const SweepOptions& o, RunTally& tally,
-             std::vector<bool>& succeeded, Progress& progress, size_t& done) {
+// How the jobs run here: at most `parallel` at once; with `cores` > 0, each started with its share of
+// them as --threads (sweep_schedule.hpp), else with the threads the sweep file or PARTICLES_THREADS
+// gives.
+struct Workers {
+  int parallel = 1;
+  int cores = 0;
+};
+
+// Jobs [from, to) that are to run: not done before (by their records) and, for a join, with every
+// segment it joins done. The others are tallied here.
+std::vector<size_t> jobsToRun(const SweepPlan& plan, size_t from, size_t to, const SweepOptions& o, RunTally& tally,
+                              std::vector<bool>& succeeded, size_t& done) {
+  std::vector<size_t> pending;
+  for (size_t i = from; i < to; ++i) {
+    const SweepJob& job = plan.jobs[i];
+    bool ready = true;
+    for (size_t k : job.after) ready = ready && succeeded[k];
+    if (!ready) {
+      tally.failures.push_back(fmt::format("{}: not run: a segment it joins failed", describeJob(plan, job)));
+      ++done;
+    } else if (!o.force && jobDone(recordOrNothing(job.record, o.maxInputMiB), commandText(job.args))) {
+      succeeded[job.index] = true;
+      ++tally.skipped;
+      ++done;
+    } else {
+      pending.push_back(i);
+    }
+  }
+  return pending;
+}
+
+// Runs jobs [from, to), the longest first (sweep_schedule.hpp). Returns false when interrupted.
+bool runJobs(const SweepPlan& plan, size_t from, size_t to, const Workers& workers, const SweepOptions& o,
+             RunTally& tally, std::vector<bool>& succeeded, Progress& progress, size_t& done) {
+  const std::vector<size_t> pending = jobsToRun(plan, from, to, o, tally, succeeded, done);
+  const std::vector<size_t> order = longestFirst(estimatedCosts(plan, pending, o.maxInputMiB));
   std::map<pid_t, size_t> running;
-  size_t next = from;
+  size_t next = 0;
   const size_t total = plan.jobs.size();
   auto stopAll = [&] {
     for (const auto& [pid, index] : running) kill(pid, SIGTERM);
@@ -134,23 +173,15 @@ bool runJobs(const SweepPlan& plan, size_t from, size_t to, int parallel, const 
       if (pid < 0 && errno == ECHILD) break;
     }
   };
-  while (next < to || !running.empty()) {
-    while (next < to && int(running.size()) < parallel && !stopSignal()) {
-      const SweepJob& job = plan.jobs[next++];
-      bool ready = true;
-      for (size_t k : job.after) ready = ready && succeeded[k];
-      if (!ready) {
-        tally.failures.push_back(fmt::format("{}: not run: a segment it joins failed", describeJob(plan, job)));
-        ++done;
-        continue;
-      }
-      if (!o.force && jobDone(recordOrNothing(job.record, o.maxInputMiB), commandText(job.args))) {
-        succeeded[job.index] = true;
-        ++tally.skipped;
-        ++done;
-        continue;
-      }
-      running[startJob(plan, job.index, plan.outDir / job.dir / "log.txt", o.force)] = job.index;
+  while (next < order.size() || !running.empty()) {
+    while (next < order.size() && int(running.size()) < workers.parallel && !stopSignal()) {
+      const SweepJob& job = plan.jobs[pending[order[next]]];
+      const size_t toStart = order.size() - next++;  // this job and those after it
+      // A join simulates nothing: it has no --threads.
+      const int threads = workers.cores > 0 && job.stage != "concat"
+                              ? threadShare(workers.cores, workers.parallel, running.size(), toStart)
+                              : 0;
+      running[startJob(plan, job.index, plan.outDir / job.dir / "log.txt", o.force, threads)] = job.index;
       ++tally.ran;
     }
     progress.update(long(done), long(total), fmt::format("{} running", running.size()));
@@ -180,6 +211,21 @@ bool runJobs(const SweepPlan& plan, size_t from, size_t to, int parallel, const 
     }
   }
   return true;
+}
+
+// Where the jobs' threads are set explicitly, which the sweep then respects: the sweep file's
+// `threads` option (on every job's command line), else PARTICLES_THREADS, which the jobs inherit
+// (checked here, before anything is written). Empty: nowhere, the sweep gives each job its share.
+std::string explicitThreads(const scenario::SweepSpec& spec) {
+  const auto& options = spec.options;
+  if (std::any_of(options.begin(), options.end(), [](const auto& option) { return option.name == "threads"; })) {
+    return "the sweep file's";
+  }
+  if (const char* environment = std::getenv(kThreadsEnvironmentVariable); environment && *environment) {
+    threadCountOf(0);  // throws InputError for a value that is not a thread count
+    return kThreadsEnvironmentVariable;
+  }
+  return {};
 }
 
 void addSweepOptions(CLI::App& command, SweepOptions& o) {
@@ -218,6 +264,7 @@ int sweepCommand(const SweepOptions& o) {
       o.out.empty() ? std::filesystem::path("sweep-" + spec.name) : std::filesystem::path(o.out);
   const SweepPlan plan = planSweep(spec, out, program, o.maxInputMiB);
   if (!o.emit.empty()) checkListPaths(plan);
+  const std::string threadsGiven = o.emit.empty() ? explicitThreads(spec) : std::string();
   writeJobTable(plan);
 
   if (!o.emit.empty()) {
@@ -229,10 +276,13 @@ int sweepCommand(const SweepOptions& o) {
     return kOk;
   }
 
-  const int parallel = o.jobs > 0 ? o.jobs : availableCores();
+  const int cores = availableCores();
+  const Workers workers{.parallel = o.jobs > 0 ? o.jobs : cores, .cores = threadsGiven.empty() ? cores : 0};
   if (!o.quiet) {
-    fmt::print(stderr, "{}: {} ({}), {} at once → {}\n", o.spec, plural(plan.jobs.size(), "job", "jobs"), spec.command,
-               parallel, plan.outDir.string());
+    fmt::print(stderr, "{}: {} ({}), {} at once, longest first, threads: {} → {}\n", o.spec,
+               plural(plan.jobs.size(), "job", "jobs"), spec.command, workers.parallel,
+               threadsGiven.empty() ? fmt::format("shares of {}", plural(size_t(cores), "CPU", "CPUs")) : threadsGiven,
+               plan.outDir.string());
   }
   const auto start = std::chrono::steady_clock::now();
   StopSignals signals(StopMode::interruptWaits);
@@ -242,8 +292,8 @@ int sweepCommand(const SweepOptions& o) {
   bool finished;
   {
     Progress progress(!o.quiet, "jobs");
-    finished = runJobs(plan, 0, plan.firstStageCount, parallel, o, tally, succeeded, progress, done) &&
-               runJobs(plan, plan.firstStageCount, plan.jobs.size(), parallel, o, tally, succeeded, progress, done);
+    finished = runJobs(plan, 0, plan.firstStageCount, workers, o, tally, succeeded, progress, done) &&
+               runJobs(plan, plan.firstStageCount, plan.jobs.size(), workers, o, tally, succeeded, progress, done);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!finished) {

@@ -12,6 +12,7 @@
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
+#include "app/thread_count.hpp"
 #include "output/output_error.hpp"
 #include "output/output_file.hpp"
 #include "render/frame_writer.hpp"
@@ -275,6 +276,8 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
         job.record = plan.outDir / job.dir / "record.txt";
         job.args.push_back("--record");
         job.args.push_back(job.record.string());
+        job.scenarioIndex = s;
+        job.overrides = overrides;
         join.segments.push_back(job.index);
         plan.jobs.push_back(std::move(job));
       }
@@ -290,6 +293,7 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
     job.stage = "concat";
     job.scenario = spec.scenarios[j.scenario].given;
     job.values = j.values;
+    job.scenarioIndex = j.scenario;
     job.dir = jobFolder(job.index);
     job.args = {"concat"};
     for (size_t k : j.segments) job.args.push_back(plan.jobs[k].outputs.front());
@@ -373,8 +377,15 @@ void writeArrayScript(const std::filesystem::path& file, const SweepPlan& plan, 
                    ? fmt::format("#SBATCH --output={}/slurm-%A_%a.log\n", logs)
                    : std::string("# logs: Slurm's default (the output folder's path has a space, quote or %)\n")));
   for (const std::string& line : plan.spec.slurm) text += "#SBATCH " + line + "\n";
+  // The job's threads: the task's CPUs when sbatch is asked for them (--cpus-per-task, e.g. in the
+  // sweep file's slurm: list) and PARTICLES_THREADS does not give them already; otherwise the job's
+  // default, the CPUs Slurm binds the task to (its affinity and cgroup). Slurm's number reaches the
+  // job as one quoted argument, which `particles job` checks as a thread count.
   text += fmt::format(
       "set -eu\n"
+      "if [ -n \"${{SLURM_CPUS_PER_TASK:-}}\" ] && [ -z \"${{PARTICLES_THREADS:-}}\" ]; then\n"
+      "  exec {program} job {out} \"$(({first} + SLURM_ARRAY_TASK_ID))\" --threads \"$SLURM_CPUS_PER_TASK\"\n"
+      "fi\n"
       "exec {program} job {out} \"$(({first} + SLURM_ARRAY_TASK_ID))\"\n",
       fmt::arg("program", shellQuote(plan.program)), fmt::arg("out", shellQuote(plan.outDir.string())),
       fmt::arg("first", first));
@@ -396,8 +407,10 @@ std::string emitParallel(const SweepPlan& plan) {
   checkListPaths(plan);
   const auto jobs = plan.outDir / "jobs.txt";
   writeLines(jobs, plan, 0, plan.firstStageCount);
-  std::string how = fmt::format("parallel --joblog {} < {}", shellQuote((plan.outDir / "joblog.txt").string()),
-                                shellQuote(jobs.string()));
+  // parallel runs one job per CPU unless told otherwise (-j), so one thread each: together they
+  // fill the CPUs without oversubscribing them (docs/sweeps.md, "Order and threads").
+  std::string how = fmt::format("{}=1 parallel --joblog {} < {}", kThreadsEnvironmentVariable,
+                                shellQuote((plan.outDir / "joblog.txt").string()), shellQuote(jobs.string()));
   if (plan.firstStageCount < plan.jobs.size()) {
     const auto concat = plan.outDir / "concat.txt";
     writeLines(concat, plan, plan.firstStageCount, plan.jobs.size());

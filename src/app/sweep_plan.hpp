@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "scenario/scenario.hpp"
 #include "scenario/sweep_spec.hpp"
 
 namespace particles::app {
@@ -25,6 +26,8 @@ struct SweepJob {
   std::vector<size_t> after;         // concat: the segment jobs it joins
   std::filesystem::path record;      // absolute
   std::vector<std::string> outputs;  // absolute
+  size_t scenarioIndex = 0;          // in spec.scenarios
+  std::vector<scenario::Override> overrides;  // what its command line changes in the scenario; none for concat
 };
 
 struct SweepPlan {
@@ -52,11 +55,13 @@ void writeJobTable(const SweepPlan& plan);
 void checkListPaths(const SweepPlan& plan);
 
 // --emit parallel: jobs.txt (and concat.txt for split renders), one line `PROGRAM job OUT INDEX`
-// per job, for `parallel < jobs.txt`. Returns what to run, for the user. Throws InputError when the
-// program's or the output folder's path holds a control character.
+// per job, for `parallel < jobs.txt`. Returns what to run, for the user (with PARTICLES_THREADS=1:
+// parallel runs one job per CPU). Throws InputError when the program's or the output folder's path
+// holds a control character.
 std::string emitParallel(const SweepPlan& plan);
-// --emit slurm: sweep.sbatch (an array job whose task i runs `PROGRAM job OUT i`; concat.sbatch
-// and submit.sh for split renders). Returns what to run.
+// --emit slurm: sweep.sbatch (an array job whose task i runs `PROGRAM job OUT i`, with `--threads
+// $SLURM_CPUS_PER_TASK` when the task has that many CPUs; concat.sbatch and submit.sh for split
+// renders). Returns what to run.
 std::string emitSlurm(const SweepPlan& plan);
 
 }  // namespace particles::app
