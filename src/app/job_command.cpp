@@ -39,6 +39,7 @@ void addRunJobOptions(CLI::App& command, RunJobOptions& o) {
       "run them as they are. The job's record makes a rerun of a finished job a no-op.\n"
       "Examples:\n"
       "  particles job cloth-sweep 0\n"
+      "  particles job cloth-sweep 0 --threads 2          # what 'particles sweep' starts: its share of the CPUs\n"
       "  SLURM_ARRAY_TASK_ID=3 bash cloth-sweep/sweep.sbatch   # what a Slurm array task runs\n");
 }
 

@@ -232,7 +232,10 @@ void addSweepOptions(CLI::App& command, SweepOptions& o) {
   command.add_option("spec", o.spec, "The sweep file (YAML, see docs/sweeps.md)")->required();
   command.add_option("-o,--out", o.out,
                      "The output folder: jobs.csv, a folder per job, results.csv (default ./sweep-NAME)");
-  command.add_option("-j,--jobs", o.jobs, "Jobs at once here (0: one per CPU this process may use)")
+  command
+      .add_option("-j,--jobs", o.jobs,
+                  "Jobs at once here (0: one per CPU this process may use), the longest first, each with its share "
+                  "of the CPUs as --threads")
       ->check(CLI::Range(0, 4096));
   command
       .add_option("--emit", o.emit,
@@ -248,10 +251,14 @@ void addSweepOptions(CLI::App& command, SweepOptions& o) {
       "Every job is a plain 'particles …' command line with its outputs in OUT/jobs/NNNNNN/ and a record\n"
       "there: a rerun skips what is done, so an interrupted sweep resumes. After running, the results\n"
       "are gathered into OUT/results.csv (and OUT/results.svg when one parameter varies).\n"
+      "Run here, the jobs start longest first (steps × size; a stability study's steps from its stiffest\n"
+      "mode) and each gets --threads max(1, CPUs / min(JOBS, jobs unfinished)): jobs × threads stay within\n"
+      "the CPUs, and the last jobs use the idle ones too. A 'threads' option in the sweep file, or\n"
+      "PARTICLES_THREADS, is kept instead. Records and results do not depend on either.\n"
       "Exit codes: 0 all jobs succeeded, 1 some failed (listed), 2 a bad sweep file, 3 an output failed.\n"
       "Examples:\n"
       "  particles sweep scenarios/sweeps/cloth_stiffness.yaml -o cloth-sweep --jobs 2\n"
-      "  particles sweep my.yaml -o out --emit parallel && parallel --joblog out/joblog.txt < out/jobs.txt\n"
+      "  particles sweep my.yaml -o out --emit parallel && PARTICLES_THREADS=1 parallel < out/jobs.txt\n"
       "  particles sweep my.yaml -o out --emit slurm && sbatch out/sweep.sbatch\n"
       "  particles gather out\n");
 }
