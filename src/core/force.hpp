@@ -14,6 +14,28 @@
 
 namespace particles {
 
+// How a force that acts point by point adds to point i's force, when it has one of the two shapes
+// Witkin & Baraff's forces take (docs/physics.md §4), so that the fused pass over the points
+// (System::derivEval) can run a run of such forces as one loop with the running force in
+// registers instead of one loop per force:
+//   unary, linear:  f_i += m_i a           (gravity: a = g)          kind perMass
+//                   f_i −= c v_i           (drag: c = k_d)           kind perVelocity
+//   n-ary, gathered: f_i += Σ_{k ∈ [start[i], start[i+1])} values[entries[k]], values[entries[k] + 1]
+//                   (springs: each spring's f_a and f_b = −f_a, at the ends that are i, in spring
+//                   order), kind gather
+// Each describes exactly the additions applyToPoints makes, in the same order, so either path
+// gives the same bits.
+struct PointwiseTerm {
+  enum class Kind { none, perMass, perVelocity, gather };
+  Kind kind = Kind::none;
+  Vec2 a = Vec2::Zero();  // perMass
+  double c = 0.0;         // perVelocity
+  // gather: per point, the range of entries; each entry the offset of an (x, y) pair in values
+  const int* start = nullptr;
+  const int* entries = nullptr;
+  const double* values = nullptr;
+};
+
 class Force {
  public:
   virtual ~Force() = default;
@@ -31,6 +53,8 @@ class Force {
   virtual void preparePoints(const Model&, const StateView&, double, WorkerPool*) const {}
   virtual void applyToPoints(const Model&, const StateView&, double, double* /*force*/, int /*begin*/,
                              int /*end*/) const {}
+  // The same additions described by shape (above), valid after preparePoints; none by default.
+  virtual PointwiseTerm pointwiseTerm() const { return {}; }
   // Potential energy stored by this force, joules; zero for dissipative forces.
   virtual double potentialEnergy(const Model& model, const StateView& s, double t) const = 0;
   // An energy this force can plausibly put into the system, joules: the explosion guard's yardstick.

@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/integrators.hpp"
 #include "core/system.hpp"
@@ -57,6 +58,7 @@ class Solver {
   ExplosionGuard guard_;
   IntegratorScratch scratch_;
   Eigen::VectorXd previous_;
+  std::vector<double> guardPartials_;  // sumChunks scratch
   long steps_ = 0;
   // The current run of equal steps: t = runStart_ + runSteps_ · runDt_.
   double runStart_ = 0.0, runDt_ = 0.0;

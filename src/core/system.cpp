@@ -1,9 +1,11 @@
 #include "core/system.hpp"
 
 #include <algorithm>
+#include <span>
 #include <stdexcept>
 #include <string>
 
+#include "core/pointwise_pass.hpp"
 #include "core/rigid_body.hpp"
 
 namespace particles {
@@ -66,12 +68,19 @@ void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt
     while (last < forces_.size() && forces_[last]->actsPointwise()) forces_[last++]->preparePoints(model_, s, t, pool);
     const bool clear = !cleared;
     const bool derive = last == forces_.size() && lastStageIsForces;
-    forChunks(pool, size_t(points), kPointChunk, [&](size_t chunkBegin, size_t chunkEnd) {
-      const int begin = int(chunkBegin), end = int(chunkEnd);
-      if (clear) std::fill(force + 2 * begin, force + 2 * end, 0.0);
-      for (size_t k = first; k < last; ++k) forces_[k]->applyToPoints(model_, s, t, force, begin, end);
-      if (derive) pointDerivative(begin, end);
-    });
+    if (pointwiseRun_.collect(std::span(forces_).subspan(first, last - first))) {
+      const PointwiseRun::Points arrays{force, velocity, model_.mass.data(), invMass, derive ? derivative : nullptr,
+                                        p2};
+      forChunks(pool, size_t(points), kPointChunk,
+                [&](size_t begin, size_t end) { pointwiseRun_.run(arrays, int(begin), int(end), clear); });
+    } else {
+      forChunks(pool, size_t(points), kPointChunk, [&](size_t chunkBegin, size_t chunkEnd) {
+        const int begin = int(chunkBegin), end = int(chunkEnd);
+        if (clear) std::fill(force + 2 * begin, force + 2 * end, 0.0);
+        for (size_t k = first; k < last; ++k) forces_[k]->applyToPoints(model_, s, t, force, begin, end);
+        if (derive) pointDerivative(begin, end);
+      });
+    }
     cleared = true;
     derived = derive;
     first = last;
@@ -99,10 +108,17 @@ void System::forceJacobians(const Eigen::VectorXd& y, double t, ForceJacobians& 
 
 double System::kineticEnergy(const Eigen::VectorXd& y) const {
   const StateView s(model_.layout, y);
-  double k = 0.0;
-  for (int i = 0; i < model_.layout.numPoints(); ++i) {
-    if (model_.invMass[i] != 0.0) k += 0.5 * model_.mass[i] * s.vel(i).squaredNorm();
-  }
+  // Summed in fixed chunks of points, added in chunk order (sumChunks): the same bits on any
+  // thread count; the solver's explosion guard takes it every step.
+  std::vector<double> partials;
+  double k =
+      sumChunks(pool_.get(), size_t(model_.layout.numPoints()), kPointChunk, partials, [&](size_t begin, size_t end) {
+        double part = 0.0;
+        for (size_t i = begin; i < end; ++i) {
+          if (model_.invMass[i] != 0.0) part += 0.5 * model_.mass[i] * s.vel(int(i)).squaredNorm();
+        }
+        return part;
+      });
   for (int j = 0; j < model_.layout.numBodies; ++j) {
     k += 0.5 * model_.bodies[size_t(j)].inertia * s.omega(j) * s.omega(j);
   }

@@ -14,6 +14,7 @@
 #include "core/constraint_solver.hpp"
 #include "core/force.hpp"
 #include "core/model.hpp"
+#include "core/pointwise_pass.hpp"
 #include "core/worker_pool.hpp"
 
 namespace particles {
@@ -114,6 +115,7 @@ class System {
   ConstraintSolver constraintSolver_;
   ConstraintSolver projectionSolver_;  // its own, so the multipliers' warm start stays untouched
   ForceAccumulator acc_;
+  PointwiseRun pointwiseRun_;  // derivEval's scratch: the terms of the current run of pointwise forces
   ConstraintSolveStats lastSolve_;
   std::unique_ptr<WorkerPool> pool_;  // null: one thread
   double energyScale_ = 0.0;

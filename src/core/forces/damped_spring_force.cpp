@@ -1,16 +1,16 @@
 #include "core/forces/damped_spring_force.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
-#include <fmt/format.h>
-
+#include "core/forces/spring_force_kernel.hpp"
 #include "core/system.hpp"
 
 namespace particles {
 
 namespace {
-constexpr double kMinLength = 1e-12;  // m; below this l/|l| is undefined
 constexpr size_t kSpringChunk = 8192;  // springs per chunk of the threaded loops: ~40 µs of work
 }
 
@@ -50,7 +50,7 @@ void DampedSpringForce::apply(const Model& model, const StateView& s, double t, 
   for (size_t i = 0; i < a_.size(); ++i) {
     const Vec2 l = endpointPosition(s, a_[i]) - endpointPosition(s, b_[i]);
     const double len = l.norm();
-    if (len < kMinLength) continue;
+    if (len < kMinSpringLength) continue;
     const Vec2 ldot = endpointVelocity(s, a_[i]) - endpointVelocity(s, b_[i]);
     const Vec2 fa = -(ks_[i] * (len - rest_[i]) + kd_[i] * ldot.dot(l) / len) * (l / len);
     applyForceAt(s, a_[i], fa, acc);
@@ -73,30 +73,16 @@ void DampedSpringForce::preparePoints(const Model& model, const StateView& s, do
     endOf_.resize(2 * n);
     std::vector<int> fill(endStart_.begin(), endStart_.end() - 1);
     for (size_t i = 0; i < n; ++i) {
-      endOf_[size_t(fill[size_t(endA_[i] / 2)]++)] = int(2 * i);
-      endOf_[size_t(fill[size_t(endB_[i] / 2)]++)] = int(2 * i + 1);
+      endOf_[size_t(fill[size_t(endA_[i] / 2)]++)] = int(4 * i);
+      endOf_[size_t(fill[size_t(endB_[i] / 2)]++)] = int(4 * i + 2);
     }
-    springForce_.resize(2 * n);
+    springForce_.resize(4 * n);
   }
-  const double* y = s.vector().data();
-  const double* v = y + s.layout().velocityOffset();
+  const double* x = s.vector().data();
+  const double* v = x + s.layout().velocityOffset();
+  const SpringArrays springs{endA_.data(), endB_.data(), rest_.data(), ks_.data(), kd_.data()};
   double* out = springForce_.data();
-  forChunks(pool, n, kSpringChunk, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      const int ia = endA_[i], ib = endB_[i];
-      const double lx = y[ia] - y[ib], ly = y[ia + 1] - y[ib + 1];
-      const double len2 = lx * lx + ly * ly;
-      const double len = std::sqrt(len2);
-      // |f| / |l| = [k_s (|l| − r) + k_d (l̇·l)/|l|] / |l| = [k_s (|l| − r) |l| + k_d l̇·l] / |l|²: one division
-      double mag = 0.0;
-      if (len >= kMinLength) {
-        const double ldotl = (v[ia] - v[ib]) * lx + (v[ia + 1] - v[ib + 1]) * ly;
-        mag = (ks_[i] * (len - rest_[i]) * len + kd_[i] * ldotl) / len2;
-      }
-      out[2 * i] = -mag * lx;
-      out[2 * i + 1] = -mag * ly;
-    }
-  });
+  forChunks(pool, n, kSpringChunk, [&](size_t begin, size_t end) { springForces(springs, x, v, out, begin, end); });
 }
 
 void DampedSpringForce::applyToPoints(const Model&, const StateView&, double, double* force, int begin, int end) const {
@@ -106,12 +92,8 @@ void DampedSpringForce::applyToPoints(const Model&, const StateView&, double, do
   for (int p = begin; p < end; ++p) {
     double fx = force[2 * p], fy = force[2 * p + 1];
     for (int k = start[p]; k < start[p + 1]; ++k) {
-      const int e = ends[k];
-      const double* f = springForce + (e & ~1);  // spring e / 2's f_a
-      // −f_a at a b end: x − y and x + (−1)·y round alike.
-      const double sign = (e & 1) ? -1.0 : 1.0;
-      fx += sign * f[0];
-      fy += sign * f[1];
+      fx += springForce[ends[k]];
+      fy += springForce[ends[k] + 1];
     }
     force[2 * p] = fx;
     force[2 * p + 1] = fy;
@@ -123,7 +105,7 @@ void DampedSpringForce::addJacobians(const Model& model, const StateView& s, dou
   // The blocks of spring i (docs above).
   auto blocksOf = [&](size_t i, Vec2 l, Eigen::Matrix2d& k, Eigen::Matrix2d& d) {
     const double len = l.norm();
-    if (len < kMinLength) {
+    if (len < kMinSpringLength) {
       k.setZero();
       d.setZero();
       return false;

@@ -51,6 +51,12 @@ class DampedSpringForce final : public Force {
   void preparePoints(const Model& model, const StateView& s, double t, WorkerPool* pool) const override;
   void applyToPoints(const Model& model, const StateView& s, double t, double* force, int begin,
                      int end) const override;
+  PointwiseTerm pointwiseTerm() const override {
+    return {.kind = PointwiseTerm::Kind::gather,
+            .start = endStart_.data(),
+            .entries = endOf_.data(),
+            .values = springForce_.data()};
+  }
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
   double energyScale(const Model& model, const StateView& s) const override;
   void draw(const StateView& s, double t, Drawing& out) const override;
@@ -65,7 +71,7 @@ class DampedSpringForce final : public Force {
   // springs that touch it (2·spring, +1 at its b end), in spring order, from endStart_[p].
   std::vector<int> endA_, endB_;
   mutable std::vector<int> endStart_, endOf_;
-  mutable std::vector<double> springForce_;  // f_a per spring (x, y), filled by preparePoints
+  mutable std::vector<double> springForce_;  // (f_a, −f_a) per spring, filled by preparePoints
 };
 
 // How scenario files write it (`{type: spring, a, b, rest, ks, kd}`: every explicit spring joins one shared DampedSpringForce).

@@ -18,6 +18,7 @@ class DragForce final : public Force {
   bool actsPointwise() const override { return angularKd_ == 0.0; }
   void applyToPoints(const Model& model, const StateView& s, double t, double* force, int begin,
                      int end) const override;
+  PointwiseTerm pointwiseTerm() const override { return {.kind = PointwiseTerm::Kind::perVelocity, .c = kd_}; }
   double potentialEnergy(const Model&, const StateView&, double) const override { return 0.0; }
   double energyScale(const Model&, const StateView&) const override { return 0.0; }
   bool isDissipative() const override { return true; }
