@@ -6,13 +6,13 @@
 namespace particles::render {
 
 std::size_t FramePipeline::slotCount(std::size_t capacity) {
-  return std::max<std::size_t>(1, capacity) + 2;
+  return capacity == 0 ? 1 : capacity + 2;
 }
 
 FramePipeline::FramePipeline(std::size_t capacity, Fill fill, Consumer consume)
-    : capacity_(std::max<std::size_t>(1, capacity)), fill_(std::move(fill)), consume_(std::move(consume)) {
+    : capacity_(capacity), fill_(std::move(fill)), consume_(std::move(consume)) {
   for (std::size_t slot = slotCount(capacity); slot-- > 0;) free_.push_back(slot);  // slot 0 is used first
-  worker_ = std::thread([this] { run(); });
+  if (capacity_ > 0) worker_ = std::thread([this] { run(); });
 }
 
 FramePipeline::~FramePipeline() {
@@ -24,6 +24,18 @@ void FramePipeline::rethrowIfFailed() {
 }
 
 void FramePipeline::push(const Image& frame) {
+  if (capacity_ == 0) {
+    if (error_) std::rethrow_exception(error_);
+    if (cancelled_ || closing_) throw std::logic_error("FramePipeline::push after close or cancel");
+    fill_(frame, 0);
+    try {
+      consume_(0, consumed_++);
+    } catch (...) {
+      error_ = std::current_exception();  // a failed encoder takes no more frames
+      throw;
+    }
+    return;
+  }
   std::unique_lock lock(mutex_);
   // Queue not full implies a free slot: capacity_ queued + 1 consumed leave one of slotCount.
   changed_.wait(lock, [&] { return queue_.size() < capacity_ || error_ || cancelled_; });

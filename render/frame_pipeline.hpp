@@ -7,6 +7,8 @@
 // worker calls `consume` for each queued slot in order and then frees it. An exception thrown by
 // `fill` propagates from push(); one thrown by `consume` stops the worker and is rethrown by the
 // next push() or close().
+// A capacity of 0 starts no worker: push() fills and consumes each frame on the calling thread
+// (a render held to one thread, `particles render --threads 1`).
 
 #include <condition_variable>
 #include <cstddef>
@@ -28,7 +30,7 @@ class FramePipeline {
   using Consumer = std::function<void(std::size_t slot, long index)>;
 
   // The slots a pipeline of `capacity` queued frames uses: those queued, the one being filled and
-  // the one being consumed.
+  // the one being consumed (one, without a worker).
   static std::size_t slotCount(std::size_t capacity);
 
   FramePipeline(std::size_t capacity, Fill fill, Consumer consume);
@@ -46,7 +48,8 @@ class FramePipeline {
   void run();
   void rethrowIfFailed();  // with the lock held
 
-  const std::size_t capacity_;
+  const std::size_t capacity_;  // 0: no worker
+  long consumed_ = 0;           // frames consumed without a worker
   Fill fill_;
   Consumer consume_;
   std::mutex mutex_;

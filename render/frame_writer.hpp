@@ -73,6 +73,11 @@ struct VideoOptions {
   double keyintSeconds = 2.0;
   // round(keyintSeconds · fps), at least 1.
   int keyframeInterval() const;
+  // x264's threads; 0: its default, 1.5 per CPU the process may use. The pictures it writes are
+  // the same for every count (x264 is deterministic across thread counts); the settings note it
+  // leaves in the first frame (an SEI message, "threads=N") says how many ran. VP9 keeps a fixed
+  // count (webm_writer.cpp): libvpx's pictures do depend on it.
+  int encoderThreads = 0;
 };
 // The largest --keyint, s: an hour.
 inline constexpr double kMaxKeyintSeconds = 3600.0;
@@ -88,7 +93,8 @@ struct FrameWriterOptions {
   // The frames have alpha to keep (a transparent background): WebM as yuva420p, PNG as RGBA.
   bool alpha = false;
   // Frames waiting for the encoder. Two to four are enough to keep renderer and encoder busy;
-  // more only costs memory (3.7 MB per 1280×720 frame).
+  // more only costs memory (3.7 MB per 1280×720 frame). 0: no encoder thread, each frame is
+  // encoded on the calling thread as it is written (a render held to one thread).
   size_t queueFrames = 4;
   // A PNG sequence: the index in the whole render of the first frame written (its file name), and
   // whether this is the whole render, whose finish() removes frame files of an earlier, longer run.

@@ -61,6 +61,7 @@ void validate(const GlRequest& request) {
     throw std::invalid_argument(
         fmt::format("a GPU needs EGL, and this particles has none: its GL is {}", glBuildDescription()));
   }
+  if (request.threads < 0) throw std::invalid_argument(fmt::format("{} rasteriser threads", request.threads));
 }
 
 std::string describe(const GlInfo& info) {

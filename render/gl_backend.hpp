@@ -21,6 +21,12 @@ enum class GlBackend { automatic, egl, osmesa };
 struct GlRequest {
   GlBackend backend = GlBackend::automatic;
   bool gpu = false;  // a hardware EGL device rather than the software one
+  // The threads llvmpipe may rasterise on, counting the calling thread: 1 rasterises on it alone,
+  // 0 leaves Mesa's default (one thread per online CPU, up to 16). Mesa reads it from the
+  // environment (LP_NUM_THREADS) when it makes its first context in the process, so the first
+  // request's count holds for the process; an LP_NUM_THREADS the user set wins. llvmpipe's pixels
+  // do not depend on it (golden/README.md: the same bytes with 0, 1, 2 and 8).
+  int threads = 0;
 };
 
 // "auto", "egl", "osmesa", and back; nothing for another name.

@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
+#include <string>
+
 #include "render/errors.hpp"
 #include "render/frame_memory.hpp"
 #if PARTICLES_WITH_EGL
@@ -93,6 +96,11 @@ const Image& GlContext::finishFrame() {
 
 std::unique_ptr<GlContext> makeGlContext(const GlRequest& request, int width, int height) {
   validate(request);
+  // LP_NUM_THREADS counts the threads besides the calling one: 0 rasterises on it.
+  if (request.threads > 0 && std::getenv("LP_NUM_THREADS") == nullptr) {
+    const std::string value = std::to_string(request.threads == 1 ? 0 : request.threads);
+    setenv("LP_NUM_THREADS", value.c_str(), 0);
+  }
 #if PARTICLES_WITH_EGL
   if (request.backend == GlBackend::egl) return makeEglContext(request.gpu, width, height);
 #endif

@@ -39,6 +39,7 @@ Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions
   // x264's keyint: the longest run between keyframes. Its min-keyint (libav's keyint_min, default
   // 25) is clamped by x264 to half of it plus one.
   video->codec()->gop_size = options.video.keyframeInterval();
+  if (options.video.encoderThreads > 0) video->codec()->thread_count = options.video.encoderThreads;
   video->setOption("preset", options.video.preset);
   if (!options.video.tune.empty()) video->setOption("tune", options.video.tune);
   video->setOption("crf", std::to_string(crfOf(outputFormat(OutputKind::mp4), options.video.crf)));

@@ -12,11 +12,18 @@ namespace particles::render {
 
 namespace {
 
+// The job's GL request, with the job's threads for llvmpipe.
+GlRequest rasterRequestOf(const RenderJob& job) {
+  GlRequest gl = job.gl;
+  if (job.threads > 0) gl.threads = job.threads;
+  return gl;
+}
+
 // The renderer's frame for the current state, drawn over by the decorate hook if there is one.
 class FramePainter {
  public:
   FramePainter(const RenderJob& job, const RenderHooks& hooks)
-      : renderer_(job.look, job.gl), camera_(job.camera), decorate_(hooks.decorate) {
+      : renderer_(job.look, rasterRequestOf(job)), camera_(job.camera), decorate_(hooks.decorate) {
     if (hooks.glReady) hooks.glReady(renderer_.gl());
     // The copy drawn over, allocated with the frame (render/frame_memory.hpp) and reused.
     if (decorate_) decorated_ = allocateImage(job.look.width, job.look.height, "the frame's decorated copy");
@@ -92,6 +99,8 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
   out.alpha = alpha;
   out.firstIndex = first;
   out.wholeSequence = !job.frames;
+  if (job.threads > 0) out.video.encoderThreads = job.threads;
+  if (job.threads == 1) out.queueFrames = 0;  // no encoder thread
   const long frames = end - first;
   // Removes everything it wrote if an exception leaves this function before finish().
   const std::unique_ptr<FrameWriter> writer = openFrameWriter(job.output, out);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "render/frame_pipeline.hpp"
@@ -204,4 +205,38 @@ TEST_CASE("a failing fill leaves the pipeline usable, a failing consumer stops i
         failing.close();
       },
       "disk full");
+}
+
+TEST_CASE("a pipeline of capacity 0 fills and consumes each frame on the calling thread, in order") {
+  CHECK(FramePipeline::slotCount(0) == 1);
+  const std::thread::id caller = std::this_thread::get_id();
+  std::vector<long> consumed;
+  int width = -1;
+  bool elsewhere = false;
+  {
+    FramePipeline pipeline(
+        0,
+        [&](const Image& frame, std::size_t slot) {
+          elsewhere = elsewhere || slot != 0 || std::this_thread::get_id() != caller;
+          width = frame.width;
+        },
+        [&](std::size_t slot, long index) {
+          elsewhere = elsewhere || slot != 0 || std::this_thread::get_id() != caller;
+          if (width != index + 2) elsewhere = true;  // frame i is 2 + i wide, consumed before the next fill
+          consumed.push_back(index);
+        });
+    for (int i = 0; i < 5; ++i) {
+      pipeline.push(Image(2 + i, 1));
+      CHECK(consumed.size() == size_t(i + 1));  // consumed before push returned
+    }
+    pipeline.close();
+  }
+  CHECK_FALSE(elsewhere);
+  CHECK(consumed == std::vector<long>{0, 1, 2, 3, 4});
+
+  // A failing consumer: that push reports it, and so does every later one.
+  FramePipeline failing(
+      0, [](const Image&, std::size_t) {}, [](std::size_t, long) { throw std::runtime_error("disk full"); });
+  CHECK_THROWS_WITH(failing.push(Image(2, 2)), "disk full");
+  CHECK_THROWS_WITH(failing.push(Image(2, 2)), "disk full");
 }

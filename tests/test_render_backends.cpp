@@ -3,6 +3,7 @@
 // the command line --gl, PARTICLES_GL, --gpu and --version.
 #include <doctest/doctest.h>
 
+#include <cstdlib>
 #include <optional>
 #include <regex>
 #include <string>
@@ -174,6 +175,32 @@ TEST_CASE("GL backends: names, the backends of this build and the requests it re
     const std::string message =
         thrownMessage<std::invalid_argument>([&] { Renderer renderer(particles::test::smallRenderOptions(), {b}); });
     CHECK_MESSAGE(contains(message, "-DPARTICLES_WITH_"), message);
+  }
+}
+
+TEST_CASE("GL backends: a request's threads become llvmpipe's LP_NUM_THREADS, unless the user set it") {
+  // Mesa reads the variable when it makes a context; the request sets it first. 1 thread is
+  // llvmpipe's 0 (rasterise on the calling thread). The variable is put back afterwards, so that
+  // later tests draw with the machine's default.
+  const char* before = std::getenv("LP_NUM_THREADS");
+  const std::optional<std::string> saved = before ? std::optional<std::string>(before) : std::nullopt;
+  auto lpThreadsAfter = [](int threads) {
+    probeGl({.threads = threads});
+    const char* value = std::getenv("LP_NUM_THREADS");
+    return value ? std::string(value) : std::string("(unset)");
+  };
+  unsetenv("LP_NUM_THREADS");
+  CHECK(lpThreadsAfter(0) == "(unset)");
+  CHECK(lpThreadsAfter(1) == "0");
+  unsetenv("LP_NUM_THREADS");
+  CHECK(lpThreadsAfter(3) == "3");
+  setenv("LP_NUM_THREADS", "5", 1);
+  CHECK(lpThreadsAfter(2) == "5");
+  CHECK_THROWS_AS(validate(GlRequest{.threads = -1}), std::invalid_argument);
+  if (saved) {
+    setenv("LP_NUM_THREADS", saved->c_str(), 1);
+  } else {
+    unsetenv("LP_NUM_THREADS");
   }
 }
 

@@ -52,8 +52,9 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
   command.add_flag("-q,--quiet", o.quiet, "No progress and no summary; errors are still printed");
   command
       .add_option("--threads", o.threads,
-                  fmt::format("Threads the simulation runs on (default: {}, else one per CPU this process may use); "
-                              "the results are the same bits for every count",
+                  fmt::format("Threads the command may keep busy: the simulation's and, in render, llvmpipe's and "
+                              "the encoder's (default: {}, else one per CPU this process may use); the results "
+                              "are the same bits for every count",
                               kThreadsEnvironmentVariable))
       ->check(CLI::Range(1, kMaxThreads));
   addMaxInputOption(command, o.maxInputMiB, "a scenario file");

@@ -17,6 +17,7 @@
 #include "app/gl_options.hpp"
 #include "app/job_record.hpp"
 #include "app/stop_signal.hpp"
+#include "app/thread_count.hpp"
 #include "core/solver.hpp"
 #include "core/system.hpp"
 #include "plot/errors.hpp"
@@ -262,6 +263,8 @@ int renderCommand(const RenderCommandOptions& options) {
   job.camera = {s.render.viewCenter, s.render.viewHeight};
   job.look = look;
   job.gl = gl;
+  // --threads is the whole command's: the simulation's (loadScenario), llvmpipe's and the encoder's.
+  job.threads = threadCountOf(common.threads);
   job.video.crf = options.crf;
   job.video.keyintSeconds = options.keyint;
   job.video.preset = options.preset;
