@@ -15,7 +15,10 @@ namespace {
 
 using particles::app::estimatedJobCost;
 using particles::app::fastestAngularFrequency;
+using particles::app::JobEstimate;
+using particles::app::jobSpreadsOverThreads;
 using particles::app::longestFirst;
+using particles::app::runsAlone;
 using particles::app::threadShare;
 using particles::scenario::loadScenarioFile;
 using particles::scenario::loadScenarioText;
@@ -23,12 +26,47 @@ using particles::scenario::Override;
 
 const std::string kSource = PARTICLES_SOURCE_DIR;
 
+std::vector<JobEstimate> estimatesOf(const std::vector<double>& costs) {
+  std::vector<JobEstimate> out;
+  for (double cost : costs) out.push_back({cost, true});
+  return out;
+}
+
 }  // namespace
 
 TEST_CASE("sweep schedule: the longest first, equal costs in their own order") {
-  CHECK(longestFirst({1, 5, 3, 5, 0}) == std::vector<size_t>{1, 3, 2, 0, 4});
-  CHECK(longestFirst({2, 2, 2}) == std::vector<size_t>{0, 1, 2});
+  CHECK(longestFirst(estimatesOf({1, 5, 3, 5, 0})) == std::vector<size_t>{1, 3, 2, 0, 4});
+  CHECK(longestFirst(estimatesOf({2, 2, 2})) == std::vector<size_t>{0, 1, 2});
   CHECK(longestFirst({}).empty());
+}
+
+TEST_CASE("sweep schedule: a job that would outlast the others left runs alone on every core") {
+  // Two workers: alone when longer than all the others together (the example sweep's studies, by
+  // their estimates 4.38 : 2.19 : 1.10 : 1, each in turn), not when the others can match it.
+  CHECK(runsAlone({4.38, true}, 2.19 + 1.10 + 1.0, 2, 0));
+  CHECK(runsAlone({2.19, true}, 1.10 + 1.0, 2, 0));
+  CHECK(runsAlone({1.10, true}, 1.0, 2, 0));
+  CHECK_FALSE(runsAlone({3, true}, 1 + 1 + 1, 2, 0));  // the others fill the other worker: side by side
+  CHECK(runsAlone({1, true}, 0, 2, 0));                // the last job, nothing running: every core
+  // Four workers: longer than the others' share of three.
+  CHECK(runsAlone({10, true}, 27, 4, 0));
+  CHECK_FALSE(runsAlone({10, true}, 30, 4, 0));
+  // Never beside a running job, with one worker (it has every core anyway), or for a job that
+  // would leave the other cores idle.
+  CHECK_FALSE(runsAlone({10, true}, 1, 2, 1));
+  CHECK_FALSE(runsAlone({10, true}, 1, 1, 0));
+  CHECK_FALSE(runsAlone({10, false}, 1, 2, 0));
+}
+
+TEST_CASE("sweep schedule: studies and renders spread over threads, runs of a large scene too") {
+  const std::string cloth = kSource + "/scenarios/cloth.yaml";
+  auto small = loadScenarioFile(cloth, {});
+  CHECK(jobSpreadsOverThreads(small, "stability"));
+  CHECK(jobSpreadsOverThreads(small, "render"));
+  CHECK_FALSE(jobSpreadsOverThreads(small, "run"));  // 625 points: one chunk
+  const std::vector<Override> hundred = {{"grids[0].size", "[100, 100]", "test"}};
+  auto large = loadScenarioFile(cloth, hundred);
+  CHECK(jobSpreadsOverThreads(large, "run"));
 }
 
 TEST_CASE("sweep schedule: each job's share of the cores, and more for the last ones") {

@@ -94,4 +94,8 @@ double estimatedJobCost(scenario::Scenario& s, std::string_view command) {
   return double(s.simulation.steps()) * derivEvalsPerStep(s.simulation.integrator) * size;
 }
 
+bool jobSpreadsOverThreads(const scenario::Scenario& s, std::string_view command) {
+  return command == "stability" || command == "render" || s.system.spreadsOverThreads();
+}
+
 }  // namespace particles::app

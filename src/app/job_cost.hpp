@@ -29,4 +29,9 @@ double fastestAngularFrequency(System& system);
 // one) or stability.
 double estimatedJobCost(scenario::Scenario& scenario, std::string_view command);
 
+// Whether the job keeps more threads than one busy when it has them: a stability study (its
+// searches run at once), a render (llvmpipe and x264 take the threads too), or a run of a scene
+// large enough that a derivative evaluation has work for several (System::spreadsOverThreads).
+bool jobSpreadsOverThreads(const scenario::Scenario& scenario, std::string_view command);
+
 }  // namespace particles::app

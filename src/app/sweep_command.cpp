@@ -160,8 +160,13 @@ std::vector<size_t> jobsToRun(const SweepPlan& plan, size_t from, size_t to, con
 bool runJobs(const SweepPlan& plan, size_t from, size_t to, const Workers& workers, const SweepOptions& o,
              RunTally& tally, std::vector<bool>& succeeded, Progress& progress, size_t& done) {
   const std::vector<size_t> pending = jobsToRun(plan, from, to, o, tally, succeeded, done);
-  const std::vector<size_t> order = longestFirst(estimatedCosts(plan, pending, o.maxInputMiB));
+  const std::vector<JobEstimate> estimates = estimateJobs(plan, pending, o.maxInputMiB);
+  const std::vector<size_t> order = longestFirst(estimates);
+  // costAfter[k]: the estimated cost of the jobs after order[k].
+  std::vector<double> costAfter(order.size() + 1, 0.0);
+  for (size_t k = order.size(); k-- > 0;) costAfter[k] = costAfter[k + 1] + estimates[order[k]].cost;
   std::map<pid_t, size_t> running;
+  bool alone = false;  // a job runs alone on every core (runsAlone): start none beside it
   size_t next = 0;
   const size_t total = plan.jobs.size();
   auto stopAll = [&] {
@@ -174,13 +179,18 @@ bool runJobs(const SweepPlan& plan, size_t from, size_t to, const Workers& worke
     }
   };
   while (next < order.size() || !running.empty()) {
-    while (next < order.size() && int(running.size()) < workers.parallel && !stopSignal()) {
+    while (next < order.size() && int(running.size()) < workers.parallel && !alone && !stopSignal()) {
       const SweepJob& job = plan.jobs[pending[order[next]]];
+      const JobEstimate& estimate = estimates[order[next]];
+      alone = workers.cores > 0 && runsAlone(estimate, costAfter[next + 1], workers.parallel, running.size());
       const size_t toStart = order.size() - next++;  // this job and those after it
       // A join simulates nothing: it has no --threads.
-      const int threads = workers.cores > 0 && job.stage != "concat"
-                              ? threadShare(workers.cores, workers.parallel, running.size(), toStart)
-                              : 0;
+      int threads = 0;
+      if (alone) {
+        threads = workers.cores;
+      } else if (workers.cores > 0 && job.stage != "concat") {
+        threads = threadShare(workers.cores, workers.parallel, running.size(), toStart);
+      }
       running[startJob(plan, job.index, plan.outDir / job.dir / "log.txt", o.force, threads)] = job.index;
       ++tally.ran;
     }
@@ -197,6 +207,7 @@ bool runJobs(const SweepPlan& plan, size_t from, size_t to, const Workers& worke
     if (it == running.end()) continue;
     const SweepJob& job = plan.jobs[it->second];
     running.erase(it);
+    if (running.empty()) alone = false;
     ++done;
     const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
     if (code == 0) {
@@ -253,7 +264,8 @@ void addSweepOptions(CLI::App& command, SweepOptions& o) {
       "are gathered into OUT/results.csv (and OUT/results.svg when one parameter varies).\n"
       "Run here, the jobs start longest first (steps × size; a stability study's steps from its stiffest\n"
       "mode) and each gets --threads max(1, CPUs / min(JOBS, jobs unfinished)): jobs × threads stay within\n"
-      "the CPUs, and the last jobs use the idle ones too. A 'threads' option in the sweep file, or\n"
+      "the CPUs, and the last jobs use the idle ones too; a job estimated to outlast all the others left\n"
+      "(per other worker) runs alone on every CPU. A 'threads' option in the sweep file, or\n"
       "PARTICLES_THREADS, is kept instead. Records and results do not depend on either.\n"
       "Exit codes: 0 all jobs succeeded, 1 some failed (listed), 2 a bad sweep file, 3 an output failed.\n"
       "Examples:\n"

@@ -10,12 +10,13 @@
 
 namespace particles::app {
 
-std::vector<double> estimatedCosts(const SweepPlan& plan, const std::vector<size_t>& jobs, std::uintmax_t maxInputMiB) {
+std::vector<JobEstimate> estimateJobs(const SweepPlan& plan, const std::vector<size_t>& jobs,
+                                      std::uintmax_t maxInputMiB) {
   std::map<size_t, std::string> texts;  // by scenario, read once
-  std::vector<double> costs;
+  std::vector<JobEstimate> estimates;
   for (const size_t index : jobs) {
     const SweepJob& job = plan.jobs[index];
-    double cost = 0.0;
+    JobEstimate estimate;
     if (job.stage != "concat") {
       try {
         auto text = texts.find(job.scenarioIndex);
@@ -23,21 +24,27 @@ std::vector<double> estimatedCosts(const SweepPlan& plan, const std::vector<size
         if (text == texts.end())
           text = texts.emplace(job.scenarioIndex, scenario::readScenarioText(file, maxInputMiB)).first;
         scenario::Scenario loaded = scenario::loadScenarioText(text->second, file.string(), job.overrides);
-        cost = estimatedJobCost(loaded, plan.spec.command);
+        estimate.cost = estimatedJobCost(loaded, plan.spec.command);
+        estimate.spreads = jobSpreadsOverThreads(loaded, plan.spec.command);
       } catch (const scenario::ScenarioError&) {
-        cost = 0.0;
+        estimate = {};
       }
     }
-    costs.push_back(cost);
+    estimates.push_back(estimate);
   }
-  return costs;
+  return estimates;
 }
 
-std::vector<size_t> longestFirst(const std::vector<double>& costs) {
-  std::vector<size_t> order(costs.size());
+std::vector<size_t> longestFirst(const std::vector<JobEstimate>& estimates) {
+  std::vector<size_t> order(estimates.size());
   std::iota(order.begin(), order.end(), size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return costs[a] > costs[b]; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return estimates[a].cost > estimates[b].cost; });
   return order;
+}
+
+bool runsAlone(const JobEstimate& job, double othersCost, int parallel, size_t running) {
+  return running == 0 && parallel > 1 && job.spreads && job.cost > othersCost / double(parallel - 1);
 }
 
 int threadShare(int cores, int parallel, size_t running, size_t toStart) {

@@ -16,13 +16,27 @@ namespace particles::app {
 
 struct SweepPlan;
 
-// The estimated cost (app/job_cost.hpp) of each of `jobs` (indices into plan.jobs): its scenario
-// loaded with what its command line overrides. 0 for a concat job (nothing to simulate) and for a
-// job whose scenario does not load (it fails at once, saying why).
-std::vector<double> estimatedCosts(const SweepPlan& plan, const std::vector<size_t>& jobs, std::uintmax_t maxInputMiB);
+struct JobEstimate {
+  double cost = 0.0;     // app/job_cost.hpp's estimatedJobCost
+  bool spreads = false;  // app/job_cost.hpp's jobSpreadsOverThreads
+};
 
-// The positions 0 … costs.size() − 1, by decreasing cost; equal costs keep their order.
-std::vector<size_t> longestFirst(const std::vector<double>& costs);
+// The estimate (app/job_cost.hpp) of each of `jobs` (indices into plan.jobs): its scenario loaded
+// with what its command line overrides. Cost 0 for a concat job (nothing to simulate) and for a
+// job whose scenario does not load (it fails at once, saying why).
+std::vector<JobEstimate> estimateJobs(const SweepPlan& plan, const std::vector<size_t>& jobs,
+                                      std::uintmax_t maxInputMiB);
+
+// The positions 0 … estimates.size() − 1, by decreasing cost; equal costs keep their order.
+std::vector<size_t> longestFirst(const std::vector<JobEstimate>& estimates);
+
+// Whether the next job to start, the longest left, runs alone on every core: when no job is
+// running, more than one may run at once (`parallel`), it spreads over threads, and it would
+// outlast the others left even if they kept every other worker busy: cost > Σ others /
+// (parallel − 1). Started beside them on its share of the cores it alone would set the end of
+// the sweep; alone on all of them it ends sooner, and the others follow. The example sweep's
+// stiffest study is 58 % of its work (bench/README.md, "Sweeps").
+bool runsAlone(const JobEstimate& job, double othersCost, int parallel, size_t running);
 
 // The threads of a job started with `running` others under way and `toStart` − 1 still to start
 // after it, at most `parallel` at once, on `cores` CPUs: the cores split evenly between the jobs

@@ -10,10 +10,6 @@
 
 namespace particles {
 
-namespace {
-constexpr size_t kPointChunk = 4096;  // points per chunk of the pointwise passes
-}
-
 void System::setThreads(int threads) {
   if (threads <= 1) {
     pool_.reset();

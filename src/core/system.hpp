@@ -82,6 +82,9 @@ class System {
   // default) starts none. Results are the same bits for every count.
   void setThreads(int threads);
   int threads() const { return pool_ ? pool_->threads() : 1; }
+  // Whether a derivative evaluation has work for more than one thread: more points than one chunk
+  // of its passes holds (core/worker_pool.hpp). The 25² cloth does not; the 100² does.
+  bool spreadsOverThreads() const { return size_t(model_.layout.numPoints()) > kPointChunk; }
   WorkerPool* pool() { return pool_.get(); }
 
   double kineticEnergy(const Eigen::VectorXd& y) const;

@@ -105,6 +105,8 @@ void forChunks(WorkerPool* pool, size_t n, size_t grain, Body&& body) {
 // Entries per chunk of a whole-vector update (128 KiB of doubles): the state of the 25² cloth is
 // one chunk, the 316² cloth's 25.
 constexpr size_t kVectorChunk = 16384;
+// Points per chunk of derivEval's passes over the points (System::derivEval).
+constexpr size_t kPointChunk = 4096;
 
 // Calls body(start, length) over the chunks of a vector of n entries: for elementwise updates,
 // whose results do not depend on the split at all.
