@@ -1,11 +1,16 @@
 #include "core/constraint_solver.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/group_by_bucket.hpp"
+#include "core/parallel_sparse.hpp"
 
 namespace particles {
 
 namespace {
-constexpr size_t kConstraintRowChunk = 4096;  // rows per chunk of the per-row loops
+constexpr size_t kConstraintRowChunk = 4096;  // rows (or touched particles) per chunk of the loops
 }
 
 template <class Precond>
@@ -18,6 +23,74 @@ void ConstraintSolver::runCg(Eigen::VectorXd& x, ConstraintSolveStats& stats) {
   x = cg.solveWithGuess(rhs_, x);
   stats.iterations = int(cg.iterations());
   stats.relativeResidual = cg.error();
+}
+
+void ConstraintSolver::runJacobiCg(Eigen::VectorXd& x, ConstraintSolveStats& stats) {
+  const Eigen::Index n = a_.cols();
+  auto dot = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) { return dotChunks(pool_, u, v, partials_); };
+  // Eigen's DiagonalPreconditioner: 1/A_ii, or 1 where A_ii is 0.
+  inverseDiagonal_.resize(n);
+  const Eigen::VectorXd diagonal = a_.diagonal();
+  for (Eigen::Index i = 0; i < n; ++i) inverseDiagonal_[i] = diagonal[i] != 0.0 ? 1.0 / diagonal[i] : 1.0;
+  const int maxIterations = options_.maxIterations > 0 ? options_.maxIterations : int(2 * n);
+
+  multiplySymmetric(pool_, a_, x, product_);
+  residual_.resize(n);
+  forSegments(pool_, n, [&](long i, long m) { residual_.segment(i, m) = rhs_.segment(i, m) - product_.segment(i, m); });
+  const double rhsNorm2 = dot(rhs_, rhs_);
+  if (rhsNorm2 == 0.0) {
+    x.setZero();
+    stats.iterations = 0;
+    stats.relativeResidual = 0.0;
+    return;
+  }
+  const double threshold =
+      std::max(options_.tolerance * options_.tolerance * rhsNorm2, std::numeric_limits<double>::min());
+  double residualNorm2 = dot(residual_, residual_);
+  int iteration = 0;
+  if (residualNorm2 >= threshold) {
+    direction_.resize(n);
+    preconditioned_.resize(n);
+    forSegments(pool_, n, [&](long i, long m) {
+      direction_.segment(i, m) = residual_.segment(i, m).cwiseProduct(inverseDiagonal_.segment(i, m));
+    });
+    double absNew = dot(residual_, direction_);
+    while (iteration < maxIterations) {
+      multiplySymmetric(pool_, a_, direction_, product_);
+      const double alpha = absNew / dot(direction_, product_);
+      forSegments(pool_, n, [&](long i, long m) {
+        x.segment(i, m) += alpha * direction_.segment(i, m);
+        residual_.segment(i, m) -= alpha * product_.segment(i, m);
+      });
+      residualNorm2 = dot(residual_, residual_);
+      if (residualNorm2 < threshold) break;
+      forSegments(pool_, n, [&](long i, long m) {
+        preconditioned_.segment(i, m) = residual_.segment(i, m).cwiseProduct(inverseDiagonal_.segment(i, m));
+      });
+      const double absOld = absNew;
+      absNew = dot(residual_, preconditioned_);
+      const double beta = absNew / absOld;
+      forSegments(pool_, n, [&](long i, long m) {
+        direction_.segment(i, m) = preconditioned_.segment(i, m) + beta * direction_.segment(i, m);
+      });
+      ++iteration;
+    }
+  }
+  stats.iterations = iteration;
+  stats.relativeResidual = std::sqrt(residualNorm2 / rhsNorm2);
+}
+
+template <class Body>
+void ConstraintSolver::forEachParticleEntry(Body&& body) const {
+  forChunks(pool_, touched_.size(), kConstraintRowChunk, [&](size_t begin, size_t end) {
+    for (size_t c = begin; c < end; ++c) {
+      const int p = touched_[c];
+      for (int e = columnStart_[c]; e < columnStart_[c + 1]; ++e) {
+        const int entry = columnEntries_[size_t(e)];
+        body(p, size_t(entry / 2), size_t(entry % 2));
+      }
+    }
+  });
 }
 
 Preconditioner ConstraintSolver::automaticPreconditioner(const Model& model) {
@@ -80,6 +153,13 @@ void ConstraintSolver::assemble(const Model& model, const StateView& s, const Co
     }
     diagSum += diag_[size_t(i)];
   }
+  columnOfEntry_.assign(2 * size_t(m), -1);
+  for (int i = 0; i < m; ++i) {
+    const ConstraintRow& row = rows_[size_t(i)];
+    for (int k = 0; k < row.count; ++k)
+      columnOfEntry_[2 * size_t(i) + size_t(k)] = columnOf_[size_t(row.particle[size_t(k)])];
+  }
+  groupByBucket(touched_.size(), columnOfEntry_, columnStart_, columnEntries_);
 
   const double epsilon = options_.regularization * diagSum / m;
   for (int i = 0; i < m; ++i) {
@@ -115,7 +195,7 @@ void ConstraintSolver::solveAssembled(const Model& model, Eigen::VectorXd& x, Co
   if (preconditioner == Preconditioner::incompleteCholesky) {
     runCg<Eigen::IncompleteCholesky<double>>(x, stats);
   } else {
-    runCg<Eigen::DiagonalPreconditioner<double>>(x, stats);
+    runJacobiCg(x, stats);
   }
 }
 
@@ -143,23 +223,16 @@ ConstraintSolveStats ConstraintSolver::solve(const Model& model, const StateView
   solveAssembled(model, lambda_, stats);
 
   // Q̂ = Jᵀ λ
-  for (int i = 0; i < m; ++i) {
-    const ConstraintRow& row = rows_[size_t(i)];
-    for (int k = 0; k < row.count; ++k) acc.addForce(row.particle[size_t(k)], lambda_[i] * row.J[size_t(k)]);
-  }
+  forEachParticleEntry([&](int p, size_t i, size_t k) { acc.addForce(p, lambda_[Eigen::Index(i)] * rows_[i].J[k]); });
   return stats;
 }
 
 void ConstraintSolver::moveAlongRows(const Model& model, Eigen::VectorXd& y, Eigen::Index offset) const {
-  for (size_t i = 0; i < rows_.size(); ++i) {
-    const ConstraintRow& row = rows_[i];
-    for (int k = 0; k < row.count; ++k) {
-      const int p = row.particle[size_t(k)];
-      const Vec2 dq = model.invMass[p] * mu_[Eigen::Index(i)] * row.J[size_t(k)];
-      y[offset + 2 * p] += dq.x();
-      y[offset + 2 * p + 1] += dq.y();
-    }
-  }
+  forEachParticleEntry([&](int p, size_t i, size_t k) {
+    const Vec2 dq = model.invMass[p] * mu_[Eigen::Index(i)] * rows_[i].J[k];
+    y[offset + 2 * p] += dq.x();
+    y[offset + 2 * p + 1] += dq.y();
+  });
 }
 
 void ConstraintSolver::projectPositions(const Model& model, Eigen::VectorXd& y, const ConstraintList& constraints) {

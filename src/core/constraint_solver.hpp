@@ -2,8 +2,8 @@
 // Lagrange-multiplier constraint forces (docs/physics.md §5, Witkin & Baraff "Constrained dynamics"):
 //   J W Jᵀ λ = −J̇ q̇ − J W Q − k_s C − k_d Ċ,     Q̂ = Jᵀ λ
 // q are the particles' positions, W their inverse masses and Q the forces accumulated so far.
-// J W Jᵀ is assembled as an Eigen sparse matrix and solved with Eigen's ConjugateGradient,
-// warm-started from the previous λ (between two evaluations the multipliers change little).
+// J W Jᵀ is assembled as an Eigen sparse matrix and solved by conjugate gradients, warm-started
+// from the previous λ (between two evaluations the multipliers change little).
 // Preconditioner, chosen per solve by default (Preconditioner::automatic):
 //  - where rows join moving particles without closing a loop (chains, curtains of chains, trees
 //    of rods), an incomplete Cholesky factor (Eigen::IncompleteCholesky, no fill-in
@@ -13,6 +13,11 @@
 //  - otherwise the diagonal (Jacobi): with loops (nets) incomplete Cholesky needed more
 //    iterations and about 5× the time (measured, bench/README.md); with no row joining two moving
 //    particles (rails, beads) J W Jᵀ is (nearly) diagonal and Jacobi's setup is cheaper.
+// Incomplete Cholesky runs in Eigen's ConjugateGradient (its triangular solves are sequential);
+// Jacobi in our own loop, the same algorithm as Eigen's, whose products and dot products run on
+// the System's threads in an order that does not depend on their number (core/parallel_sparse.hpp).
+// Q̂ = Jᵀλ and the projections' moves are gathered per particle, its rows in row order: the
+// additions a loop over the rows makes, on the threads.
 //
 // J W Jᵀ is only positive semi-definite. Two cases make it singular and are handled:
 //  - a row that touches only fixed particles (W = 0) has an all-zero row; it gets λ = 0;
@@ -57,7 +62,8 @@ using ConstraintList = std::vector<std::unique_ptr<Constraint>>;
 class ConstraintSolver {
  public:
   explicit ConstraintSolver(ConstraintSolverOptions options = {}) : options_(options) {}
-  // The System's threads, for the per-row work (evaluating rows, the right-hand side); null: serial.
+  // The System's threads, for the per-row work (evaluating rows, the right-hand side), Jacobi CG
+  // and the per-particle sums; null: serial.
   void setPool(WorkerPool* pool) { pool_ = pool; }
   // Adds the constraint force Q̂ = Jᵀλ to acc (which must already hold every other force).
   ConstraintSolveStats solve(const Model& model, const StateView& s, const ConstraintList& constraints,
@@ -84,6 +90,12 @@ class ConstraintSolver {
   // Solves a_ x = rhs_ by CG from the guess in x, with the preconditioner chosen as above.
   template <class Precond>
   void runCg(Eigen::VectorXd& x, ConstraintSolveStats& stats);
+  // Jacobi-preconditioned CG on the threads: Eigen's algorithm and stopping rule.
+  void runJacobiCg(Eigen::VectorXd& x, ConstraintSolveStats& stats);
+  // body(p, row, k) for every row entry k touching particle p, particles (the compact columns) in
+  // chunks on the threads, each particle's entries in row order.
+  template <class Body>
+  void forEachParticleEntry(Body&& body) const;
   void solveAssembled(const Model& model, Eigen::VectorXd& x, ConstraintSolveStats& stats);
   // y[offset + 2p …] += W_p Jᵀ μ for every row's particles: the move of a projection.
   void moveAlongRows(const Model& model, Eigen::VectorXd& y, Eigen::Index offset) const;
@@ -100,11 +112,16 @@ class ConstraintSolver {
   std::vector<int> columnOf_;  // per particle: compact column block, or -1
   std::vector<int> touched_;
   std::vector<int> parent_;  // union-find over compact columns, for automaticPreconditioner
+  // Per compact column c (particle touched_[c]): its row entries 2·row + k, in row order, at
+  // columnEntries_[columnStart_[c] … columnStart_[c + 1]).
+  std::vector<int> columnOfEntry_, columnStart_, columnEntries_;
   std::vector<Eigen::Triplet<double>> jwTriplets_, jTriplets_, diagTriplets_;
   std::vector<double> diag_;
   std::vector<char> inert_;  // per row: touches only fixed particles
   Eigen::SparseMatrix<double> jw_, j_, a_;
   Eigen::VectorXd rhs_, lambda_, mu_;
+  Eigen::VectorXd residual_, direction_, product_, preconditioned_, inverseDiagonal_;  // Jacobi CG
+  std::vector<double> partials_;
 };
 
 }  // namespace particles

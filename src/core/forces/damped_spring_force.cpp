@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/forces/spring_force_kernel.hpp"
+#include "core/group_by_bucket.hpp"
 #include "core/system.hpp"
 
 namespace particles {
@@ -62,20 +63,15 @@ void DampedSpringForce::preparePoints(const Model& model, const StateView& s, do
   const size_t n = a_.size();
   const int points = model.layout.numPoints();
   if (endStart_.size() != size_t(points) + 1) {
-    // Counting sort of the spring ends by point; springs are visited in order, so each point's
-    // list comes out in spring order.
-    endStart_.assign(size_t(points) + 1, 0);
+    // Each point's spring ends, in spring order: end e = 2·spring + (1 at its b end), whose
+    // value (f_a, or −f_a at a b end) is at springForce_[2e].
+    std::vector<int> pointOfEnd(2 * n);
     for (size_t i = 0; i < n; ++i) {
-      ++endStart_[size_t(endA_[i] / 2) + 1];
-      ++endStart_[size_t(endB_[i] / 2) + 1];
+      pointOfEnd[2 * i] = endA_[i] / 2;
+      pointOfEnd[2 * i + 1] = endB_[i] / 2;
     }
-    for (size_t p = 0; p < size_t(points); ++p) endStart_[p + 1] += endStart_[p];
-    endOf_.resize(2 * n);
-    std::vector<int> fill(endStart_.begin(), endStart_.end() - 1);
-    for (size_t i = 0; i < n; ++i) {
-      endOf_[size_t(fill[size_t(endA_[i] / 2)]++)] = int(4 * i);
-      endOf_[size_t(fill[size_t(endB_[i] / 2)]++)] = int(4 * i + 2);
-    }
+    groupByBucket(size_t(points), pointOfEnd, endStart_, endOf_);
+    for (int& end : endOf_) end *= 2;
     springForce_.resize(4 * n);
   }
   const double* x = s.vector().data();

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/group_by_bucket.hpp"
+#include "core/parallel_sparse.hpp"
 #include "core/system.hpp"
 
 namespace particles {
@@ -12,34 +14,6 @@ namespace {
 struct ProjectedCgStats {
   int iterations = 0;
 };
-
-constexpr size_t kRowChunk = 8192;  // rows or value slots per chunk of the threaded loops
-
-// out = A x for a symmetric A (compressed, column-major): out_i = Σ_k A(k, i) x_k, column i's
-// entries summed in their stored order, so that threads take whole columns and the bits do not
-// depend on how many there are.
-void multiplySymmetric(WorkerPool* pool, const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& x,
-                       Eigen::VectorXd& out) {
-  out.resize(a.cols());
-  const int* outer = a.outerIndexPtr();
-  const int* inner = a.innerIndexPtr();
-  const double* values = a.valuePtr();
-  forChunks(pool, size_t(a.cols()), kRowChunk, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end; ++i) {
-      double sum = 0.0;
-      for (int k = outer[i]; k < outer[i + 1]; ++k) sum += values[k] * x[inner[k]];
-      out[Eigen::Index(i)] = sum;
-    }
-  });
-}
-
-// x·y in fixed chunks added in order (core/worker_pool.hpp): the same bits for every thread count.
-double dotChunks(WorkerPool* pool, const Eigen::VectorXd& x, const Eigen::VectorXd& y, std::vector<double>& partials) {
-  return sumChunks(pool, size_t(x.size()), kVectorChunk, partials, [&](size_t begin, size_t end) {
-    const Eigen::Index n = Eigen::Index(end - begin);
-    return x.segment(Eigen::Index(begin), n).dot(y.segment(Eigen::Index(begin), n));
-  });
-}
 
 // Projected preconditioned conjugate gradients (Gould, Hribar & Nocedal 2001; Baraff & Witkin
 // 1998 §5.3's "filter" is its one-particle case): solves A x = b over the x with J x = c, where
@@ -258,26 +232,13 @@ void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double
     const size_t slots = size_t(w.matrix.nonZeros());
     pattern.slotDiagonal.assign(slots, -1);
     for (Eigen::Index i = 0; i < n; ++i) pattern.slotDiagonal[size_t(pattern.diagonalSlots[size_t(i)])] = int(i);
-    auto invert = [](size_t buckets, const std::vector<int>& bucketOf, std::vector<int>& start,
-                     std::vector<int>& entries) {
-      start.assign(buckets + 1, 0);
-      for (int b : bucketOf) {
-        if (b >= 0) ++start[size_t(b) + 1];
-      }
-      for (size_t k = 0; k < buckets; ++k) start[k + 1] += start[k];
-      entries.resize(size_t(start[buckets]));
-      std::vector<int> fill(start.begin(), start.end() - 1);
-      for (size_t k = 0; k < bucketOf.size(); ++k) {
-        if (bucketOf[k] >= 0) entries[size_t(fill[size_t(bucketOf[k])]++)] = int(k);
-      }
-    };
     std::vector<int> slotOfEntry(pattern.dfdvSlots);
     slotOfEntry.insert(slotOfEntry.end(), pattern.dfdxSlots.begin(), pattern.dfdxSlots.end());
-    invert(slots, slotOfEntry, pattern.slotStart, pattern.slotEntries);
+    groupByBucket(slots, slotOfEntry, pattern.slotStart, pattern.slotEntries);
     std::vector<int> rowOfEntry;
     rowOfEntry.reserve(jac.dfdx.size());
     for (const auto& e : jac.dfdx) rowOfEntry.push_back(int(e.row()));
-    invert(size_t(n), rowOfEntry, pattern.kRowStart, pattern.kRowEntries);
+    groupByBucket(size_t(n), rowOfEntry, pattern.kRowStart, pattern.kRowEntries);
     pattern.valid = true;
   }
   // A's values, slot by slot: the diagonal's M (1 for a fixed coordinate), then −h D and −h² K in
