@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <string_view>
+#include <vector>
 
 #include "core/drawing.hpp"
 #include "core/force_accumulator.hpp"
@@ -14,13 +15,31 @@
 
 namespace particles {
 
+// A gathered term's values for points [begin, end): point i's k-th entry (k ∈ [start[i],
+// start[i+1]) of the term) adds the pair values[entries[k]], values[entries[k] + 1].
+struct GatherValues {
+  const double* values = nullptr;
+  const int* entries = nullptr;
+};
+
+// What computes a gathered term's values (DampedSpringForce: each spring's (f_a, −f_a)), for one
+// chunk of points at a time, so that they are read while still in the core's cache; `scratch` is
+// the calling thread's own. Called from several threads at once on different chunks.
+class PointGatherSource {
+ public:
+  virtual GatherValues valuesFor(int begin, int end, std::vector<double>& scratch) const = 0;
+
+ protected:
+  ~PointGatherSource() = default;
+};
+
 // How a force that acts point by point adds to point i's force, when it has one of the two shapes
 // Witkin & Baraff's forces take (docs/physics.md §4), so that the fused pass over the points
 // (System::derivEval) can run a run of such forces as one loop with the running force in
 // registers instead of one loop per force:
 //   unary, linear:  f_i += m_i a           (gravity: a = g)          kind perMass
 //                   f_i −= c v_i           (drag: c = k_d)           kind perVelocity
-//   n-ary, gathered: f_i += Σ_{k ∈ [start[i], start[i+1])} values[entries[k]], values[entries[k] + 1]
+//   n-ary, gathered: f_i += Σ_{k ∈ [start[i], start[i+1])} the pair of entry k (GatherValues)
 //                   (springs: each spring's f_a and f_b = −f_a, at the ends that are i, in spring
 //                   order), kind gather
 // Each describes exactly the additions applyToPoints makes, in the same order, so either path
@@ -30,10 +49,9 @@ struct PointwiseTerm {
   Kind kind = Kind::none;
   Vec2 a = Vec2::Zero();  // perMass
   double c = 0.0;         // perVelocity
-  // gather: per point, the range of entries; each entry the offset of an (x, y) pair in values
+  // gather: per point, the range of its entries; the values from source, chunk by chunk
   const int* start = nullptr;
-  const int* entries = nullptr;
-  const double* values = nullptr;
+  const PointGatherSource* source = nullptr;
 };
 
 class Force {

@@ -23,18 +23,20 @@ bool PointwiseRun::collect(std::span<const std::unique_ptr<Force>> forces) {
 namespace {
 
 template <bool kClear, bool kDerive>
-void runPoints(const std::vector<PointwiseTerm>& gathers, const std::vector<PointwiseTerm>& linears,
-               const PointwiseRun::Points& p, int begin, int end) {
-  const PointwiseTerm* gatherBegin = gathers.data();
-  const PointwiseTerm* gatherEnd = gatherBegin + gathers.size();
+void runPoints(const std::vector<PointwiseTerm>& gathers, const std::vector<GatherValues>& values,
+               const std::vector<PointwiseTerm>& linears, const PointwiseRun::Points& p, int begin, int end) {
+  const size_t gatherCount = gathers.size();
   const PointwiseTerm* linearBegin = linears.data();
   const PointwiseTerm* linearEnd = linearBegin + linears.size();
   for (int i = begin; i < end; ++i) {
     double fx = kClear ? 0.0 : p.force[2 * i];
     double fy = kClear ? 0.0 : p.force[2 * i + 1];
-    for (const PointwiseTerm* g = gatherBegin; g != gatherEnd; ++g) {
-      for (int k = g->start[i]; k < g->start[i + 1]; ++k) {
-        const double* value = g->values + g->entries[k];
+    for (size_t g = 0; g < gatherCount; ++g) {
+      const int* start = gathers[g].start;
+      const int* entries = values[g].entries;
+      const double* chunkValues = values[g].values;
+      for (int k = start[i]; k < start[i + 1]; ++k) {
+        const double* value = chunkValues + entries[k];
         fx += value[0];
         fy += value[1];
       }
@@ -63,15 +65,21 @@ void runPoints(const std::vector<PointwiseTerm>& gathers, const std::vector<Poin
 }  // namespace
 
 void PointwiseRun::run(const Points& points, int begin, int end, bool clear) const {
+  // The gathered terms' values for this chunk, computed on this thread into its own scratch.
+  thread_local std::vector<std::vector<double>> scratch;
+  thread_local std::vector<GatherValues> values;
+  if (scratch.size() < gathers_.size()) scratch.resize(gathers_.size());
+  values.resize(gathers_.size());
+  for (size_t g = 0; g < gathers_.size(); ++g) values[g] = gathers_[g].source->valuesFor(begin, end, scratch[g]);
   const bool derive = points.derivative != nullptr;
   if (clear && derive) {
-    runPoints<true, true>(gathers_, linears_, points, begin, end);
+    runPoints<true, true>(gathers_, values, linears_, points, begin, end);
   } else if (clear) {
-    runPoints<true, false>(gathers_, linears_, points, begin, end);
+    runPoints<true, false>(gathers_, values, linears_, points, begin, end);
   } else if (derive) {
-    runPoints<false, true>(gathers_, linears_, points, begin, end);
+    runPoints<false, true>(gathers_, values, linears_, points, begin, end);
   } else {
-    runPoints<false, false>(gathers_, linears_, points, begin, end);
+    runPoints<false, false>(gathers_, values, linears_, points, begin, end);
   }
 }
 

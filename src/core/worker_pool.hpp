@@ -92,11 +92,13 @@ inline size_t chunkCount(size_t n, size_t grain) {
 }
 
 // Calls body(begin, end) on the chunks of [0, n) (see above); pool may be null (serial).
+// Without a pool the chunks run one after the other on the calling thread, the same calls as on
+// threads (a chunk's work may depend on which chunk it is: DampedSpringForce's chunk-local values).
 template <typename Body>
 void forChunks(WorkerPool* pool, size_t n, size_t grain, Body&& body) {
   const size_t chunks = chunkCount(n, grain);
   if (chunks <= 1 || pool == nullptr) {
-    if (n > 0) body(size_t(0), n);
+    for (size_t k = 0; k < chunks; ++k) body(k * grain, std::min(n, (k + 1) * grain));
     return;
   }
   pool->run(chunks, [&](size_t k) { body(k * grain, std::min(n, (k + 1) * grain)); });

@@ -47,10 +47,11 @@ __attribute__((target("avx2"))) size_t springForcesAvx2Body(const SpringArrays& 
     const __m256d f00 = _mm256_permute2f128_pd(f02, f02, 0x00), f22 = _mm256_permute2f128_pd(f02, f02, 0x11);
     const __m256d f11 = _mm256_permute2f128_pd(f13, f13, 0x00), f33 = _mm256_permute2f128_pd(f13, f13, 0x11);
     const __m256d negateHigh = _mm256_set_pd(-0.0, -0.0, 0.0, 0.0);
-    _mm256_storeu_pd(out + 4 * i, _mm256_xor_pd(f00, negateHigh));
-    _mm256_storeu_pd(out + 4 * i + 4, _mm256_xor_pd(f11, negateHigh));
-    _mm256_storeu_pd(out + 4 * i + 8, _mm256_xor_pd(f22, negateHigh));
-    _mm256_storeu_pd(out + 4 * i + 12, _mm256_xor_pd(f33, negateHigh));
+    double* at = out + 4 * (i - begin);
+    _mm256_storeu_pd(at, _mm256_xor_pd(f00, negateHigh));
+    _mm256_storeu_pd(at + 4, _mm256_xor_pd(f11, negateHigh));
+    _mm256_storeu_pd(at + 8, _mm256_xor_pd(f22, negateHigh));
+    _mm256_storeu_pd(at + 12, _mm256_xor_pd(f33, negateHigh));
   }
   return i;
 }
@@ -77,10 +78,11 @@ void springForcesScalar(const SpringArrays& s, const double* x, const double* v,
       mag = (s.ks[i] * (len - s.rest[i]) * len + s.kd[i] * ldotl) / len2;
     }
     const double fx = -mag * lx, fy = -mag * ly;
-    out[4 * i] = fx;
-    out[4 * i + 1] = fy;
-    out[4 * i + 2] = -fx;
-    out[4 * i + 3] = -fy;
+    double* at = out + 4 * (i - begin);
+    at[0] = fx;
+    at[1] = fy;
+    at[2] = -fx;
+    at[3] = -fy;
   }
 }
 
@@ -90,7 +92,7 @@ bool springForcesAvx2([[maybe_unused]] const SpringArrays& s, [[maybe_unused]] c
 #if defined(__x86_64__)
   if (!cpuHasAvx2()) return false;
   const size_t done = springForcesAvx2Body(s, x, v, out, begin, end);
-  springForcesScalar(s, x, v, out, done, end);
+  springForcesScalar(s, x, v, out + 4 * (done - begin), done, end);
   return true;
 #else
   return false;

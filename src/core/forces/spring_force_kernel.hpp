@@ -24,8 +24,8 @@ struct SpringArrays {
   const double* kd;
 };
 
-// Writes (f_a, f_b = −f_a) of springs [begin, end) to out[4i … 4i + 3]; x and v are the positions
-// and velocities, 2 per particle.
+// Writes (f_a, f_b = −f_a) of springs [begin, end) to out[4(i − begin) … 4(i − begin) + 3]; x and
+// v are the positions and velocities, 2 per particle.
 void springForcesScalar(const SpringArrays& springs, const double* x, const double* v, double* out, size_t begin,
                         size_t end);
 // The same, four springs per step; false (and nothing written) where the CPU lacks AVX2 or the
