@@ -37,8 +37,17 @@ void DampedSpringForce::reserve(size_t n) {
   endB_.reserve(n);
 }
 
+double DampedSpringForce::length(const StateView& s, size_t i) const {
+  if (allParticles_) {
+    // The particles' positions straight from the state (the stability study asks every step).
+    const double* x = s.vector().data();
+    return (Vec2(x[endA_[i]], x[endA_[i] + 1]) - Vec2(x[endB_[i]], x[endB_[i] + 1])).norm();
+  }
+  return (endpointPosition(s, a_[i]) - endpointPosition(s, b_[i])).norm();
+}
+
 double DampedSpringForce::strain(const StateView& s, size_t i) const {
-  const double len = (endpointPosition(s, a_[i]) - endpointPosition(s, b_[i])).norm();
+  const double len = length(s, i);
   return rest_[i] > 0.0 ? len / rest_[i] - 1.0 : 0.0;
 }
 
@@ -220,7 +229,7 @@ void DampedSpringForce::addJacobians(const Model& model, const StateView& s, dou
 double DampedSpringForce::potentialEnergy(const Model&, const StateView& s, double) const {
   double u = 0.0;
   for (size_t i = 0; i < a_.size(); ++i) {
-    const double stretch = (endpointPosition(s, a_[i]) - endpointPosition(s, b_[i])).norm() - rest_[i];
+    const double stretch = length(s, i) - rest_[i];
     u += 0.5 * ks_[i] * stretch * stretch;
   }
   return u;

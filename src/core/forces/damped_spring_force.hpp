@@ -45,6 +45,8 @@ class DampedSpringForce final : public Force, private PointGatherSource {
   void reserve(size_t n);
   size_t size() const { return a_.size(); }
   SpringSpec spring(size_t i) const { return {a_[i], b_[i], rest_[i], ks_[i], kd_[i]}; }
+  // Current length of spring i.
+  double length(const StateView& s, size_t i) const;
   // Current length over rest length minus one (positive: stretched), for drawing and checks.
   double strain(const StateView& s, size_t i) const;
 
