@@ -159,10 +159,10 @@ std::vector<Snapshot> stepCloth(Scenario& s, Integrator integrator, int threads,
 }
 
 // The demo cloth at side × side particles (the grab, cloth[24][12], is in every grid from 25²).
-void checkCloth(int side, Integrator integrator, int steps) {
+void checkCloth(int side, Integrator integrator, int steps, std::vector<Override> overrides = {}) {
   CAPTURE(side);
   CAPTURE(integratorName(integrator));
-  const std::vector<Override> overrides{{"grids.0.size", fmt::format("[{}, {}]", side, side), "test"}};
+  overrides.push_back({"grids.0.size", fmt::format("[{}, {}]", side, side), "test"});
   constexpr double kStart = 1.6;
   Scenario serial = load("cloth", overrides);
   const std::vector<Snapshot> expected = stepCloth(serial, integrator, 1, kStart, steps);
@@ -251,6 +251,20 @@ TEST_CASE("determinism: the stiff cloth (backward Euler), 1–8 threads, through
 // vector updates), 19,800 springs. Each integrator's threaded code is its own.
 TEST_CASE("determinism: every integrator on the 100² cloth, 1–8 threads") {
   for (Integrator integrator : allIntegrators()) checkCloth(100, integrator, kUnderSanitizer ? 2 : 4);
+}
+
+// Collisions on threads: the 100² cloth's lower half inside a half-plane and its middle on a disk
+// (3 chunks of particles, each particle's contacts in collider order).
+TEST_CASE("determinism: the 100² cloth in contact with a half-plane and a disk, 1–8 threads") {
+  const std::vector<Override> colliders{{"colliders",
+                                         "[{type: half_plane, normal: [0, 1], offset: 0.2, k: 1, damping: 0.01}, "
+                                         "{type: disk, center: [0, 0.5], radius: 0.3, k: 1, damping: 0.01}]",
+                                         "test"}};
+  std::vector<Override> scene = colliders;
+  scene.push_back({"grids.0.size", "[100, 100]", "test"});
+  REQUIRE(sampleOf(load("cloth", scene).system).penetration > 0.1);  // in contact from the start
+  checkCloth(100, Integrator::Rk4, kUnderSanitizer ? 1 : 3, colliders);
+  if (!kUnderSanitizer) checkCloth(100, Integrator::BackwardEuler, 2, colliders);
 }
 
 // 316² (the issue's benchmark scene): 25 chunks per pointwise pass. A step of RK4 costs about

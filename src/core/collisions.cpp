@@ -24,9 +24,10 @@ void forEachCollisionPoint(const Model& model, Visit&& visit) {
 
 }  // namespace
 
-void applyCollisions(const Model& model, const StateView& s, const ColliderList& colliders, ForceAccumulator& acc) {
+void applyCollisions(const Model& model, const StateView& s, const ColliderList& colliders, ForceAccumulator& acc,
+                     WorkerPool* pool) {
   if (colliders.empty()) return;
-  forEachCollisionPoint(model, [&](const Endpoint& e) {
+  auto contactForces = [&](const Endpoint& e) {
     const Vec2 p = endpointPosition(s, e);
     for (const auto& collider : colliders) {
       const auto c = collider->contact(p);
@@ -36,7 +37,17 @@ void applyCollisions(const Model& model, const StateView& s, const ColliderList&
       if (k.damping != 0.0) f -= k.damping * endpointVelocity(s, e).dot(c->normal) * c->normal;
       applyForceAt(s, e, f, acc);
     }
+  };
+  // A particle's contacts touch its own force only; a body's corners all add to the body's.
+  forChunks(pool, size_t(model.layout.numParticles), kPointChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      if (!model.isFixed(int(i))) contactForces(Endpoint::ofParticle(int(i)));
+    }
   });
+  for (int j = 0; j < model.layout.numBodies; ++j) {
+    for (const Vec2& corner : rectangleCorners(model.bodies[size_t(j)].size))
+      contactForces(Endpoint::ofBody(j, corner));
+  }
 }
 
 void addCollisionJacobians(const Model& model, const StateView& s, const ColliderList& colliders, ForceJacobians& out) {
@@ -56,6 +67,7 @@ void addCollisionJacobians(const Model& model, const StateView& s, const Collide
 }
 
 double collisionPotential(const Model& model, const StateView& s, const ColliderList& colliders) {
+  if (colliders.empty()) return 0.0;
   double u = 0.0;
   forEachCollisionPoint(model, [&](const Endpoint& e) {
     const Vec2 p = endpointPosition(s, e);
@@ -67,6 +79,7 @@ double collisionPotential(const Model& model, const StateView& s, const Collider
 }
 
 double maxPenetration(const Model& model, const StateView& s, const ColliderList& colliders) {
+  if (colliders.empty()) return 0.0;  // `run` asks after every step
   double worst = 0.0;
   forEachCollisionPoint(model, [&](const Endpoint& e) {
     const Vec2 p = endpointPosition(s, e);

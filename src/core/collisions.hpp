@@ -10,12 +10,16 @@
 #include "core/force_accumulator.hpp"
 #include "core/force_jacobians.hpp"
 #include "core/model.hpp"
+#include "core/worker_pool.hpp"
 
 namespace particles {
 
 using ColliderList = std::vector<std::unique_ptr<Collider>>;
 
-void applyCollisions(const Model& model, const StateView& s, const ColliderList& colliders, ForceAccumulator& acc);
+// The particles' forces are added in chunks of particles on `pool` (each particle's contacts in
+// collider order, as a serial loop adds them), the bodies' corners after, on the calling thread.
+void applyCollisions(const Model& model, const StateView& s, const ColliderList& colliders, ForceAccumulator& acc,
+                     WorkerPool* pool = nullptr);
 // The penalty's Jacobians for backward Euler, per contact: ∂f/∂x = −2 k d n nᵀ (d grows as the
 // point moves against n) and ∂f/∂v = −c n nᵀ; the turning of a disk's normal with position is
 // left out (it is positive, so it would break the SPD matrix, and it vanishes at the surface).

@@ -83,7 +83,7 @@ void System::derivEval(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt
   }
   if (!cleared) acc_.force.setZero();
   // 3. collisions: before constraints, which must see every other force
-  applyCollisions(model_, s, colliders_, acc_);
+  applyCollisions(model_, s, colliders_, acc_, pool);
   // 4. constraint forces Q̂ = Jᵀλ
   if (constraintForces == ConstraintForces::solve) lastSolve_ = constraintSolver_.solve(model_, s, constraints_, acc_);
   // 5. d/dt [x, v, θ, ω] = [v, F/m, ω, τ/I]
