@@ -46,6 +46,7 @@ using DerivFn = std::function<void(const Eigen::VectorXd& y, double t, Eigen::Ve
 struct ProjectedCgScratch {
   Eigen::VectorXd dinv, c, r, g, p, ap, jz, lambda;
   std::vector<double> partials;  // the chunk sums of the dot products (sumChunks)
+  std::vector<char> found;       // anyOf's chunk verdicts
   // J row by row: up to four (column, value) pairs (two particles × x, y); column −1 is unused.
   std::vector<std::array<int, 4>> rowColumns;
   std::vector<std::array<double, 4>> rowValues;
@@ -55,14 +56,14 @@ struct ProjectedCgScratch {
 };
 
 // Backward Euler's matrix pattern: the Jacobians' (row, column) keys it was built from, and
-// where each triplet's value goes in the compressed matrix (−1: left out, a fixed coordinate).
+// which triplets' values go where in the compressed matrix, read so that threads fill whole
+// values and rows, each summing in the triplets' order (the order a serial scatter adds in).
 struct AssemblyPattern {
   bool valid = false;
-  std::vector<int> dfdvKeys, dfdxKeys, dfdvSlots, dfdxSlots, diagonalSlots;
-  // The same read the other way, so that threads fill whole values and rows, each summing in the
-  // triplets' order (the order a serial scatter adds in): per value slot, the entries that land
-  // there (k < |D|: D's k-th, else K's (k − |D|)-th) from slotStart[slot], and the coordinate
-  // whose diagonal it is (−1: none); per row of K, its entries' indices from kRowStart[row].
+  std::vector<int> dfdvKeys, dfdxKeys;
+  // Per value slot, the entries that land there (k < |D|: D's k-th, else K's (k − |D|)-th) from
+  // slotStart[slot], and the coordinate whose diagonal it is (−1: none); per row of K, its
+  // entries' indices from kRowStart[row].
   std::vector<int> slotStart, slotEntries, slotDiagonal, kRowStart, kRowEntries;
 };
 

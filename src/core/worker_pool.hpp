@@ -117,6 +117,17 @@ void forSegments(WorkerPool* pool, long n, Body&& body) {
   forChunks(pool, size_t(n), kVectorChunk, [&](size_t begin, size_t end) { body(long(begin), long(end - begin)); });
 }
 
+// Whether hit(i) holds for some i in [0, n), the chunks on the pool: a yes/no that no order of
+// the chunks can change. `found` is scratch (kept by the caller, so the loop does not allocate).
+template <typename Hit>
+bool anyOf(WorkerPool* pool, size_t n, size_t grain, std::vector<char>& found, Hit&& hit) {
+  found.assign(chunkCount(n, grain), 0);
+  forChunks(pool, n, grain, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end && !found[begin / grain]; ++i) found[begin / grain] = hit(i) ? 1 : 0;
+  });
+  return std::find(found.begin(), found.end(), 1) != found.end();
+}
+
 // Σ over the chunks of [0, n) of part(begin, end), added in chunk order: the same bits for every
 // thread count. `partials` is scratch (kept by the caller, so the loop does not allocate).
 template <typename Part>

@@ -184,15 +184,8 @@ void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double
   WorkerPool* pool = system.pool();
   auto samePattern = [&](const ForceJacobians::Triplets& from, const std::vector<int>& keys) {
     if (2 * from.size() != keys.size()) return false;
-    std::vector<double>& partials = w.cg.partials;
-    const double mismatches = sumChunks(pool, from.size(), kRowChunk, partials, [&](size_t begin, size_t end) {
-      double count = 0.0;
-      for (size_t k = begin; k < end; ++k) {
-        count += (from[k].row() != keys[2 * k] || from[k].col() != keys[2 * k + 1]) ? 1.0 : 0.0;
-      }
-      return count;
-    });
-    return mismatches == 0.0;
+    return !anyOf(pool, from.size(), kRowChunk, w.cg.found,
+                  [&](size_t k) { return from[k].row() != keys[2 * k] || from[k].col() != keys[2 * k + 1]; });
   };
   if (!pattern.valid || w.matrix.rows() != n || !samePattern(jac.dfdv, pattern.dfdvKeys) ||
       !samePattern(jac.dfdx, pattern.dfdxKeys)) {
@@ -224,16 +217,14 @@ void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double
       slots.clear();
       for (const auto& e : from) slots.push_back(fixedDof(e.row()) || fixedDof(e.col()) ? -1 : slotOf(e.row(), e.col()));
     };
-    slotsOf(jac.dfdv, pattern.dfdvSlots);
-    slotsOf(jac.dfdx, pattern.dfdxSlots);
-    pattern.diagonalSlots.clear();
-    for (Eigen::Index i = 0; i < n; ++i) pattern.diagonalSlots.push_back(slotOf(i, i));
+    std::vector<int> slotOfEntry, dfdxSlots;
+    slotsOf(jac.dfdv, slotOfEntry);
+    slotsOf(jac.dfdx, dfdxSlots);
+    slotOfEntry.insert(slotOfEntry.end(), dfdxSlots.begin(), dfdxSlots.end());
     // The reverse maps (see AssemblyPattern), by counting sorts that keep the triplets' order.
     const size_t slots = size_t(w.matrix.nonZeros());
     pattern.slotDiagonal.assign(slots, -1);
-    for (Eigen::Index i = 0; i < n; ++i) pattern.slotDiagonal[size_t(pattern.diagonalSlots[size_t(i)])] = int(i);
-    std::vector<int> slotOfEntry(pattern.dfdvSlots);
-    slotOfEntry.insert(slotOfEntry.end(), pattern.dfdxSlots.begin(), pattern.dfdxSlots.end());
+    for (Eigen::Index i = 0; i < n; ++i) pattern.slotDiagonal[size_t(slotOf(i, i))] = int(i);
     groupByBucket(slots, slotOfEntry, pattern.slotStart, pattern.slotEntries);
     std::vector<int> rowOfEntry;
     rowOfEntry.reserve(jac.dfdx.size());
