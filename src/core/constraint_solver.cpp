@@ -29,9 +29,8 @@ void ConstraintSolver::runJacobiCg(Eigen::VectorXd& x, ConstraintSolveStats& sta
   const Eigen::Index n = a_.cols();
   auto dot = [&](const Eigen::VectorXd& u, const Eigen::VectorXd& v) { return dotChunks(pool_, u, v, partials_); };
   // Eigen's DiagonalPreconditioner: 1/A_ii, or 1 where A_ii is 0.
-  inverseDiagonal_.resize(n);
-  const Eigen::VectorXd diagonal = a_.diagonal();
-  for (Eigen::Index i = 0; i < n; ++i) inverseDiagonal_[i] = diagonal[i] != 0.0 ? 1.0 / diagonal[i] : 1.0;
+  inverseDiagonal_ = a_.diagonal();
+  for (double& d : inverseDiagonal_) d = d != 0.0 ? 1.0 / d : 1.0;
   const int maxIterations = options_.maxIterations > 0 ? options_.maxIterations : int(2 * n);
 
   multiplySymmetric(pool_, a_, x, product_);
