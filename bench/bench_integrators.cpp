@@ -63,6 +63,7 @@ void BM_IntegratorStep(benchmark::State& state, const std::string& file, int n, 
   const Eigen::VectorXd start = s.system.state();
   const double startTime = s.system.time();
   long cgIterations = 0, sinceStart = 0;
+  const long factorizationsBefore = solver.factorizations();
   for (auto _ : state) {
     if (sinceStart == kRewindSteps) {
       state.PauseTiming();
@@ -78,14 +79,16 @@ void BM_IntegratorStep(benchmark::State& state, const std::string& file, int n, 
       state.SkipWithError(e.what());
       break;
     }
-    cgIterations += solver.lastCgIterations();
+    cgIterations += solver.lastImplicitStep().iterations;
   }
   const double particles = double(s.system.layout().numPoints());
   state.counters["sim_s_cost"] = benchmark::Counter(dt, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["per_particle"] =
       benchmark::Counter(particles, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-  if (integrator == Integrator::BackwardEuler && state.iterations() > 0) {
+  if (isImplicit(integrator) && state.iterations() > 0) {
     state.counters["cg_iterations"] = double(cgIterations) / double(state.iterations());
+    state.counters["factorizations"] =
+        double(solver.factorizations() - factorizationsBefore) / double(state.iterations());
   }
 }
 

@@ -80,9 +80,8 @@ TEST_CASE("cli exit codes: every kind of error has its code and its message form
        "error: --stats 'x.csv' and --trace 'x.csv' name the same file; an output never replaces another output\n"},
       {"plot good.csv -o out.txt", 2, "error: -o out.txt: a figure is .svg, .png or .pdf, not '.txt'\n"},
       {"stability s.yaml --integrators leapfrog", 2,
-       "error: --integrators: unknown integrator 'leapfrog' (expected euler, midpoint, rk4, symplectic_euler, verlet "
-       "or "
-       "backward_euler)\n"},
+       "error: --integrators: unknown integrator 'leapfrog' (expected euler, midpoint, rk4, symplectic_euler, verlet, "
+       "backward_euler or bdf2)\n"},
       {"plot bad.csv -o out.svg", 2,
        "error: bad.csv:1:10: the header must be exactly 't,kinetic,potential,total,constraint_error,penetration'\n"},
       {"compare a.png missing.png", 2, "error: cannot open missing.png: No such file or directory\n"},

@@ -153,7 +153,7 @@ std::vector<Snapshot> stepCloth(Scenario& s, Integrator integrator, int threads,
   std::vector<Snapshot> out;
   for (int k = 0; k < steps; ++k) {
     solver.doStep(s.system, s.simulation.dt);
-    out.push_back(snapshotOf(s.system, solver.steps(), solver.lastCgIterations()));
+    out.push_back(snapshotOf(s.system, solver.steps(), solver.lastImplicitStep().iterations));
   }
   return out;
 }
@@ -206,7 +206,7 @@ std::vector<Snapshot> stepNet(int side, Integrator integrator, int threads, int 
   std::vector<Snapshot> out;
   for (int k = 0; k < steps; ++k) {
     solver.doStep(system, 0.002);
-    out.push_back(snapshotOf(system, solver.steps(), solver.lastCgIterations()));
+    out.push_back(snapshotOf(system, solver.steps(), solver.lastImplicitStep().iterations));
   }
   return out;
 }

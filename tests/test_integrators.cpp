@@ -4,11 +4,13 @@
 #include <Eigen/LU>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "core/constraints/horizontal_line_constraint.hpp"
 #include "core/constraints/rod_constraint.hpp"
 #include "core/forces/drag_force.hpp"
 #include "core/integrators/backward_euler.hpp"
+#include "core/integrators/bdf2.hpp"
 #include "core/integrators/explicit_euler.hpp"
 #include "core/integrators/midpoint.hpp"
 #include "core/integrators/rk4.hpp"
@@ -59,7 +61,7 @@ TEST_CASE("integrators are chosen by name") {
   CHECK_FALSE(integratorFromName("RK4").has_value());
   CHECK_FALSE(integratorFromName("leapfrog").has_value());
   // Every enum value has its row in the registry, once.
-  CHECK(allIntegrators().size() == 6);
+  CHECK(allIntegrators().size() == 7);
   for (Integrator i : allIntegrators()) {
     CHECK(integratorFromName(integratorName(i)) == i);
     CHECK_FALSE(integratorSummary(i).empty());
@@ -83,9 +85,10 @@ TEST_CASE("convergence order on an undamped harmonic oscillator") {
     double h;
     double expectedRatio;
   };
-  for (const Case& c : {Case{Integrator::Euler, 1e-3, 2.0}, Case{Integrator::Midpoint, 1e-2, 4.0},
-                        Case{Integrator::Rk4, 5e-2, 16.0}, Case{Integrator::SymplecticEuler, 1e-3, 2.0},
-                        Case{Integrator::Verlet, 1e-2, 4.0}, Case{Integrator::BackwardEuler, 1e-3, 2.0}}) {
+  for (const Case& c :
+       {Case{Integrator::Euler, 1e-3, 2.0}, Case{Integrator::Midpoint, 1e-2, 4.0}, Case{Integrator::Rk4, 5e-2, 16.0},
+        Case{Integrator::SymplecticEuler, 1e-3, 2.0}, Case{Integrator::Verlet, 1e-2, 4.0},
+        Case{Integrator::BackwardEuler, 1e-3, 2.0}, Case{Integrator::Bdf2, 1e-2, 4.0}}) {
     CAPTURE(integratorName(c.integrator));
     const double coarse = oscillatorError(c.integrator, c.h);
     const double fine = oscillatorError(c.integrator, c.h / 2);
@@ -202,8 +205,8 @@ Eigen::VectorXd dampedPairAt(Integrator integrator, double h, double duration) {
 }  // namespace
 
 TEST_CASE("convergence orders with damping and drag (velocity-dependent forces)") {
-  // Verlet evaluates a₁ at a predicted velocity and backward Euler linearises the damping: both
-  // keep their orders (2 and 1) when forces depend on v. Errors against RK4 at h = 1e-4.
+  // Verlet evaluates a₁ at a predicted velocity and backward Euler and BDF2 linearise the damping:
+  // they keep their orders (2, 1 and 2) when forces depend on v. Errors against RK4 at h = 1e-4.
   const double duration = 1.0;
   const Eigen::VectorXd reference = dampedPairAt(Integrator::Rk4, 1e-4, duration);
   struct Case {
@@ -212,7 +215,7 @@ TEST_CASE("convergence orders with damping and drag (velocity-dependent forces)"
     double expectedRatio;
   };
   for (const Case& c : {Case{Integrator::SymplecticEuler, 2e-3, 2.0}, Case{Integrator::Verlet, 1e-2, 4.0},
-                        Case{Integrator::BackwardEuler, 2e-3, 2.0}}) {
+                        Case{Integrator::BackwardEuler, 2e-3, 2.0}, Case{Integrator::Bdf2, 1e-2, 4.0}}) {
     CAPTURE(integratorName(c.integrator));
     const double coarse = (dampedPairAt(c.integrator, c.h, duration) - reference).norm();
     const double fine = (dampedPairAt(c.integrator, c.h / 2, duration) - reference).norm();
@@ -321,7 +324,89 @@ TEST_CASE("backward Euler: the energy of a passive system falls every step") {
   CHECK(falls);
 }
 
-TEST_CASE("backward Euler is stable on a stiff undamped oscillator at h ω = 100") {
+namespace {
+
+// BDF2 on the undamped oscillator u'' = −ω² u (u = x − 1), in closed form: with y = (u, v) and
+// L = [0 1; −ω² 0], y₁ = (I − h L)⁻¹ y₀ (the backward Euler start), then
+// y_{n+1} = (I − 2h/3 L)⁻¹ (4 y_n − y_{n−1}) / 3. The spring is linear, so the one Newton step is
+// the implicit step itself and the integrator must reproduce this to rounding.
+std::vector<Eigen::Vector2d> bdf2Oscillator(double omega, double u0, double h, long steps) {
+  Eigen::Matrix2d l;
+  l << 0.0, 1.0, -omega * omega, 0.0;
+  const Eigen::Matrix2d start = (Eigen::Matrix2d::Identity() - h * l).inverse();
+  const Eigen::Matrix2d step = (Eigen::Matrix2d::Identity() - (2.0 * h / 3.0) * l).inverse();
+  std::vector<Eigen::Vector2d> y{Eigen::Vector2d(u0, 0.0)};
+  y.push_back(start * y[0]);
+  for (long n = 1; n < steps; ++n) y.push_back(step * (4.0 * y[size_t(n)] - y[size_t(n) - 1]) / 3.0);
+  return y;
+}
+
+}  // namespace
+
+TEST_CASE("BDF2 on an undamped oscillator: its closed form, second order, and 100× less damping than backward Euler") {
+  // ω = 2 (k = 4, m = 1), amplitude 0.5, h = 0.01 over 10 s, as the issue states.
+  const double omega = 2.0, h = 0.01, amplitude = 0.5;
+  const long steps = 1000;
+  System sys = harmonicOscillator(4.0, amplitude);
+  Solver solver(Integrator::Bdf2);
+  const std::vector<Eigen::Vector2d> exact = bdf2Oscillator(omega, amplitude, h, steps);
+  double worst = 0.0;
+  for (long n = 1; n <= steps; ++n) {
+    solver.doStep(sys, h);
+    const Eigen::Vector2d y(sys.view().pos(1).x() - 1.0, sys.view().vel(1).x());
+    worst = std::max(worst, (y - exact[size_t(n)]).norm());
+  }
+  CHECK(worst < 1e-12);
+  // Energy: backward Euler's falls by (1 + h² ω²)⁻ⁿ; BDF2's is its closed form's.
+  auto energyOf = [&](const Eigen::Vector2d& y) { return 0.5 * y[1] * y[1] + 0.5 * omega * omega * y[0] * y[0]; };
+  const double e0 = energyOf(exact[0]);
+  const double bdf2Loss = (e0 - sys.energy().total()) / e0;
+  const double backwardEulerLoss = 1.0 - std::pow(1.0 + h * h * omega * omega, -double(steps));
+  System be = harmonicOscillator(4.0, amplitude);
+  Solver beSolver(Integrator::BackwardEuler);
+  advance(be, beSolver, h, steps);
+  CHECK((e0 - be.energy().total()) / e0 == doctest::Approx(backwardEulerLoss).epsilon(1e-9));
+  CAPTURE(bdf2Loss);
+  CAPTURE(backwardEulerLoss);
+  CHECK(bdf2Loss > 0.0);                        // it damps (BDF2 is dissipative), but
+  CHECK(bdf2Loss * 100.0 < backwardEulerLoss);  // at least 100× less (measured: ~3000×)
+  CHECK(std::abs(energyOf(exact[size_t(steps)]) - sys.energy().total()) < 1e-12);
+  // Second order: the error at t = 2 falls by 4 when h halves (the convergence test above, here
+  // against the exact cos as well, at two pairs of steps).
+  for (double coarseH : {0.02, 0.01}) {
+    const double coarse = oscillatorError(Integrator::Bdf2, coarseH),
+                 fine = oscillatorError(Integrator::Bdf2, coarseH / 2);
+    CAPTURE(coarseH);
+    CHECK(coarse / fine == doctest::Approx(4.0).epsilon(0.1));
+  }
+}
+
+TEST_CASE("BDF2 starts with backward Euler, and again after a change of step or a time set from outside") {
+  System a = harmonicOscillator(4.0, 0.5), b = harmonicOscillator(4.0, 0.5);
+  Solver bdf(Integrator::Bdf2), be(Integrator::BackwardEuler);
+  bdf.doStep(a, 0.01);
+  be.doStep(b, 0.01);
+  CHECK(a.state() == b.state());  // the first step is backward Euler's
+  bdf.doStep(a, 0.01);
+  be.doStep(b, 0.01);
+  CHECK(a.state() != b.state());  // the second is BDF2's own
+  // A new h: backward Euler again, from where it is.
+  b.state() = a.state();
+  b.setTime(a.time());
+  bdf.doStep(a, 0.005);
+  be.doStep(b, 0.005);
+  CHECK(a.state() == b.state());
+  // The time set from outside (a rewind): the history no longer applies.
+  bdf.doStep(a, 0.005);
+  a.setTime(0.0);
+  b.state() = a.state();
+  b.setTime(0.0);
+  bdf.doStep(a, 0.005);
+  be.doStep(b, 0.005);
+  CHECK(a.state() == b.state());
+}
+
+TEST_CASE("backward Euler and BDF2 are stable on a stiff undamped oscillator at h ω = 100") {
   // ω = 100 rad/s, h = 1 s: every explicit method here explodes within a few steps (test_solver.cpp);
   // backward Euler's amplitude shrinks by 1/√(1 + h²ω²) ≈ 1/100 a step.
   System sys = harmonicOscillator(1e4, 0.5);
@@ -334,6 +419,19 @@ TEST_CASE("backward Euler is stable on a stiff undamped oscillator at h ω = 100
   CHECK(sys.state().allFinite());
   CHECK(worst < 0.5 / 50.0);
   CHECK(std::abs(sys.view().pos(1).x() - 1.0) < 1e-12);
+  {
+    // BDF2 is A-stable and L-stable: its roots solve (1 − 2/3 h λ) ζ² − 4/3 ζ + 1/3 = 0, λ = ±i ω,
+    // whose product 1 / (3 − 2 h λ) has magnitude 1/200 here: the amplitude shrinks about 14× a step.
+    System stiff = harmonicOscillator(1e4, 0.5);
+    Solver bdf2(Integrator::Bdf2);
+    double largest = 0.0;
+    for (int i = 0; i < 200; ++i) {
+      bdf2.doStep(stiff, 1.0);
+      largest = std::max(largest, std::abs(stiff.view().pos(1).x() - 1.0));
+    }
+    CHECK(largest < 0.5);
+    CHECK(std::abs(stiff.view().pos(1).x() - 1.0) < 1e-12);
+  }
   for (Integrator explicitOne : {Integrator::Euler, Integrator::Rk4, Integrator::SymplecticEuler, Integrator::Verlet}) {
     System other = harmonicOscillator(1e4, 0.5);
     Solver s2(explicitOne);
@@ -362,8 +460,9 @@ TEST_CASE("backward Euler on a rail: a chain hung from a rail moves as one hung 
   CHECK(onRail.view().pos(24).y() == doctest::Approx(-24 * 0.08 - 0.002 * 9.81 / 2500.0 * (24 * 25 / 2)).epsilon(1e-6));
 }
 
-TEST_CASE("backward Euler's constrained Δv solves the KKT system of the step") {
-  // [A Jᵀ; J 0] [Δv; λ] = [b; −J v₀] by a dense LU, against the projected CG: a chain on a rail
+TEST_CASE("backward Euler's constrained Δv solves the KKT system of the step, by CG and by the direct solve") {
+  // [A Jᵀ; J 0] [Δv; λ] = [b; −J v₀] by a dense LU, against the projected CG and against the
+  // direct path (the rail's y eliminated, the rod through the Schur complement): a chain on a rail
   // with a rod in it, swinging, so that J has rows in every direction.
   SystemBuilder b;
   auto& springs = b.emplaceForce<DampedSpringForce>();
@@ -381,21 +480,42 @@ TEST_CASE("backward Euler's constrained Δv solves the KKT system of the step") 
   System sys = b.build();
   Solver solver(Integrator::Rk4);
   advance(sys, solver, 1e-3, 137);  // moving, with every velocity nonzero
-  Eigen::VectorXd y = sys.state();
-  IntegratorScratch w;
-  integrateBackwardEuler(sys, y, sys.time(), 0.05, w, {.tolerance = 1e-14});
+  const Eigen::VectorXd y0 = sys.state();
 
-  const Eigen::Index n = w.rhs.size(), m = w.cg.j.rows();
+  Eigen::VectorXd yCg = y0;
+  IntegratorScratch cg;
+  sys.setImplicitSolver(ImplicitSolver::cg);
+  integrateBackwardEuler(sys, yCg, sys.time(), 0.05, cg, {.cgTolerance = 1e-14});
+  CHECK(cg.implicit.stats.solver == ImplicitSolver::cg);
+
+  const ImplicitScratch& w = cg.implicit;
+  const Eigen::Index n = w.rhs.size(), m = Eigen::Index(w.constraintRows.size());
   REQUIRE(m == 2);
+  Eigen::MatrixXd j = Eigen::MatrixXd::Zero(m, n);
+  for (Eigen::Index r = 0; r < m; ++r) {
+    const ConstraintRow& row = w.constraintRows[size_t(r)];
+    for (int k = 0; k < row.count; ++k) j.block(r, 2 * row.particle[size_t(k)], 1, 2) = row.J[size_t(k)].transpose();
+  }
   Eigen::MatrixXd kkt = Eigen::MatrixXd::Zero(n + m, n + m);
   kkt.topLeftCorner(n, n) = Eigen::MatrixXd(w.matrix);
-  kkt.topRightCorner(n, m) = Eigen::MatrixXd(w.cg.j).transpose();
-  kkt.bottomLeftCorner(m, n) = Eigen::MatrixXd(w.cg.j);
+  kkt.topRightCorner(n, m) = j.transpose();
+  kkt.bottomLeftCorner(m, n) = j;
   Eigen::VectorXd rhs(n + m);
-  rhs << w.rhs, -Eigen::MatrixXd(w.cg.j) * sys.state().segment(sys.layout().velocityOffset(), n);
-  const Eigen::VectorXd direct = kkt.partialPivLu().solve(rhs);
-  CHECK((w.dv - direct.head(n)).norm() < 1e-9 * direct.head(n).norm());
-  CHECK(direct.tail(m).norm() > 1e-6);  // the constraints did push
+  rhs << w.rhs, -j * y0.segment(sys.layout().velocityOffset(), n);
+  const Eigen::VectorXd dense = kkt.partialPivLu().solve(rhs);
+  CHECK((w.dv - dense.head(n)).norm() < 1e-9 * dense.head(n).norm());
+  CHECK(dense.tail(m).norm() > 1e-6);  // the constraints did push
+
+  Eigen::VectorXd yDirect = y0;
+  IntegratorScratch direct;
+  sys.setImplicitSolver(ImplicitSolver::direct);
+  integrateBackwardEuler(sys, yDirect, sys.time(), 0.05, direct);
+  CHECK(direct.implicit.stats.solver == ImplicitSolver::direct);
+  CHECK(direct.implicit.stats.eliminated == 1);  // the rail's y
+  CHECK(direct.implicit.stats.schurRows == 1);   // the rod
+  CHECK(direct.implicit.stats.factorized);
+  CHECK((direct.implicit.dv - dense.head(n)).norm() < 1e-9 * dense.head(n).norm());
+  CHECK((yDirect - yCg).norm() < 1e-9 * yCg.norm());
 }
 
 TEST_CASE("backward Euler keeps fixed particles in place and treats body rotation explicitly") {

@@ -90,6 +90,19 @@ TEST_CASE("scenario error: unknown integrator suggests a known one") {
   expectError("name: t\nsimulation:\n  integrator: rk5\n", 3, "simulation.integrator", "did you mean 'rk4'?");
 }
 
+TEST_CASE("scenario: simulation.implicit_solver picks the implicit integrators' solve, and a bad one is named") {
+  expectError("name: t\nsimulation:\n  implicit_solver: cholesky\n", 3, "simulation.implicit_solver",
+              "unknown implicit solver 'cholesky'; expected one of auto, direct, cg");
+  CHECK(loadScenarioText(kBase, "t.yaml").system.implicitSolver() == particles::ImplicitSolver::automatic);
+  const Scenario direct =
+      loadScenarioText(kBase + "simulation: {integrator: bdf2, implicit_solver: direct}\n", "t.yaml");
+  CHECK(direct.simulation.implicitSolver == particles::ImplicitSolver::direct);
+  CHECK(direct.system.implicitSolver() == particles::ImplicitSolver::direct);
+  CHECK(direct.simulation.integrator == particles::Integrator::Bdf2);
+  const Scenario cg = loadScenarioText(kBase, "t.yaml", {{parseOverride("simulation.implicit_solver=cg")}});
+  CHECK(cg.system.implicitSolver() == particles::ImplicitSolver::cg);
+}
+
 TEST_CASE("scenario error: grid of zero size") {
   expectError("name: t\ngrids:\n  - name: g\n    size: [0, 5]\n", 4, "grids[0].size[0]", "from 1 to");
 }

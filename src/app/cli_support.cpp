@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
@@ -17,11 +18,13 @@ std::vector<scenario::Override> overridesOf(const CommonOptions& o) {
   std::vector<scenario::Override> out;
   for (const std::string& s : o.sets) out.push_back(scenario::parseOverride(s));
   const std::pair<const std::optional<std::string>*, const char*> shorthands[] = {
-      {&o.integrator, "integrator"}, {&o.dt, "dt"}, {&o.duration, "duration"}};
+      {&o.integrator, "integrator"}, {&o.dt, "dt"}, {&o.duration, "duration"}, {&o.implicitSolver, "implicit_solver"}};
   for (const auto& [value, key] : shorthands) {
     if (!*value) continue;
-    if ((*value)->empty()) throw InputError(fmt::format("--{}: expected a value, got an empty one", key));
-    out.push_back({fmt::format("simulation.{}", key), **value, fmt::format("--{} {}", key, **value)});
+    std::string option = fmt::format("--{}", key);
+    std::replace(option.begin(), option.end(), '_', '-');
+    if ((*value)->empty()) throw InputError(fmt::format("{}: expected a value, got an empty one", option));
+    out.push_back({fmt::format("simulation.{}", key), **value, fmt::format("{} {}", option, **value)});
   }
   return out;
 }
@@ -46,6 +49,9 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
                      fmt::format("Override simulation.integrator: {}", fmt::join(integratorNames(), " | ")));
   command.add_option("--dt", o.dt, "Override simulation.dt, the time step in seconds");
   command.add_option("--duration", o.duration, "Override simulation.duration, in simulated seconds");
+  command.add_option(
+      "--implicit-solver", o.implicitSolver,
+      "Override simulation.implicit_solver, backward_euler's and bdf2's linear solve: auto | direct | cg");
   command.add_option("--set", o.sets, "Override any key before validation: --set path.to.key=value (repeatable)")
       ->type_name("KEY=VALUE")
       ->allow_extra_args(false);

@@ -27,7 +27,7 @@ inline std::vector<std::string> integratorNames() {
 // Options every scenario-reading subcommand takes.
 struct CommonOptions {
   std::string scenario;
-  std::optional<std::string> integrator, dt, duration;         // shorthands for --set simulation.*=…
+  std::optional<std::string> integrator, dt, duration, implicitSolver;  // shorthands for --set simulation.*=…
   std::vector<std::string> sets;                               // --set path=value, in order
   std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;     // --max-input
   std::vector<std::string> limits;                             // --limit NAME=N, in order

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "core/integrators/backward_euler.hpp"
+#include "core/integrators/bdf2.hpp"
 #include "core/integrators/explicit_euler.hpp"
 #include "core/integrators/midpoint.hpp"
 #include "core/integrators/rk4.hpp"
@@ -25,25 +26,26 @@ struct IntegratorEntry {
   std::string_view name;
   int evalsPerStep;
   bool projects;
+  bool implicit;  // solves for the step's end (stable at any step on a spring)
   std::string_view summary;
   StepFn step;
 };
 
 // The registry: one row per integrator, in the order studies and help list them.
-const std::array<IntegratorEntry, 6> kIntegrators{{
-    {Integrator::Euler, "euler", 1, false, "explicit Euler, first order",
+const std::array<IntegratorEntry, 7> kIntegrators{{
+    {Integrator::Euler, "euler", 1, false, false, "explicit Euler, first order",
      [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
        integrateEuler(derivOf(s), y, t, h, w);
      }},
-    {Integrator::Midpoint, "midpoint", 2, false, "explicit midpoint, second order",
+    {Integrator::Midpoint, "midpoint", 2, false, false, "explicit midpoint, second order",
      [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
        integrateMidpoint(derivOf(s), y, t, h, w);
      }},
-    {Integrator::Rk4, "rk4", 4, false, "classic 4th-order Runge–Kutta",
+    {Integrator::Rk4, "rk4", 4, false, false, "classic 4th-order Runge–Kutta",
      [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
        integrateRk4(derivOf(s), y, t, h, w);
      }},
-    {Integrator::SymplecticEuler, "symplectic_euler", 1, true, "semi-implicit Euler (v, then x), first order",
+    {Integrator::SymplecticEuler, "symplectic_euler", 1, true, false, "semi-implicit Euler (v, then x), first order",
      [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
        const DerivFn withoutConstraintForces = [&s](const Eigen::VectorXd& at, double time, Eigen::VectorXd& dydt) {
          s.derivEval(at, time, dydt, System::ConstraintForces::skip);
@@ -52,15 +54,18 @@ const std::array<IntegratorEntry, 6> kIntegrators{{
        if (!s.constraints().empty()) project = [&s](Eigen::VectorXd& at) { s.projectVelocitiesOntoConstraints(at); };
        integrateSymplecticEuler(withoutConstraintForces, s.layout(), y, t, h, w, project);
      }},
-    {Integrator::Verlet, "verlet", 1, true, "velocity Verlet, second order",
+    {Integrator::Verlet, "verlet", 1, true, false, "velocity Verlet, second order",
      [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
        integrateVerlet(derivOf(s), s.layout(), y, t, h, w);
      }},
-    {Integrator::BackwardEuler, "backward_euler", 1, true,
+    {Integrator::BackwardEuler, "backward_euler", 1, true, true,
      "implicit Euler, one Newton step (Baraff & Witkin 1998), first order",
      [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
        integrateBackwardEuler(s, y, t, h, w);
      }},
+    {Integrator::Bdf2, "bdf2", 1, true, true,
+     "second-order backward differentiation (BDF2), one Newton step (Choi & Ko 2002), second order",
+     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) { integrateBdf2(s, y, t, h, w); }},
 }};
 
 const std::array<Integrator, kIntegrators.size()> kAll = [] {
@@ -90,6 +95,9 @@ std::optional<Integrator> integratorFromName(std::string_view name) {
 std::span<const Integrator> allIntegrators() { return kAll; }
 int derivEvalsPerStep(Integrator integrator) { return entry(integrator).evalsPerStep; }
 bool projectsConstraints(Integrator integrator) { return entry(integrator).projects; }
+bool isImplicit(Integrator integrator) {
+  return entry(integrator).implicit;
+}
 std::string_view integratorSummary(Integrator integrator) { return entry(integrator).summary; }
 
 void integrate(Integrator integrator, System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {

@@ -1,74 +1,49 @@
 #pragma once
 // The integrators (docs/physics.md §3) and their registry. One step advances the flat state y from
 // t to t + h; every integrator reaches the system only through derivEval (and, for the implicit
-// one, the force Jacobians). Each is a file pair under integrators/ with its formula at the top:
-// the report's three explicit methods over a derivative f(y, t) (explicit_euler, midpoint, rk4),
-// and the ones that treat positions and velocities apart (symplectic_euler, verlet,
-// backward_euler).
+// implicit ones, the force Jacobians). Each is a file pair under integrators/ with its formula at
+// the top: the report's three explicit methods over a derivative f(y, t) (explicit_euler,
+// midpoint, rk4), and the ones that treat positions and velocities apart (symplectic_euler,
+// verlet, and the implicit backward_euler and bdf2 over core/implicit_step.hpp).
 //
 // A new integrator: its file pair, an enum value below, and one row in the table of integrators.cpp.
 
 #include <Eigen/Core>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <array>
 #include <functional>
 #include <optional>
 #include <span>
 #include <string_view>
 
-#include "core/constraint.hpp"
-#include "core/force_jacobians.hpp"
+#include "core/implicit_step.hpp"
 #include "core/worker_pool.hpp"
 
 namespace particles {
 
 class System;
 
-enum class Integrator { Euler, Midpoint, Rk4, SymplecticEuler, Verlet, BackwardEuler };
+enum class Integrator { Euler, Midpoint, Rk4, SymplecticEuler, Verlet, BackwardEuler, Bdf2 };
 
 std::string_view integratorName(Integrator integrator);
-// "euler", "midpoint", "rk4", "symplectic_euler", "verlet", "backward_euler"
+// "euler", "midpoint", "rk4", "symplectic_euler", "verlet", "backward_euler", "bdf2"
 std::optional<Integrator> integratorFromName(std::string_view name);
 std::span<const Integrator> allIntegrators();
 // Derivative evaluations a step costs once under way: 1, 2, 4, 1, 1 (Verlet reuses the previous
-// step's last one), 1 (backward Euler, plus the Jacobians and a sparse solve).
+// step's last one), 1 (backward Euler and BDF2, plus the Jacobians and a sparse solve).
 int derivEvalsPerStep(Integrator integrator);
 // True for the integrators after which the solver projects the state onto the constraints: their
 // steps do not follow the multipliers' drift feedback the way the explicit Runge–Kutta ones do.
 bool projectsConstraints(Integrator integrator);
+// True for backward Euler and BDF2: a linear solve per step, stable at any step on a spring.
+bool isImplicit(Integrator integrator);
 // One line on what the integrator is, for --help and the docs.
 std::string_view integratorSummary(Integrator integrator);
 
 using DerivFn = std::function<void(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt)>;
 
-// Backward Euler's projected CG (integrators/backward_euler.cpp).
-struct ProjectedCgScratch {
-  Eigen::VectorXd dinv, c, r, g, p, ap, jz, lambda;
-  std::vector<double> partials;  // the chunk sums of the dot products (sumChunks)
-  std::vector<char> found;       // anyOf's chunk verdicts
-  // J row by row: up to four (column, value) pairs (two particles × x, y); column −1 is unused.
-  std::vector<std::array<int, 4>> rowColumns;
-  std::vector<std::array<double, 4>> rowValues;
-  std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::SparseMatrix<double> j, s;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
-};
-
-// Backward Euler's matrix pattern: the Jacobians' (row, column) keys it was built from, and
-// which triplets' values go where in the compressed matrix, read so that threads fill whole
-// values and rows, each summing in the triplets' order (the order a serial scatter adds in).
-struct AssemblyPattern {
-  bool valid = false;
-  std::vector<int> dfdvKeys, dfdxKeys;
-  // Per value slot, the entries that land there (k < |D|: D's k-th, else K's (k − |D|)-th) from
-  // slotStart[slot], and the coordinate whose diagonal it is (−1: none); per row of K, its
-  // entries' indices from kRowStart[row].
-  std::vector<int> slotStart, slotEntries, slotDiagonal, kRowStart, kRowEntries;
-};
-
 // Scratch kept between steps, so stepping does not allocate, and what an integrator carries from
-// one step to the next (Verlet's last evaluation, backward Euler's last Δv as CG's first guess).
+// one step to the next (Verlet's last evaluation, the implicit step's last Δv and factors, BDF2's
+// previous state).
 struct IntegratorScratch {
   // The System's threads, for the whole-vector updates (set by integrate; null: serial).
   WorkerPool* pool = nullptr;
@@ -84,15 +59,13 @@ struct IntegratorScratch {
     if (verletValid) verletY = y;
   }
 
-  // Backward Euler.
-  ForceJacobians jacobians;
-  std::vector<ConstraintRow> constraintRows;
-  ProjectedCgScratch cg;
-  AssemblyPattern pattern;
-  std::vector<Eigen::Triplet<double>> triplets;
-  Eigen::SparseMatrix<double> matrix;
-  Eigen::VectorXd rhs, dv;
-  int cgIterations = 0;  // of the last step, for benchmarks
+  // Backward Euler and BDF2 (core/implicit_step.hpp).
+  ImplicitScratch implicit;
+  // BDF2: the state a step before the current one (bdfPrevious at bdfPreviousT, a step of
+  // bdfPreviousH), valid when bdfValid; and x̄ − x₀, v̄ − v₀.
+  Eigen::VectorXd bdfPrevious, bdfStart, bdfXShift, bdfVShift;
+  double bdfPreviousT = 0.0, bdfPreviousH = 0.0;
+  bool bdfValid = false;
 };
 
 // One step of the named integrator on the system's state y at time t.

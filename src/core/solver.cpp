@@ -12,11 +12,11 @@ namespace {
 
 std::string explosionMessage(const std::string& reason, long step, double time, Integrator integrator, double dt) {
   std::string advice = fmt::format("try a smaller time step (e.g. --dt {:.3g})", dt / 4.0);
-  if (integrator != Integrator::Rk4 && integrator != Integrator::BackwardEuler) {
+  if (integrator != Integrator::Rk4 && !isImplicit(integrator)) {
     advice += " or a higher-order integrator (--integrator rk4)";
   }
-  // Stiff springs bound every explicit method's step; the implicit one is stable at any h.
-  if (integrator != Integrator::BackwardEuler) advice += "; for stiff springs, --integrator backward_euler";
+  // Stiff springs bound every explicit method's step; the implicit ones are stable at any h.
+  if (!isImplicit(integrator)) advice += "; for stiff springs, --integrator bdf2 or backward_euler";
   return fmt::format("simulation exploded at step {} (t = {:.6g} s) with integrator {} and dt = {:.6g} s: {}; {}",
                      step, time, integratorName(integrator), dt, reason, advice);
 }

@@ -42,8 +42,10 @@ class Solver {
   explicit Solver(Integrator integrator, ExplosionGuard guard = {}) : integrator_(integrator), guard_(guard) {}
   Integrator integrator() const { return integrator_; }
   long steps() const { return steps_; }
-  // Conjugate-gradient iterations of the last backward Euler step (0 for the others): benchmarks.
-  int lastCgIterations() const { return scratch_.cgIterations; }
+  // What the last backward Euler or BDF2 step's linear solve did (core/implicit_step.hpp), and the
+  // direct path's factorisations so far: benchmarks and tests.
+  const ImplicitStepStats& lastImplicitStep() const { return scratch_.implicit.stats; }
+  long factorizations() const { return scratch_.implicit.factorizations; }
 
   // Advances the system's state and time by dt. Throws SimulationError (and leaves the system at
   // the last good state) when the step blows up.

@@ -13,6 +13,7 @@
 #include "core/collisions.hpp"
 #include "core/constraint_solver.hpp"
 #include "core/force.hpp"
+#include "core/implicit_solver.hpp"
 #include "core/model.hpp"
 #include "core/pointwise_pass.hpp"
 #include "core/worker_pool.hpp"
@@ -86,6 +87,9 @@ class System {
   // of its passes holds (core/worker_pool.hpp). The 25² cloth does not; the 100² does.
   bool spreadsOverThreads() const { return size_t(model_.layout.numPoints()) > kPointChunk; }
   WorkerPool* pool() { return pool_.get(); }
+  // The implicit integrators' linear solve (core/implicit_solver.hpp); automatic by default.
+  void setImplicitSolver(ImplicitSolver solver) { implicitSolver_ = solver; }
+  ImplicitSolver implicitSolver() const { return implicitSolver_; }
 
   double kineticEnergy(const Eigen::VectorXd& y) const;
   EnergyReport energy(const Eigen::VectorXd& y, double t) const;
@@ -121,6 +125,7 @@ class System {
   PointwiseRun pointwiseRun_;  // derivEval's scratch: the terms of the current run of pointwise forces
   ConstraintSolveStats lastSolve_;
   std::unique_ptr<WorkerPool> pool_;  // null: one thread
+  ImplicitSolver implicitSolver_ = ImplicitSolver::automatic;
   double energyScale_ = 0.0;
 };
 

@@ -123,7 +123,11 @@ template <typename Hit>
 bool anyOf(WorkerPool* pool, size_t n, size_t grain, std::vector<char>& found, Hit&& hit) {
   found.assign(chunkCount(n, grain), 0);
   forChunks(pool, n, grain, [&](size_t begin, size_t end) {
-    for (size_t i = begin; i < end && !found[begin / grain]; ++i) found[begin / grain] = hit(i) ? 1 : 0;
+    // The whole chunk, into a local flag: no early exit, so the loop can vectorise (a hit is the rare
+    // case), and no store to `found` (chars) inside it, which would make every load repeat.
+    bool any = false;
+    for (size_t i = begin; i < end; ++i) any |= hit(i);
+    found[begin / grain] = any ? 1 : 0;
   });
   return std::find(found.begin(), found.end(), 1) != found.end();
 }

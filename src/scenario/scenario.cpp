@@ -77,7 +77,9 @@ class Loader {
     }
 
     try {
-      return Scenario{std::move(name), std::move(description), source_.file, simulation, render, builder_.build()};
+      Scenario scenario{std::move(name), std::move(description), source_.file, simulation, render, builder_.build()};
+      scenario.system.setImplicitSolver(simulation.implicitSolver);
+      return scenario;
     } catch (const std::invalid_argument& e) {
       // The checks above should have caught everything the builder checks; say so if not.
       throw ScenarioError(source_.file, 0, 0, "", fmt::format("the scenario is inconsistent: {}", e.what()));
@@ -89,7 +91,7 @@ class Loader {
   SimulationSettings readSimulation(const std::optional<Value>& v) {
     SimulationSettings s;
     if (!v) return s;
-    const MapReader m(*v, {"integrator", "dt", "duration"});
+    const MapReader m(*v, {"integrator", "dt", "duration", "implicit_solver"});
     if (auto i = m.optional("integrator")) {
       const std::string name = i->string();
       const auto integrator = integratorFromName(name);
@@ -105,6 +107,16 @@ class Loader {
     }
     if (auto dt = m.optional("dt")) s.dt = dt->positive();
     if (auto d = m.optional("duration")) s.duration = d->positive();
+    if (auto solver = m.optional("implicit_solver")) {
+      const std::string name = solver->string();
+      const auto chosen = implicitSolverFromName(name);
+      if (!chosen) {
+        solver->fail(fmt::format("unknown implicit solver '{}'; expected one of {}, {}, {}", name,
+                                 implicitSolverName(ImplicitSolver::automatic),
+                                 implicitSolverName(ImplicitSolver::direct), implicitSolverName(ImplicitSolver::cg)));
+      }
+      s.implicitSolver = *chosen;
+    }
     if (double(s.duration) / s.dt > double(kMaxSteps)) {
       const Value at = m.optional("dt") ? *m.optional("dt") : m.self();
       at.fail(fmt::format("dt = {} s over duration = {} s makes more than {} steps", detail::formatNumber(s.dt),

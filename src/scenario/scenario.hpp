@@ -56,6 +56,8 @@ struct SimulationSettings {
   Integrator integrator = Integrator::Rk4;
   double dt = 0.01;        // s, > 0
   double duration = 10.0;  // simulated seconds, > 0
+  // The implicit integrators' linear solve (core/implicit_solver.hpp); set on the System too.
+  ImplicitSolver implicitSolver = ImplicitSolver::automatic;
   // Steps of dt that cover the duration (the last one may end up to dt − ε past it).
   long steps() const;
 };

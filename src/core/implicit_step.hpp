@@ -1,0 +1,120 @@
+#pragma once
+// The implicit integrators' common step (backward Euler, BDF2; docs/physics.md §3): one Newton
+// step of a linearly implicit formula
+//   v₁ = v̄ + η M⁻¹ f(x₁, v₁),   x₁ = x̄ + η v₁
+// linearised at a state (x_b, v_b) with the force Jacobians K = ∂f/∂x, D = ∂f/∂v there
+// (core/force_jacobians.hpp), for Δv = v₁ − v_b:
+//   (M − η D − η² K) Δv = M (v̄ − v_b) + η (f_b + K (x̄ − x_b + η v_b))
+// Backward Euler is x̄ = x_b = x₀, v̄ = v_b = v₀, η = h (Baraff & Witkin 1998, eq. 16–18); BDF2
+// is x̄ = (4 x₀ − x₋₁)/3, v̄ = (4 v₀ − v₋₁)/3, η = 2h/3 (Choi & Ko 2002), linearised at the
+// extrapolated end (x_b, v_b) = 2 (x₀, v₀) − (x₋₁, v₋₁) (integrators/bdf2.hpp says why).
+//
+// The matrix A = M − η D − η² K is sparse, symmetric and positive definite. Constraints are part
+// of the solve: Δv keeps J Δv = −J v₀ (J at x₀), so v₁ has Ċ = 0 and stiff springs feel the rail
+// that holds the cloth within the same step. Two ways to solve (core/implicit_solver.hpp):
+//   - CG: projected conjugate gradients (core/projected_pcg.hpp) with a Jacobi preconditioner;
+//     fixed particles' coordinates pinned at Δv = 0, every constraint row by projection.
+//   - direct: reduced coordinates, then a sparse LDLᵀ of A (core/preconditioners/ldlt_
+//     preconditioner.hpp). A fixed particle's coordinates, and a coordinate that an axis-aligned
+//     rail fixes (a constraint row on one particle whose J has one non-zero component: Δv_i =
+//     c / J_i), leave the unknowns: their rows and columns of A become the identity and their
+//     known Δv moves to the right-hand side. The other rows go through the Schur complement. The
+//     factors are reused across steps as the preconditioner of the same projected PCG, which
+//     refines the answer to kDirectTolerance, and are refactored when the extra iterations that
+//     reuse has cost since the last factorisation add up to one factorisation (in counted
+//     multiply-adds, so that the choice does not depend on timing or thread count).
+// Rigid bodies: their centres' translation is in the solve; their rotation is explicit, symplectic
+// Euler with the torque at the step's start: ω₁ = ω₀ + h τ₀/I, θ₁ = θ₀ + h ω₁.
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "core/constraint.hpp"
+#include "core/force_jacobians.hpp"
+#include "core/implicit_solver.hpp"
+#include "core/preconditioners/jacobi_preconditioner.hpp"
+#include "core/preconditioners/ldlt_preconditioner.hpp"
+#include "core/projected_pcg.hpp"
+
+namespace particles {
+
+class System;
+
+// auto picks the direct solve up to this many free coordinates (and kMaxSchurRows other rows):
+// the crossover measured on the demo cloth, where Jacobi CG needs the fewest iterations
+// (bench/README.md, "Implicit integration").
+constexpr long kAutoDirectMaxCoordinates = 20000;
+// The direct path's PCG stops at this normwise backward error (core/projected_pcg.hpp): A's own
+// factors meet it at once; an earlier step's in a few iterations. Measured over the 10⁴× stiff
+// cloth's 10 s at one backward Euler step per frame: 1e-6 cost 379 µs a step, 1e-8 480 µs, 1e-10
+// 550 µs (more iterations on stale factors, more refactorisations); 1e-8 keeps the answer two
+// digits closer than CG's 1e-6, well below the step's own linearisation error.
+constexpr double kDirectTolerance = 1e-8;
+// CG's relative residual (each step starts from the last one's Δv).
+constexpr double kCgTolerance = 1e-6;
+// Iterations the direct path gives stale factors before it refactors within the step.
+constexpr int kMaxReuseIterations = 20;
+
+// The implicit step's matrix pattern: the Jacobians' (row, column) keys and the pinned
+// coordinates it was built from, and which triplets' values go where in the compressed matrix,
+// read so that threads fill whole values and rows, each summing in the triplets' order (the order
+// a serial scatter adds in).
+struct AssemblyPattern {
+  bool valid = false;
+  std::vector<int> dfdvKeys, dfdxKeys;
+  std::vector<char> pinned;
+  // Per value slot, the entries that land there (k < |D|: D's k-th, else K's (k − |D|)-th) from
+  // slotStart[slot], and the coordinate whose diagonal it is (−1: none); per row of K, its
+  // entries' indices from kRowStart[row]. pinnedColumnEntries: the entries (same numbering) in a
+  // free row and an eliminated column, whose A value times the known Δv leaves the right-hand side.
+  std::vector<int> slotStart, slotEntries, slotDiagonal, kRowStart, kRowEntries, pinnedColumnEntries;
+};
+
+// What the last implicit step did, for benchmarks and tests.
+struct ImplicitStepStats {
+  ImplicitSolver solver = ImplicitSolver::cg;  // the one used (never automatic)
+  int iterations = 0;                          // PCG iterations
+  bool factorized = false;                     // the direct path refactored this step
+  int eliminated = 0;                          // coordinates eliminated by rails
+  int schurRows = 0;                           // constraint rows through the Schur complement
+};
+
+struct ImplicitScratch {
+  ForceJacobians jacobians;
+  std::vector<ConstraintRow> constraintRows;
+  ConstraintRowsJ rows;
+  AssemblyPattern pattern;
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<char> pinned, found, railed;
+  std::vector<int> allRows, generalRows, railRows;  // constraint rows by how the solve takes them
+  Eigen::SparseMatrix<double> matrix;
+  Eigen::VectorXd k1, rhs, dv, known;  // k1: dy/dt at the start; known: eliminated coordinates' Δv
+  JacobiPreconditioner jacobi;
+  LdltPreconditioner ldlt;
+  bool ldltValid = false;  // factors (of an earlier or this step's A) of the current pattern
+  double reuseDebt = 0.0;  // multiply-adds the stale factors' extra iterations have cost
+  long factorizations = 0;
+  ProjectedPcgScratch pcg;
+  ImplicitStepStats stats;
+};
+
+// The step's target: η and, for BDF2, x̄ − x₀ and v̄ − v₀ (null: zero, backward Euler).
+// The step's target: η and, for BDF2, x̄ − x_b and v̄ − v_b, where (x_b, v_b) is the state y the
+// step is linearised at (null: zero, backward Euler, linearised at the step's start). BDF2
+// linearises at a predicted end (see integrators/bdf2.hpp) and gives the state its rigid bodies'
+// rotation starts from (rotationStart; null: y's own).
+struct ImplicitTarget {
+  double eta = 0.0;
+  const Eigen::VectorXd* xShift = nullptr;
+  const Eigen::VectorXd* vShift = nullptr;
+  const Eigen::VectorXd* rotationStart = nullptr;
+};
+
+// One step by h: y holds the state the step is linearised at, taken at time t, and receives the
+// step's end. Throws std::invalid_argument when the scene's implicit solver is
+// `direct` and more constraint rows than kMaxSchurRows are neither fixed points nor rails.
+void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const ImplicitTarget& target,
+                  ImplicitScratch& w, double cgTolerance = kCgTolerance);
+
+}  // namespace particles
