@@ -269,8 +269,10 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
     bool ok = w.ldltValid && w.reuseDebt < w.ldlt.factorCost() ? true : refactor();
     if (ok) {
       w.ldlt.prepareRows(w.rows);
-      ProjectedPcgResult r = solveProjectedPcg(pool, w.matrix, w.rhs, w.rows, w.ldlt, w.dv, kDirectTolerance,
-                                               kMaxReuseIterations, w.pcg, PcgStart::preconditioned);
+      // A's own factors give the answer in one solve; an earlier step's iterate from there.
+      ProjectedPcgResult r =
+          solveProjectedPcg(pool, w.matrix, w.rhs, w.rows, w.ldlt, w.dv, kDirectTolerance, kMaxReuseIterations, w.pcg,
+                            stats.factorized ? PcgStart::exact : PcgStart::preconditioned);
       stats.iterations = r.iterations;
       if (!r.converged && !stats.factorized) {
         // Factors too far from A to converge soon: A's own, and on from here.
@@ -278,12 +280,12 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
         if (ok) {
           w.ldlt.prepareRows(w.rows);
           r = solveProjectedPcg(pool, w.matrix, w.rhs, w.rows, w.ldlt, w.dv, kDirectTolerance, kMaxReuseIterations,
-                                w.pcg, PcgStart::preconditioned);
+                                w.pcg, PcgStart::exact);
           stats.iterations += r.iterations;
         }
       }
-      // A's own factors need no iteration: each one is what reusing stale factors cost this step.
-      if (ok && !stats.factorized) w.reuseDebt += double(r.iterations) * w.ldlt.iterationCost();
+      // What reuse cost beyond A's own factors' one solve: the residual's check and the iterations.
+      if (ok && !stats.factorized) w.reuseDebt += double(r.iterations + 1) * w.ldlt.iterationCost();
     }
     if (!ok) {
       // Not positive definite (cannot happen with the forces' negative semi-definite blocks; a

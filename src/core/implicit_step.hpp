@@ -20,9 +20,10 @@
 //     c / J_i), leave the unknowns: their rows and columns of A become the identity and their
 //     known Δv moves to the right-hand side. The other rows go through the Schur complement. The
 //     factors are reused across steps as the preconditioner of the same projected PCG, which
-//     refines the answer to kDirectTolerance, and are refactored when the extra iterations that
-//     reuse has cost since the last factorisation add up to one factorisation (in counted
-//     multiply-adds, so that the choice does not depend on timing or thread count).
+//     refines the answer to kDirectTolerance (A's own factors answer at once), and are refactored
+//     when what reuse has cost since the last factorisation (the extra solves and products, in
+//     counted multiply-adds, so that the choice does not depend on timing or thread count) adds
+//     up to one factorisation.
 // Rigid bodies: their centres' translation is in the solve; their rotation is explicit, symplectic
 // Euler with the torque at the step's start: ω₁ = ω₀ + h τ₀/I, θ₁ = θ₀ + h ω₁.
 
@@ -45,11 +46,11 @@ class System;
 // the crossover measured on the demo cloth, where Jacobi CG needs the fewest iterations
 // (bench/README.md, "Implicit integration").
 constexpr long kAutoDirectMaxCoordinates = 20000;
-// The direct path's PCG stops at this normwise backward error (core/projected_pcg.hpp): A's own
-// factors meet it at once; an earlier step's in a few iterations. Measured over the 10⁴× stiff
-// cloth's 10 s at one backward Euler step per frame: 1e-6 cost 379 µs a step, 1e-8 480 µs, 1e-10
-// 550 µs (more iterations on stale factors, more refactorisations); 1e-8 keeps the answer two
-// digits closer than CG's 1e-6, well below the step's own linearisation error.
+// The direct path's iterations on an earlier step's factors stop at this relative error in the
+// energy norm (core/projected_pcg.hpp), two digits below CG's; A's own factors answer exactly, in
+// one solve. Measured over the 10⁴× stiff cloth's 10 s at one backward Euler step per frame (one
+// core busy beside it): 1e-6 cost 588 µs a step, 1e-8 676 µs, 1e-10 720 µs (more iterations on
+// stale factors, more refactorisations).
 constexpr double kDirectTolerance = 1e-8;
 // CG's relative residual (each step starts from the last one's Δv).
 constexpr double kCgTolerance = 1e-6;

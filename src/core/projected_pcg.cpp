@@ -60,7 +60,7 @@ ProjectedPcgResult solveProjectedPcg(WorkerPool* pool, const Eigen::SparseMatrix
   w.r = b;
   project(w.r, w.g);
   const double reference = std::abs(dot(w.r, w.g));  // ‖b‖² in P's metric: the stopping scale
-  if (start == PcgStart::preconditioned) {
+  if (start != PcgStart::guess) {
     x = w.g;
   } else if (x.size() != n) {
     x.setZero(n);
@@ -68,32 +68,17 @@ ProjectedPcgResult solveProjectedPcg(WorkerPool* pool, const Eigen::SparseMatrix
   feasible(x);
   multiplySymmetric(pool, a, x, w.r);
   forSegments(pool, n, [&](long i, long len) { w.r.segment(i, len) -= b.segment(i, len); });
-  // The direct path's test: the backward error (see the header).
-  const bool backward = start == PcgStart::preconditioned;
-  const bool plain = backward && m == 0;
-  double aNorm = 0.0, bNorm = 0.0;
-  if (backward) {
-    aNorm = std::sqrt(sumChunks(pool, size_t(a.nonZeros()), kRowChunk, w.partials, [&](size_t begin, size_t end) {
-      double sum = 0.0;
-      for (size_t k = begin; k < end; ++k) sum += a.valuePtr()[k] * a.valuePtr()[k];
-      return sum;
-    }));
-    bNorm = std::sqrt(dot(b, b));
-  }
-  auto backwardErrorSmall = [&] {
-    const double scale = tolerance * (aNorm * std::sqrt(dot(x, x)) + bNorm);
-    return dot(w.r, w.r) <= scale * scale;
-  };
   ProjectedPcgResult result;
-  if (plain && backwardErrorSmall()) {
-    result.converged = true;
+  if (start == PcgStart::exact) {
+    result.converged = true;  // G is A: P b is the answer (see the header)
+    feasible(x);
     return result;
   }
   project(w.r, w.g);
   w.p.resize(n);
   forSegments(pool, n, [&](long i, long len) { w.p.segment(i, len) = -w.g.segment(i, len); });
   double rg = dot(w.r, w.g);
-  auto converged = [&] { return backward ? backwardErrorSmall() : std::abs(rg) <= tolerance * tolerance * reference; };
+  auto converged = [&] { return std::abs(rg) <= tolerance * tolerance * reference; };
   while (result.iterations < maxIterations && !converged()) {
     multiplySymmetric(pool, a, w.p, w.ap);
     const double alpha = rg / dot(w.p, w.ap);
@@ -102,7 +87,6 @@ ProjectedPcgResult solveProjectedPcg(WorkerPool* pool, const Eigen::SparseMatrix
       w.r.segment(i, len) += alpha * w.ap.segment(i, len);
     });
     ++result.iterations;
-    if (plain && backwardErrorSmall()) break;
     project(w.r, w.g);
     const double rgNext = dot(w.r, w.g);
     const double beta = rgNext / rg;

@@ -71,17 +71,16 @@ struct ProjectedPcgResult {
   bool converged = false;
 };
 
-// Where the iterations start and when they stop.
-//   - guess, relative (CG): from the guess in x (the last step's answer), until the projected
-//     residual's norm in G's metric is below tolerance × b's.
-//   - preconditioned, backwardError (the direct path): from P b, the answer when G is A, until the
-//     normwise backward error ‖r‖ / (‖A‖_F ‖x‖ + ‖b‖) is below tolerance (r: the residual kept
-//     small by the projection). A direct solve's residual is rounding times ‖A‖ ‖x‖, not times
-//     ‖b‖: on the 10⁴× stiff cloth ‖A‖ ‖x‖ is 10⁶ ‖b‖, and a test relative to ‖b‖ alone asked A's
-//     own factors for more digits than doubles hold (20 iterations a step, then a refactorisation).
-//     Without constraints the residual is tested before it is projected, which saves a solve: A's
-//     own factors' answer is accepted after one.
-enum class PcgStart { guess, preconditioned };
+// Where the iterations start: from the guess in x (CG: the last step's answer), or from P b (the
+// direct path), which is the answer when G is A: `exact` says G is A's own factorisation and
+// returns it at once, the direct solve; `preconditioned` iterates on from there (an earlier
+// step's factors). Every iteration stops when the projected residual's norm in G's metric,
+// r·G⁻¹r, is below tolerance² × b·P b: with G ≈ A that is the error's energy norm relative to the
+// answer's, which weighs the soft modes (mass-bound, 0.002 kg) and the stiff ones (h² k, up to
+// 700 N/m on the 10⁴× cloth) alike; a test on ‖r‖ against ‖A‖ ‖x‖ let the soft modes' error grow
+// with the stiffness ratio, and one against ‖b‖ asked A's own factors for more digits than doubles
+// hold.
+enum class PcgStart { guess, preconditioned, exact };
 
 // Solves A x = b on J x = c (x moved onto J x = c first), or stops at maxIterations. A is
 // symmetric and stored whole; G must be ready (prepareRows called for these rows).
