@@ -17,7 +17,10 @@
 // Counters:
 //   sim_s_cost      CPU seconds per simulated second: time per step / dt
 //   per_particle    CPU time per step divided by the particle count
-//   cg_iterations   backward Euler's conjugate-gradient iterations per step (mean)
+//   cg_iterations   the implicit integrators' PCG iterations per step (mean; 0 on a step the direct
+//                   solve answered from fresh factors)
+//   factorizations  the direct solve's numeric factorisations per step (mean)
+// BM_SceneRun: a whole scene at dt per iteration (see there).
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -46,11 +49,12 @@ scenario::Scenario loadCloth(const std::string& file, int n) {
 constexpr long kRewindSteps = 50;
 
 void BM_IntegratorStep(benchmark::State& state, const std::string& file, int n, Integrator integrator, double dt,
-                       int threads = 1) {
+                       int threads = 1, ImplicitSolver solve = ImplicitSolver::automatic) {
   scenario::Scenario s = loadCloth(file, n);
   s.system.setThreads(threads);
-  const bool stiff = file == "cloth_stiff.yaml";
+  const bool stiff = file != "cloth.yaml";
   Stepper(s.system, stiff ? Integrator::BackwardEuler : Integrator::Rk4, stiff ? 1.0 / 60.0 : 0.01).advanceTo(1.0);
+  s.system.setImplicitSolver(solve);
   Solver solver(integrator);
   // One step outside the clock: Verlet's first evaluation, backward Euler's matrix pattern.
   try {
@@ -101,6 +105,7 @@ struct Case {
   int n;
   Integrator integrator;
   double dt;
+  ImplicitSolver solve = ImplicitSolver::automatic;  // named in the benchmark when not auto
 };
 
 const Case kCases[] = {
@@ -113,21 +118,91 @@ const Case kCases[] = {
     {"cloth_stiff.yaml", 25, Integrator::Midpoint, 0.00016}, {"cloth_stiff.yaml", 25, Integrator::Rk4, 0.0012},
     {"cloth_stiff.yaml", 25, Integrator::SymplecticEuler, 0.00089},
     {"cloth_stiff.yaml", 25, Integrator::Verlet, 0.00088}, {"cloth_stiff.yaml", 25, Integrator::BackwardEuler, kFrame},
+    // Issue 29: BDF2, the direct solve beside CG, and the 10⁴× stiff cloth (its limits from
+    // `particles stability scenarios/cloth_very_stiff.yaml`, docs/stability.md).
+    {"cloth.yaml", 25, Integrator::Bdf2, kFrame},
+    {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth.yaml", 316, Integrator::BackwardEuler, kFrame, ImplicitSolver::direct},
+    {"cloth.yaml", 316, Integrator::Bdf2, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::Bdf2, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth_very_stiff.yaml", 25, Integrator::Rk4, 0.00012},
+    {"cloth_very_stiff.yaml", 25, Integrator::SymplecticEuler, 0.000089},
+    {"cloth_very_stiff.yaml", 25, Integrator::Verlet, 0.000089},
+    {"cloth_very_stiff.yaml", 25, Integrator::BackwardEuler, kFrame},
+    {"cloth_very_stiff.yaml", 25, Integrator::Bdf2, kFrame},
+    {"cloth_very_stiff.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
 };
 
-// Names read BM_IntegratorStep/cloth_stiff/25/rk4.
+std::string caseName(const char* prefix, const Case& c) {
+  const std::string scene = std::string(c.scene).substr(0, std::string(c.scene).find('.'));
+  std::string name = fmt::format("{}/{}/{}/{}", prefix, scene, c.n, integratorName(c.integrator));
+  if (c.solve != ImplicitSolver::automatic) name += fmt::format("/{}", implicitSolverName(c.solve));
+  return name;
+}
+
+// A whole scene, 0 to its duration (10 s) at dt, per iteration (loading outside the clock): the
+// cost per simulated second over everything the scene does (the 50-step walks of
+// BM_IntegratorStep see 0.8 s of it; the direct solve's factors last longer while the cloth hangs
+// still than while the mouse drags it).
+void BM_SceneRun(benchmark::State& state, const Case& c) {
+  long steps = 0;
+  double duration = 0.0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    scenario::Scenario s = loadCloth(c.scene, c.n);
+    s.system.setImplicitSolver(c.solve);
+    duration = s.simulation.duration;
+    Stepper stepper(s.system, c.integrator, c.dt);
+    state.ResumeTiming();
+    try {
+      stepper.advanceTo(duration);
+    } catch (const SimulationError& e) {
+      state.SkipWithError(e.what());
+      break;
+    }
+    steps += stepper.steps();
+  }
+  state.counters["sim_s_cost"] =
+      benchmark::Counter(duration, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  if (state.iterations() > 0) state.counters["steps"] = double(steps) / double(state.iterations());
+}
+
+// Side by side per cloth: symplectic Euler at its limit (the cheapest explicit integrator per
+// simulated second on all three), RK4 at its limit, and the implicit ones at one step per frame.
+const Case kRuns[] = {
+    {"cloth.yaml", 25, Integrator::SymplecticEuler, 0.0081},
+    {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame},
+    {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth.yaml", 25, Integrator::Bdf2, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::SymplecticEuler, 0.00089},
+    {"cloth_stiff.yaml", 25, Integrator::Rk4, 0.0012},
+    {"cloth_stiff.yaml", 25, Integrator::BackwardEuler, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth_stiff.yaml", 25, Integrator::Bdf2, kFrame},
+    {"cloth_very_stiff.yaml", 25, Integrator::SymplecticEuler, 0.000089},
+    {"cloth_very_stiff.yaml", 25, Integrator::Rk4, 0.00012},
+    {"cloth_very_stiff.yaml", 25, Integrator::BackwardEuler, kFrame},
+    {"cloth_very_stiff.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth_very_stiff.yaml", 25, Integrator::Bdf2, kFrame},
+};
+
+// Names read BM_IntegratorStep/cloth_stiff/25/rk4, BM_IntegratorStep/cloth/25/backward_euler/cg.
 const bool kRegistered = [] {
   for (const Case& c : kCases) {
-    const std::string scene = std::string(c.scene).substr(0, std::string(c.scene).find('.'));
-    const std::string name = fmt::format("BM_IntegratorStep/{}/{}/{}", scene, c.n, integratorName(c.integrator));
-    benchmark::RegisterBenchmark(name.c_str(), [c](benchmark::State& state) {
-      BM_IntegratorStep(state, c.scene, c.n, c.integrator, c.dt);
+    benchmark::RegisterBenchmark(caseName("BM_IntegratorStep", c).c_str(), [c](benchmark::State& state) {
+      BM_IntegratorStep(state, c.scene, c.n, c.integrator, c.dt, 1, c.solve);
     })->Unit(c.n > 100 ? benchmark::kMillisecond : benchmark::kMicrosecond);
+  }
+  for (const Case& c : kRuns) {
+    benchmark::RegisterBenchmark(caseName("BM_SceneRun", c).c_str(), [c](benchmark::State& state) {
+      BM_SceneRun(state, c);
+    })->Unit(benchmark::kMillisecond);
   }
   // Issue 28's step targets: the 316² cloth on 1 and 2 threads (System::setThreads), wall time.
   for (Integrator integrator : {Integrator::Rk4, Integrator::SymplecticEuler, Integrator::BackwardEuler}) {
     for (const Case& c : kCases) {
-      if (c.n != 316 || c.integrator != integrator) continue;
+      if (c.n != 316 || c.integrator != integrator || c.solve != ImplicitSolver::automatic) continue;
       for (int threads : {1, 2}) {
         const std::string name =
             fmt::format("BM_IntegratorStepThreads/cloth/316/{}/threads:{}", integratorName(integrator), threads);
