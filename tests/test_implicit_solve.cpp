@@ -132,28 +132,56 @@ TEST_CASE("the direct solve reuses its factors while they serve, and stays with 
   CHECK((reused.system.state() - exact.system.state()).norm() < 1e-6 * scale);
 }
 
-TEST_CASE("auto picks the direct solve for the 25² cloth and CG past kAutoDirectMaxCoordinates") {
-  scenario::Scenario small = loadProjectScenario("cloth.yaml");
+TEST_CASE("auto keeps CG where it is cheap and moves to the direct solve where CG's iterations cost more") {
+  // The demo cloth: CG needs about 20 iterations a step (24 at most), below the 25 the direct solve
+  // costs at 1,225 free coordinates, over the whole 10 s (the mouse's drag included).
+  CHECK(autoDirectIterations(1225) == doctest::Approx(24.874).epsilon(1e-4));
+  CHECK(autoDirectIterations(20000) == doctest::Approx(50.0).epsilon(1e-9));
+  scenario::Scenario soft = loadProjectScenario("cloth.yaml");
   Solver a(Integrator::BackwardEuler);
-  a.doStep(small.system, 1.0 / 60.0);
-  CHECK(a.lastImplicitStep().solver == ImplicitSolver::direct);
-  // 101² = 10,201 particles: 20,402 coordinates, 20,352 free once the rail's 101 are taken out.
-  static_assert(kAutoDirectMaxCoordinates < 20352);
-  const int n = 101;
-  scenario::Scenario large = loadProjectScenario(
-      "cloth.yaml", {scenario::parseOverride(fmt::format("grids.0.size=[{0}, {0}]", n)),
-                     scenario::parseOverride(fmt::format("mouse.0.grab=cloth[{}][{}]", n - 1, n / 2))});
-  Solver b(Integrator::BackwardEuler);
-  b.doStep(large.system, 1.0 / 60.0);
+  int most = 0;
+  for (int step = 0; step < 600; ++step) {
+    a.doStep(soft.system, 1.0 / 60.0);
+    CHECK(a.lastImplicitStep().solver == ImplicitSolver::cg);
+    most = std::max(most, a.lastImplicitStep().iterations);
+  }
+  CAPTURE(most);
+  CHECK(a.factorizations() == 0);
+  // The stiff cloth: it starts flat and at rest, where CG needs about 24 iterations; as it swings
+  // CG needs far more (165 a step over the 10 s), and once kAutoWindow CG steps averaged over
+  // 24.9 the run moves to the direct solve, for good.
+  scenario::Scenario stiff = loadProjectScenario("cloth_stiff.yaml");
+  Solver b(Integrator::Bdf2);
+  int firstDirect = -1;
+  std::vector<int> iterations;
+  for (int step = 0; step < 120; ++step) {
+    b.doStep(stiff.system, 1.0 / 60.0);
+    const bool direct = b.lastImplicitStep().solver == ImplicitSolver::direct;
+    if (direct && firstDirect < 0) firstDirect = step;
+    if (!direct) {
+      CHECK(firstDirect < 0);  // never back to CG
+      iterations.push_back(b.lastImplicitStep().iterations);
+    }
+  }
+  CAPTURE(firstDirect);
+  REQUIRE(firstDirect >= kAutoWindow);
+  REQUIRE(int(iterations.size()) == firstDirect);
+  double lastWindow = 0.0;
+  for (int k = firstDirect - kAutoWindow; k < firstDirect; ++k)
+    lastWindow += iterations[size_t(k)] / double(kAutoWindow);
+  CHECK(lastWindow > autoDirectIterations(1225));
+  // Forced either way, whatever the iterations.
+  stiff.system.setImplicitSolver(ImplicitSolver::cg);
+  b.doStep(stiff.system, 1.0 / 60.0);
   CHECK(b.lastImplicitStep().solver == ImplicitSolver::cg);
-  large.system.setImplicitSolver(ImplicitSolver::direct);
-  b.doStep(large.system, 1.0 / 60.0);
-  CHECK(b.lastImplicitStep().solver == ImplicitSolver::direct);
+  soft.system.setImplicitSolver(ImplicitSolver::direct);
+  a.doStep(soft.system, 1.0 / 60.0);
+  CHECK(a.lastImplicitStep().solver == ImplicitSolver::direct);
 }
 
-TEST_CASE("the direct solve takes a few general rows through its Schur complement, and refuses many") {
-  // A net of rods: more rows than kMaxSchurRows that are not rails. auto takes CG; direct says why
-  // it cannot, naming the setting.
+TEST_CASE("the direct solve refuses more general rows than its Schur complement takes, and auto stays with CG") {
+  // A net of rods: more rows than kMaxSchurRows that are not rails. auto keeps CG whatever its
+  // iterations; direct says why it cannot, naming the setting.
   SystemBuilder b;
   const int side = 10;
   std::vector<int> ids;
@@ -176,7 +204,7 @@ TEST_CASE("the direct solve takes a few general rows through its Schur complemen
   try {
     solver.doStep(net, 0.01);
     FAIL("expected the direct solve to refuse");
-  } catch (const std::invalid_argument& e) {
+  } catch (const ImplicitSolverError& e) {
     const std::string what = e.what();
     CHECK(what.find("implicit_solver: direct") != std::string::npos);
     CHECK(what.find(fmt::format("{} constraint rows", rods)) != std::string::npos);

@@ -30,6 +30,8 @@ int runReportingErrors(const ErrorContext& context, const std::function<int()>& 
     return report(kSimulationFailed, failed(e));
   } catch (const SimulationFailure& e) {
     return report(kSimulationFailed, failed(e));
+  } catch (const ImplicitSolverError& e) {  // the scenario's implicit_solver cannot be honoured
+    return report(kBadInput, failed(e));
   } catch (const scenario::ScenarioError& e) {
     return report(kBadInput, e.what());  // the loader's message names file, line and key
   } catch (const InputError& e) {

@@ -4,14 +4,22 @@
 // --implicit-solver.
 
 #include <optional>
+#include <stdexcept>
 #include <string_view>
 
 namespace particles {
 
 enum class ImplicitSolver {
-  automatic,  // direct up to kAutoDirectMaxCoordinates free coordinates, else CG (measured, bench/README.md)
+  automatic,  // CG, then direct once a CG step costs more than the direct solve would (implicit_step.hpp)
   direct,     // sparse LDLᵀ of the step's matrix, reused across steps, refined by PCG
   cg,         // conjugate gradients with the Jacobi preconditioner
+};
+
+// The scene's implicit_solver cannot be honoured (direct with more general constraint rows than
+// the Schur complement takes): bad input, named by the message, not a simulation failure.
+class ImplicitSolverError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
 };
 
 std::string_view implicitSolverName(ImplicitSolver solver);  // "auto", "direct", "cg"

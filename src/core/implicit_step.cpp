@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <stdexcept>
 
 #include "core/group_by_bucket.hpp"
@@ -54,6 +55,10 @@ void gatherRows(const std::vector<ConstraintRow>& from, const std::vector<int>& 
 
 }  // namespace
 
+double autoDirectIterations(long freeCoordinates) {
+  return 25.0 * std::pow(double(std::max(freeCoordinates, 1L)) / 1250.0, 0.25);
+}
+
 void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const ImplicitTarget& target,
                   ImplicitScratch& w, double cgTolerance) {
   const Model& model = system.model();
@@ -98,14 +103,14 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
     }
   }
   const long freeCoordinates = long(std::count(w.pinned.begin(), w.pinned.end(), 0)) - eliminated;
-  ImplicitSolver solver = system.implicitSolver();
-  if (solver == ImplicitSolver::automatic) {
-    solver = freeCoordinates <= kAutoDirectMaxCoordinates && int(general.size()) <= kMaxSchurRows
-                 ? ImplicitSolver::direct
-                 : ImplicitSolver::cg;
+  const ImplicitSolver requested = system.implicitSolver();
+  const bool automatic = requested == ImplicitSolver::automatic;
+  ImplicitSolver solver = requested;
+  if (automatic) {
+    solver = w.autoDirect && int(general.size()) <= kMaxSchurRows ? ImplicitSolver::direct : ImplicitSolver::cg;
   }
   if (solver == ImplicitSolver::direct && int(general.size()) > kMaxSchurRows) {
-    throw std::invalid_argument(fmt::format(
+    throw ImplicitSolverError(fmt::format(
         "implicit_solver: direct: {} constraint rows are neither fixed points nor axis-aligned rails, and the direct "
         "solve takes at most {} such rows (their Schur complement is dense); use implicit_solver: cg or auto",
         general.size(), kMaxSchurRows));
@@ -252,6 +257,14 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
   };
   if (!direct) {
     solveByCg();
+    // auto: CG steps dearer than the direct solve at this size, on average, move the run to it.
+    if (automatic && int(general.size()) <= kMaxSchurRows) {
+      std::vector<int>& window = w.cgIterationsWindow;
+      if (int(window.size()) == kAutoWindow) window.erase(window.begin());
+      window.push_back(stats.iterations);
+      const double mean = double(std::accumulate(window.begin(), window.end(), 0)) / double(window.size());
+      if (int(window.size()) == kAutoWindow && mean > autoDirectIterations(freeCoordinates)) w.autoDirect = true;
+    }
   } else {
     gatherRows(w.constraintRows, general, v0, &w.pinned, &w.known, w.rows);
     stats.solver = ImplicitSolver::direct;

@@ -42,10 +42,17 @@ namespace particles {
 
 class System;
 
-// auto picks the direct solve up to this many free coordinates (and kMaxSchurRows other rows):
-// the crossover measured on the demo cloth, where Jacobi CG needs the fewest iterations
-// (bench/README.md, "Implicit integration").
-constexpr long kAutoDirectMaxCoordinates = 20000;
+// auto's rule. CG's cost grows with the stiffness (its iterations, like h √(k/m)), the direct
+// solve's with the size (its factor's fill), so auto starts with CG and moves to the direct solve,
+// for the rest of the run, once CG's last kAutoWindow steps needed more iterations on average than
+// the direct solve costs in CG iterations at that size: 25 · (free coordinates / 1250)^¼. Measured over the first
+// 3 s of backward Euler at 1/60 s on the demo cloth (bench/README.md, "Implicit integration"):
+// CG and direct break even at 25 iterations on the 25² cloth (1,250 coordinates), 50 on the 100²
+// (20,000), 63 on the 141² (40,000); the demo cloth needs 18–21 (CG wins at every size), the
+// 100× stiff one 165 and the 10⁴× stiff one 400 (direct wins). Only when the other constraint
+// rows are few enough for the Schur complement (kMaxSchurRows).
+double autoDirectIterations(long freeCoordinates);
+constexpr int kAutoWindow = 10;
 // The direct path's iterations on an earlier step's factors stop at this relative error in the
 // energy norm (core/projected_pcg.hpp), two digits below CG's; A's own factors answer exactly, in
 // one solve. Measured over the 10⁴× stiff cloth's 10 s at one backward Euler step per frame (one
@@ -94,6 +101,8 @@ struct ImplicitScratch {
   JacobiPreconditioner jacobi;
   LdltPreconditioner ldlt;
   bool ldltValid = false;  // factors (of an earlier or this step's A) of the current pattern
+  bool autoDirect = false;              // auto has moved to the direct solve
+  std::vector<int> cgIterationsWindow;  // auto: the last kAutoWindow CG steps' iterations
   double reuseDebt = 0.0;  // multiply-adds the stale factors' extra iterations have cost
   long factorizations = 0;
   ProjectedPcgScratch pcg;
@@ -113,7 +122,7 @@ struct ImplicitTarget {
 };
 
 // One step by h: y holds the state the step is linearised at, taken at time t, and receives the
-// step's end. Throws std::invalid_argument when the scene's implicit solver is
+// step's end. Throws ImplicitSolverError when the scene's implicit solver is
 // `direct` and more constraint rows than kMaxSchurRows are neither fixed points nor rails.
 void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const ImplicitTarget& target,
                   ImplicitScratch& w, double cgTolerance = kCgTolerance);

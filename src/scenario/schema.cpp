@@ -171,17 +171,17 @@ Json simulationSchema() {
   const SimulationSettings d;
   Json integrators = Json::array();
   for (Integrator i : allIntegrators()) integrators.push_back(integratorName(i));
-  return object({{"integrator", withDefault({{"enum", integrators}}, integratorName(d.integrator))},
-                 {"dt", withDefault(withDescription(number(Bound{0, false}), "time step, s"), d.dt)},
-                 {"duration", withDefault(withDescription(number(Bound{0, false}), "simulated seconds"), d.duration)},
-                 {"implicit_solver",
-                  withDefault(withDescription({{"enum", {"auto", "direct", "cg"}}},
-                                              fmt::format("backward_euler's and bdf2's linear solve: a sparse LDLT "
-                                                          "factorisation (direct), conjugate gradients (cg), or "
-                                                          "direct up to {} free coordinates (auto)",
-                                                          kAutoDirectMaxCoordinates)),
-                              implicitSolverName(d.implicitSolver))}},
-                {});
+  return object(
+      {{"integrator", withDefault({{"enum", integrators}}, integratorName(d.integrator))},
+       {"dt", withDefault(withDescription(number(Bound{0, false}), "time step, s"), d.dt)},
+       {"duration", withDefault(withDescription(number(Bound{0, false}), "simulated seconds"), d.duration)},
+       {"implicit_solver",
+        withDefault(withDescription({{"enum", {"auto", "direct", "cg"}}},
+                                    "backward_euler's and bdf2's linear solve: a sparse LDLT factorisation (direct), "
+                                    "conjugate gradients (cg), or CG until a step needs more iterations than "
+                                    "the direct solve costs at that size, then direct (auto)"),
+                    implicitSolverName(d.implicitSolver))}},
+      {});
 }
 
 Json renderSchema() {
