@@ -174,6 +174,7 @@ const Case kRuns[] = {
     {"cloth.yaml", 25, Integrator::SymplecticEuler, 0.0081},
     {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame},
     {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::direct},
     {"cloth.yaml", 25, Integrator::Bdf2, kFrame},
     {"cloth_stiff.yaml", 25, Integrator::SymplecticEuler, 0.00089},
     {"cloth_stiff.yaml", 25, Integrator::Rk4, 0.0012},
