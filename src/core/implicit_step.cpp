@@ -136,7 +136,7 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
   auto samePattern = [&](const ForceJacobians::Triplets& from, const std::vector<int>& keys) {
     if (2 * from.size() != keys.size()) return false;
     return !anyOf(pool, from.size(), kRowChunk, w.found,
-                  [&](size_t k) { return (from[k].row() != keys[2 * k]) | (from[k].col() != keys[2 * k + 1]); });
+                  [&](size_t k) { return ((from[k].row() ^ keys[2 * k]) | (from[k].col() ^ keys[2 * k + 1])) != 0; });
   };
   const bool rebuild = !pattern.valid || w.matrix.rows() != n || pattern.pinned != w.pinned ||
                        !samePattern(jac.dfdv, pattern.dfdvKeys) || !samePattern(jac.dfdx, pattern.dfdxKeys);
