@@ -66,14 +66,13 @@ ProjectedPcgResult solveProjectedPcg(WorkerPool* pool, const Eigen::SparseMatrix
     x.setZero(n);
   }
   feasible(x);
-  multiplySymmetric(pool, a, x, w.r);
-  forSegments(pool, n, [&](long i, long len) { w.r.segment(i, len) -= b.segment(i, len); });
   ProjectedPcgResult result;
   if (start == PcgStart::exact) {
-    result.converged = true;  // G is A: P b is the answer (see the header)
-    feasible(x);
+    result.converged = true;  // G is A: P b, on J x = c, is the answer (see the header)
     return result;
   }
+  multiplySymmetric(pool, a, x, w.r);
+  forSegments(pool, n, [&](long i, long len) { w.r.segment(i, len) -= b.segment(i, len); });
   project(w.r, w.g);
   w.p.resize(n);
   forSegments(pool, n, [&](long i, long len) { w.p.segment(i, len) = -w.g.segment(i, len); });
