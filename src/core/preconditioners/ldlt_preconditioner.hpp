@@ -1,6 +1,7 @@
 #pragma once
-// The direct solve: G = L D Lᵀ, a sparse LDLᵀ factorisation of A (Eigen's SimplicialLDLT, with an
-// approximate-minimum-degree ordering), so that G⁻¹ r costs two sparse triangular solves.
+// The direct solve: G = L D Lᵀ, a sparse LDLᵀ factorisation of A over the particles' 2 × 2 blocks
+// (core/block_ldlt.hpp, approximate-minimum-degree ordering), so that G⁻¹ r costs two sparse
+// triangular solves.
 //
 // The ordering and the elimination tree (the symbolic analysis) depend only on A's pattern and
 // are computed once per pattern (analyze); the numbers are refactored (factorize) when the
@@ -14,16 +15,17 @@
 // per row, kept dense (n × rows), and S dense (rows × rows) with a pivoting LDLᵀ, so this is for a
 // few rows (kMaxSchurRows), not a net of thousands of rods.
 //
-// Measured against CHOLMOD (SuiteSparse 5.12, Debian's, through Eigen's CholmodSupport, with
-// OpenBLAS): on the 25² cloth's A (1,250 coordinates) SimplicialLDLT factors in 0.50 ms,
-// CHOLMOD's simplicial LDLᵀ in 0.55 ms and its supernodal LLᵀ in 1.1 ms; on the 100² cloth's
-// (20,000) 42, 45 and 53 ms. Supernodes are small on a cloth's grid, so no extra dependency pays.
+// Measured on the 25² cloth's A (1,250 coordinates): Eigen's SimplicialLDLT factors in 0.50 ms,
+// CHOLMOD's simplicial LDLᵀ (SuiteSparse 5.12, Debian's, through Eigen's CholmodSupport, with
+// OpenBLAS) in 0.55 ms and its supernodal LLᵀ in 1.1 ms, the 2 × 2 blocks in 0.15 ms; on the 100²
+// cloth's (20,000) 42, 45, 53 and 13 ms. Supernodes are small on a cloth's grid, so CHOLMOD does
+// not pay; the blocks do (core/block_ldlt.hpp says why).
 
 #include <Eigen/Core>
 #include <Eigen/Dense>
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include "core/block_ldlt.hpp"
 #include "core/projected_pcg.hpp"
 
 namespace particles {
@@ -49,9 +51,8 @@ class LdltPreconditioner : public PcgPreconditioner {
                                 Eigen::VectorXd& z) override;
 
  private:
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt_;
+  BlockLdlt ldlt_;
   double factorCost_ = 0.0, iterationCost_ = 0.0;
-  Eigen::VectorXd y_;                // apply's permuted vector
   Eigen::MatrixXd jt_, ginvJt_, s_;  // Jᵀ, G⁻¹ Jᵀ (n × rows), S (rows × rows)
   Eigen::LDLT<Eigen::MatrixXd> schur_;
 };
