@@ -101,7 +101,7 @@ TEST_CASE("BlockLdlt: solves a spring net as a dense factorisation does, refacto
   }
 }
 
-TEST_CASE("BlockLdlt: fill where it is known (a chain: none; a clique: all)") {
+TEST_CASE("BlockLdlt: fill where it is known, none on a chain and all on a clique") {
   SUBCASE("a chain's blocks are its edges, in any order") {
     const std::vector<std::pair<int, int>> edges = {{0, 3}, {3, 1}, {1, 4}, {4, 2}, {2, 5}};
     const Eigen::SparseMatrix<double> a = springNet(6, edges);

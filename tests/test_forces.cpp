@@ -197,13 +197,13 @@ Eigen::MatrixXd denseOf(const ForceJacobians::Triplets& t, Eigen::Index n) {
   return Eigen::MatrixXd(m);
 }
 
-struct JacobianPair {
+struct JacobiansAndDifferences {
   Eigen::MatrixXd k, d;          // from the forces' addJacobians
   Eigen::MatrixXd kFd, dFd;      // central differences of the accumulated force (m · dv/dt)
 };
 
 // Every point must be free (a fixed point's force is not in dv/dt).
-JacobianPair jacobiansAt(System& sys, const Eigen::VectorXd& y, double t) {
+JacobiansAndDifferences jacobiansAt(System& sys, const Eigen::VectorXd& y, double t) {
   const StateLayout& layout = sys.layout();
   const Eigen::Index n = 2 * Eigen::Index(layout.numPoints()), v = layout.velocityOffset();
   auto force = [&](const Eigen::VectorXd& at) {
@@ -213,11 +213,12 @@ JacobianPair jacobiansAt(System& sys, const Eigen::VectorXd& y, double t) {
     for (Eigen::Index i = 0; i < n; ++i) f[i] = dydt[v + i] * sys.model().mass[i / 2];
     return f;
   };
-  JacobianPair out;
+  JacobiansAndDifferences out;
   ForceJacobians jac;
   sys.forceJacobians(y, t, jac);
-  out.k = denseOf(jac.dfdx, n);
-  out.d = denseOf(jac.dfdv, n);
+  const ForceJacobians all = jac.expanded();
+  out.k = denseOf(all.dfdx, n);
+  out.d = denseOf(all.dfdv, n);
   out.kFd.resize(n, n);
   out.dFd.resize(n, n);
   const double eps = 1e-7;
@@ -253,12 +254,12 @@ TEST_CASE("force Jacobians for backward Euler match finite differences") {
     System sys = b.build();
     // ∂f/∂v is exact at any velocity (f is linear in v); ∂f/∂x leaves out the damping's
     // dependence on position by design, which vanishes at rest: compare K there.
-    const JacobianPair moving = jacobiansAt(sys, sys.state(), 0.5);
+    const JacobiansAndDifferences moving = jacobiansAt(sys, sys.state(), 0.5);
     CHECK((moving.d - moving.dFd).norm() < 1e-6 * moving.d.norm());
     CHECK(moving.d.norm() > 0.3);
     Eigen::VectorXd atRest = sys.state();
     atRest.segment(sys.layout().velocityOffset(), 6).setZero();
-    const JacobianPair j = jacobiansAt(sys, atRest, 0.5);
+    const JacobiansAndDifferences j = jacobiansAt(sys, atRest, 0.5);
     CHECK((j.k - j.kFd).norm() < 1e-5 * j.k.norm());
     CHECK((j.k - j.k.transpose()).norm() == 0.0);
     CHECK(largestEigenvalue(j.k) <= 1e-12);
@@ -271,7 +272,7 @@ TEST_CASE("force Jacobians for backward Euler match finite differences") {
     auto& springs = b.emplaceForce<DampedSpringForce>();
     springs.add({Endpoint::ofParticle(a), Endpoint::ofParticle(c), 1.0, 40.0, 0.0});  // |l| = 1.3: stretched
     System stretched = b.build();
-    JacobianPair j = jacobiansAt(stretched, stretched.state(), 0.0);
+    JacobiansAndDifferences j = jacobiansAt(stretched, stretched.state(), 0.0);
     CHECK((j.k - j.kFd).norm() < 1e-5 * j.k.norm());
 
     SystemBuilder b2;
@@ -296,7 +297,7 @@ TEST_CASE("force Jacobians for backward Euler match finite differences") {
     b.addCollider(std::make_unique<HalfPlaneCollider>(Vec2(0, 1), 0.0, PenaltyParams{2e4, 3.0}));
     b.addCollider(std::make_unique<DiskCollider>(Vec2(2.0, 0.4), 0.6, PenaltyParams{1e4, 0.0}));
     System sys = b.build();
-    const JacobianPair j = jacobiansAt(sys, sys.state(), 0.0);
+    const JacobiansAndDifferences j = jacobiansAt(sys, sys.state(), 0.0);
     CHECK((j.k.block<2, 2>(0, 0) - j.kFd.block<2, 2>(0, 0)).norm() < 1e-4 * j.k.norm());
     CHECK((j.d - j.dFd).norm() < 1e-6);
     const Vec2 n(0, 1);  // the disk's normal at (2.0, 0.9)

@@ -53,16 +53,34 @@ struct DefaultInitAllocator : std::allocator<T> {
   }
 };
 
+// A force along a − b that depends only on x_a − x_b and v_a − v_b (a spring), with f_b = −f_a
+// and ∂f_a/∂x_a = k, ∂f_a/∂v_a = d: its K is [k −k; −k k] and its D [d −d; −d d] on points
+// (a, b). k and d are symmetric, so a pair is two points and six numbers (xx, xy, yy of each),
+// not 32 triplets: the implicit step assembles and checks its pattern per pair.
+struct JacobianPair {
+  int a, b;
+  double k[3], d[3];
+  JacobianPair() = default;
+  JacobianPair(int aPoint, int bPoint, const Eigen::Matrix2d& kBlock, const Eigen::Matrix2d& dBlock)
+      : a(aPoint),
+        b(bPoint),
+        k{kBlock(0, 0), kBlock(0, 1), kBlock(1, 1)},
+        d{dBlock(0, 0), dBlock(0, 1), dBlock(1, 1)} {}
+};
+
 struct ForceJacobians {
   using Triplets = std::vector<JacobianEntry, DefaultInitAllocator<JacobianEntry>>;
+  using Pairs = std::vector<JacobianPair, DefaultInitAllocator<JacobianPair>>;
   Triplets dfdx;  // K, N/m
   Triplets dfdv;  // D, N·s/m
+  Pairs pairs;    // more of K and D, by pairs of points
   // The System's threads, which a force may fill its own fixed range of entries on (null: serial).
   WorkerPool* pool = nullptr;
 
   void clear() {
     dfdx.clear();
     dfdv.clear();
+    pairs.clear();
   }
   // ∂f_row/∂(x or v)_col += b, for points row and col. All four entries, zeros too: the pattern
   // then depends on which forces act, not on their values (an axis-aligned spring's off-diagonal
@@ -72,26 +90,22 @@ struct ForceJacobians {
       for (int c = 0; c < 2; ++c) to.emplace_back(2 * rowPoint + r, 2 * colPoint + c, b(r, c));
     }
   }
-  // A force along a − b that depends only on x_a − x_b (or v_a − v_b), f_b = −f_a, with
-  // ∂f_a/∂x_a = b: the blocks are [b −b; −b b].
-  static void addPair(Triplets& to, int a, int bPoint, const Eigen::Matrix2d& b) {
-    addBlock(to, a, a, b);
-    addBlock(to, bPoint, bPoint, b);
-    addBlock(to, a, bPoint, -b);
-    addBlock(to, bPoint, a, -b);
-  }
-  // The 16 entries addPair adds, written at `at` (which must hold 16) in the same order.
-  static constexpr int kPairEntries = 16;
-  static void writePair(JacobianEntry* at, int a, int bPoint, const Eigen::Matrix2d& b) {
-    const int rows[4] = {a, bPoint, a, bPoint}, cols[4] = {a, bPoint, bPoint, a};
-    for (int block = 0; block < 4; ++block) {
-      const double sign = block < 2 ? 1.0 : -1.0;
-      for (int r = 0; r < 2; ++r) {
-        for (int c = 0; c < 2; ++c) {
-          *at++ = JacobianEntry(2 * rows[block] + r, 2 * cols[block] + c, sign * b(r, c));
-        }
+  // The same K and D with every pair written out as triplets (16 each): for a reader that wants
+  // one form (the tests' dense matrices).
+  ForceJacobians expanded() const {
+    ForceJacobians out;
+    out.dfdx = dfdx;
+    out.dfdv = dfdv;
+    for (const JacobianPair& p : pairs) {
+      const Eigen::Matrix2d k{{p.k[0], p.k[1]}, {p.k[1], p.k[2]}}, d{{p.d[0], p.d[1]}, {p.d[1], p.d[2]}};
+      for (auto [to, block] : {std::pair{&out.dfdx, k}, std::pair{&out.dfdv, d}}) {
+        addBlock(*to, p.a, p.a, block);
+        addBlock(*to, p.b, p.b, block);
+        addBlock(*to, p.a, p.b, -block);
+        addBlock(*to, p.b, p.a, -block);
       }
     }
+    return out;
   }
 };
 

@@ -138,12 +138,41 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
     return !anyOf(pool, from.size(), kRowChunk, w.found,
                   [&](size_t k) { return ((from[k].row() ^ keys[2 * k]) | (from[k].col() ^ keys[2 * k + 1])) != 0; });
   };
+  const ForceJacobians::Pairs& pairs = jac.pairs;
+  auto samePairs = [&] {
+    if (2 * pairs.size() != pattern.pairKeys.size()) return false;
+    return !anyOf(pool, pairs.size(), kRowChunk, w.found, [&](size_t q) {
+      return ((pairs[q].a ^ pattern.pairKeys[2 * q]) | (pairs[q].b ^ pattern.pairKeys[2 * q + 1])) != 0;
+    });
+  };
+  // Pair q's block `role` (AssemblyPattern): its row and column points, and its sign.
+  auto blockPoints = [&](int q, int role) {
+    const JacobianPair& pair = pairs[size_t(q)];
+    const int rowPoint = role == 0 || role == 2 ? pair.a : pair.b;
+    const int colPoint = role == 0 || role == 3 ? pair.a : pair.b;
+    return std::pair{rowPoint, colPoint};
+  };
   const bool rebuild = !pattern.valid || w.matrix.rows() != n || pattern.pinned != w.pinned ||
-                       !samePattern(jac.dfdv, pattern.dfdvKeys) || !samePattern(jac.dfdx, pattern.dfdxKeys);
+                       !samePattern(jac.dfdv, pattern.dfdvKeys) || !samePattern(jac.dfdx, pattern.dfdxKeys) ||
+                       !samePairs();
   if (rebuild) {
     w.triplets.clear();
-    w.triplets.reserve(size_t(n) + jac.dfdv.size() + jac.dfdx.size());
+    w.triplets.reserve(size_t(n) + jac.dfdv.size() + jac.dfdx.size() + 16 * pairs.size());
     for (Eigen::Index i = 0; i < n; ++i) w.triplets.emplace_back(i, i, 1.0);
+    pattern.pairKeys.clear();
+    for (int q = 0; q < int(pairs.size()); ++q) {
+      pattern.pairKeys.push_back(pairs[size_t(q)].a);
+      pattern.pairKeys.push_back(pairs[size_t(q)].b);
+      for (int role = 0; role < 4; ++role) {
+        const auto [rowPoint, colPoint] = blockPoints(q, role);
+        for (int c = 0; c < 2; ++c) {
+          for (int r = 0; r < 2; ++r) {
+            const int row = 2 * rowPoint + r, col = 2 * colPoint + c;
+            if (!pinned(row) && !pinned(col)) w.triplets.emplace_back(row, col, 1.0);
+          }
+        }
+      }
+    }
     auto keysOf = [&](const ForceJacobians::Triplets& from, std::vector<int>& keys) {
       keys.clear();
       for (const auto& e : from) {
@@ -190,6 +219,51 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
     rowOfEntry.reserve(jac.dfdx.size());
     for (const auto& e : jac.dfdx) rowOfEntry.push_back(int(e.row()));
     groupByBucket(size_t(n), rowOfEntry, pattern.kRowStart, pattern.kRowEntries);
+    // The pairs' blocks of A, each found by its first slot that is not pinned out.
+    auto slotsOfBlock = [&](int ref, int* slot) {
+      const auto [rowPoint, colPoint] = blockPoints(ref / 4, ref % 4);
+      for (int c = 0; c < 2; ++c) {
+        for (int r = 0; r < 2; ++r) {
+          const int row = 2 * rowPoint + r, col = 2 * colPoint + c;
+          slot[r + 2 * c] = pinned(row) || pinned(col) ? -1 : slotOf(row, col);
+        }
+      }
+    };
+    std::vector<int> leadSlotOfRef(4 * pairs.size(), -1), blockStart, blockRefs;
+    pattern.pinnedPairEntries.clear();
+    for (int ref = 0; ref < int(leadSlotOfRef.size()); ++ref) {
+      int slot[4];
+      slotsOfBlock(ref, slot);
+      for (int s : slot) {
+        if (s >= 0) {
+          leadSlotOfRef[size_t(ref)] = s;
+          break;
+        }
+      }
+      const auto [rowPoint, colPoint] = blockPoints(ref / 4, ref % 4);
+      for (int c = 0; c < 2; ++c) {
+        for (int r = 0; r < 2; ++r) {
+          const int row = 2 * rowPoint + r, col = 2 * colPoint + c;
+          if (!pinned(row) && pinned(col) && !fixedDof(col)) pattern.pinnedPairEntries.push_back({ref, r, c});
+        }
+      }
+    }
+    groupByBucket(slots, leadSlotOfRef, blockStart, pattern.pairBlockRefs);
+    pattern.pairBlocks.clear();
+    for (size_t slot = 0; slot < slots; ++slot) {
+      if (blockStart[slot + 1] == blockStart[slot]) continue;
+      AssemblyPattern::PairBlock block{};
+      slotsOfBlock(pattern.pairBlockRefs[size_t(blockStart[slot])], block.slot);
+      block.begin = blockStart[slot];
+      block.end = blockStart[slot + 1];
+      pattern.pairBlocks.push_back(block);
+    }
+    std::vector<int> pointOfRef(2 * pairs.size());
+    for (size_t q = 0; q < pairs.size(); ++q) {
+      pointOfRef[2 * q] = pairs[q].a;
+      pointOfRef[2 * q + 1] = pairs[q].b;
+    }
+    groupByBucket(size_t(n / 2), pointOfRef, pattern.pairPointStart, pattern.pairPointRefs);
     pattern.valid = true;
     w.ldltValid = false;
   }
@@ -210,11 +284,52 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
       values[slot] = value;
     }
   });
+  // The pairs' part, block by block: A's (a, a) and (b, b) blocks gain −η d − η² k, (a, b) and
+  // (b, a) lose it.
+  std::vector<double>& pairA = w.pairA;
+  pairA.resize(3 * pairs.size());
+  forChunks(pool, pairs.size(), kRowChunk, [&](size_t begin, size_t end) {
+    for (size_t q = begin; q < end; ++q) {
+      for (int j = 0; j < 3; ++j) pairA[3 * q + size_t(j)] = -eta * pairs[q].d[j] - eta * eta * pairs[q].k[j];
+    }
+  });
+  forChunks(pool, pattern.pairBlocks.size(), kRowChunk, [&](size_t begin, size_t end) {
+    for (size_t b = begin; b < end; ++b) {
+      const AssemblyPattern::PairBlock& block = pattern.pairBlocks[b];
+      double sum[3] = {0.0, 0.0, 0.0};
+      for (int k = block.begin; k < block.end; ++k) {
+        const int ref = pattern.pairBlockRefs[size_t(k)];
+        const double* m = &pairA[3 * size_t(ref / 4)];
+        const double sign = ref % 4 < 2 ? 1.0 : -1.0;
+        for (int j = 0; j < 3; ++j) sum[j] += sign * m[j];
+      }
+      const double entry[4] = {sum[0], sum[1], sum[1], sum[2]};  // xx, yx, xy, yy
+      for (int j = 0; j < 4; ++j) {
+        if (block.slot[j] >= 0) values[block.slot[j]] += entry[j];
+      }
+    }
+  });
 
   // b = M (v̄ − v₀) + η (f₀ + K (x̄ − x₀ + η v₀)), row by row; K's products straight from its
   // triplets, in their order.
   const Eigen::VectorXd* xShift = target.xShift;
   const Eigen::VectorXd* vShift = target.vShift;
+  // A pair's K times that vector is k (u_a − u_b) at a and its negative at b.
+  std::vector<double>& pairKu = w.pairKu;
+  pairKu.resize(2 * pairs.size());
+  forChunks(pool, pairs.size(), kRowChunk, [&](size_t begin, size_t end) {
+    for (size_t q = begin; q < end; ++q) {
+      const int a = pairs[q].a, b = pairs[q].b;
+      double u[2];
+      for (int d = 0; d < 2; ++d) {
+        u[d] = eta * (y[vOff + 2 * a + d] - y[vOff + 2 * b + d]);
+        if (xShift) u[d] += (*xShift)[2 * a + d] - (*xShift)[2 * b + d];
+      }
+      const double* k = pairs[q].k;
+      pairKu[2 * q] = k[0] * u[0] + k[1] * u[1];
+      pairKu[2 * q + 1] = k[1] * u[0] + k[2] * u[1];
+    }
+  });
   w.rhs.resize(n);
   forChunks(pool, size_t(n), kRowChunk, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
@@ -225,6 +340,11 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
         value += eta * e.value() * y[vOff + e.col()];
         if (xShift) value += e.value() * (*xShift)[e.col()];
       }
+      for (int k = pattern.pairPointStart[i / 2]; k < pattern.pairPointStart[i / 2 + 1]; ++k) {
+        const int ref = pattern.pairPointRefs[size_t(k)];
+        const double ku = pairKu[2 * size_t(ref / 2) + i % 2];
+        value += ref % 2 == 0 ? ku : -ku;
+      }
       double b = eta * value;
       if (vShift) b += mass * (*vShift)[Eigen::Index(i)];
       w.rhs[Eigen::Index(i)] = pinned(Eigen::Index(i)) ? 0.0 : b;
@@ -234,6 +354,12 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
   for (int entry : pattern.pinnedColumnEntries) {
     const auto& e = entry < dCount ? jac.dfdv[size_t(entry)] : jac.dfdx[size_t(entry - dCount)];
     w.rhs[e.row()] -= entryValue(entry) * w.known[e.col()];
+  }
+  for (const auto& [ref, r, c] : pattern.pinnedPairEntries) {
+    const auto [rowPoint, colPoint] = blockPoints(ref / 4, ref % 4);
+    const double* m = &pairA[3 * size_t(ref / 4)];
+    const double entry = (ref % 4 < 2 ? 1.0 : -1.0) * m[r + c];  // xx, xy = yx, yy
+    w.rhs[2 * rowPoint + r] -= entry * w.known[2 * colPoint + c];
   }
 
   // Δv with J Δv = −J v₀, so that v₁ keeps every constraint's Ċ = 0 (J at x₀).

@@ -29,6 +29,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
 #include <vector>
 
 #include "core/constraint.hpp"
@@ -70,13 +71,26 @@ constexpr int kMaxReuseIterations = 20;
 // a serial scatter adds in).
 struct AssemblyPattern {
   bool valid = false;
-  std::vector<int> dfdvKeys, dfdxKeys;
+  std::vector<int> dfdvKeys, dfdxKeys, pairKeys;
   std::vector<char> pinned;
   // Per value slot, the entries that land there (k < |D|: D's k-th, else K's (k − |D|)-th) from
   // slotStart[slot], and the coordinate whose diagonal it is (−1: none); per row of K, its
   // entries' indices from kRowStart[row]. pinnedColumnEntries: the entries (same numbering) in a
   // free row and an eliminated column, whose A value times the known Δv leaves the right-hand side.
   std::vector<int> slotStart, slotEntries, slotDiagonal, kRowStart, kRowEntries, pinnedColumnEntries;
+  // The Jacobian pairs (ForceJacobians::pairs) by 2 × 2 blocks of A: pair q's block `role` (0: (a, a),
+  // 1: (b, b), 2: (a, b), 3: (b, a); the last two subtract) is reference 4q + role. Each block of
+  // A they reach has its four slots (xx, yx, xy, yy; −1: a pinned coordinate's) and its references
+  // pairBlockRefs[begin … end), in the pairs' order. Per point, its pairs' references 2q (as a) or
+  // 2q + 1 (as b) from pairPointStart[point], for K's products in b; pinnedPairEntries: (reference
+  // 4q + role, r, c) whose entry (r, c) of that block is in a free row and an eliminated column.
+  struct PairBlock {
+    int slot[4];
+    int begin, end;
+  };
+  std::vector<PairBlock> pairBlocks;
+  std::vector<int> pairBlockRefs, pairPointStart, pairPointRefs;
+  std::vector<std::array<int, 3>> pinnedPairEntries;
 };
 
 // What the last implicit step did, for benchmarks and tests.
@@ -98,6 +112,7 @@ struct ImplicitScratch {
   std::vector<int> allRows, generalRows, railRows;  // constraint rows by how the solve takes them
   Eigen::SparseMatrix<double> matrix;
   Eigen::VectorXd k1, rhs, dv, known;  // k1: dy/dt at the start; known: eliminated coordinates' Δv
+  std::vector<double> pairA, pairKu;  // per Jacobian pair: −η d − η² k (xx, xy, yy), k (x̄ − x_b + η (v_a − v_b))
   JacobiPreconditioner jacobi;
   LdltPreconditioner ldlt;
   bool ldltValid = false;  // factors (of an earlier or this step's A) of the current pattern

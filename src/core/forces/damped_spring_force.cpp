@@ -198,21 +198,18 @@ void DampedSpringForce::addJacobians(const Model& model, const StateView& s, dou
     return true;
   };
   if (allParticles_) {
-    // Every spring's entries at a fixed place (zeros for one of length ~0, so that the pattern
+    // Every spring's pair at a fixed place (zeros for one of length ~0, so that the pattern
     // stays), filled by chunks of springs on the threads.
     const size_t n = a_.size();
-    const size_t k0 = out.dfdx.size(), d0 = out.dfdv.size();
-    constexpr size_t kEntries = ForceJacobians::kPairEntries;
-    out.dfdx.resize(k0 + kEntries * n);
-    out.dfdv.resize(d0 + kEntries * n);
+    const size_t p0 = out.pairs.size();
+    out.pairs.resize(p0 + n);
     const double* y = s.vector().data();
     forChunks(out.pool, n, kSpringChunk, [&](size_t begin, size_t end) {
       Eigen::Matrix2d k, d;
       for (size_t i = begin; i < end; ++i) {
         const int ia = endA_[i], ib = endB_[i];
         blocksOf(i, Vec2(y[ia] - y[ib], y[ia + 1] - y[ib + 1]), k, d);
-        ForceJacobians::writePair(&out.dfdx[k0 + kEntries * i], ia / 2, ib / 2, k);
-        ForceJacobians::writePair(&out.dfdv[d0 + kEntries * i], ia / 2, ib / 2, d);
+        out.pairs[p0 + i] = JacobianPair(ia / 2, ib / 2, k, d);
       }
     });
     return;
@@ -220,9 +217,7 @@ void DampedSpringForce::addJacobians(const Model& model, const StateView& s, dou
   Eigen::Matrix2d k, d;
   for (size_t i = 0; i < a_.size(); ++i) {
     if (!blocksOf(i, endpointPosition(s, a_[i]) - endpointPosition(s, b_[i]), k, d)) continue;
-    const int pa = a_[i].point(layout), pb = b_[i].point(layout);
-    ForceJacobians::addPair(out.dfdx, pa, pb, k);
-    if (kd_[i] != 0.0) ForceJacobians::addPair(out.dfdv, pa, pb, d);
+    out.pairs.emplace_back(a_[i].point(layout), b_[i].point(layout), k, d);
   }
 }
 
