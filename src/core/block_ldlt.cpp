@@ -153,7 +153,13 @@ bool BlockLdlt::factorize(const Eigen::SparseMatrix<double>& a) {
   return true;
 }
 
+// Both triangular solves by 2-vectors (one SSE2 register): L's block columns are stored
+// column-major, so block · z is two columns times z's two numbers, and a row of Lᵀ · w is two
+// products of a column with w, summed across at the end of the block column.
 void BlockLdlt::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+  using Vector = Eigen::Vector2d;
+  using ConstVectorMap = Eigen::Map<const Vector>;
+  using VectorMap = Eigen::Map<Vector>;
   const int n = nodes_;
   double* w = work_.data();
   const double* l = value_.data();
@@ -163,22 +169,20 @@ void BlockLdlt::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
     const double z0 = w[2 * j], z1 = w[2 * j + 1];
     for (int p = columnStart_[size_t(j)]; p < columnStart_[size_t(j) + 1]; ++p) {
       const double* block = l + 4 * p;
-      double* target = w + 2 * row[p];
-      target[0] -= block[0] * z0 + block[2] * z1;
-      target[1] -= block[1] * z0 + block[3] * z1;
+      VectorMap(w + 2 * row[p]) -= ConstVectorMap(block) * z0 + ConstVectorMap(block + 2) * z1;
     }
   }
   for (int j = 0; j < n; ++j) work_.segment<2>(2 * j) = inverseD_[size_t(j)] * work_.segment<2>(2 * j).eval();
   for (int j = n - 1; j >= 0; --j) {  // Lᵀ w = D⁻¹ z: row j of Lᵀ is column j of L
-    double s0 = w[2 * j], s1 = w[2 * j + 1];
+    Vector first = Vector::Zero(), second = Vector::Zero();
     for (int p = columnStart_[size_t(j)]; p < columnStart_[size_t(j) + 1]; ++p) {
       const double* block = l + 4 * p;
-      const double* source = w + 2 * row[p];
-      s0 -= block[0] * source[0] + block[1] * source[1];
-      s1 -= block[2] * source[0] + block[3] * source[1];
+      const ConstVectorMap source(w + 2 * row[p]);
+      first += ConstVectorMap(block).cwiseProduct(source);
+      second += ConstVectorMap(block + 2).cwiseProduct(source);
     }
-    w[2 * j] = s0;
-    w[2 * j + 1] = s1;
+    w[2 * j] -= first.sum();
+    w[2 * j + 1] -= second.sum();
   }
   x.resize(2 * n);
   for (int k = 0; k < n; ++k) x.segment<2>(2 * perm_[size_t(k)]) = work_.segment<2>(2 * k);

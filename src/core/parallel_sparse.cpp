@@ -10,9 +10,14 @@ void multiplySymmetric(WorkerPool* pool, const Eigen::SparseMatrix<double>& a, c
   const double* values = a.valuePtr();
   forChunks(pool, size_t(a.cols()), kRowChunk, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      double sum = 0.0;
-      for (int k = outer[i]; k < outer[i + 1]; ++k) sum += values[k] * x[inner[k]];
-      out[Eigen::Index(i)] = sum;
+      double even = 0.0, odd = 0.0;
+      int k = outer[i];
+      for (; k + 1 < outer[i + 1]; k += 2) {
+        even += values[k] * x[inner[k]];
+        odd += values[k + 1] * x[inner[k + 1]];
+      }
+      if (k < outer[i + 1]) even += values[k] * x[inner[k]];
+      out[Eigen::Index(i)] = even + odd;
     }
   });
 }

@@ -15,7 +15,9 @@ namespace particles {
 constexpr size_t kRowChunk = 8192;
 
 // out = A x for a symmetric A stored whole (compressed, column-major): out_i = Σ_k A(k, i) x_k,
-// column i's entries summed in their stored order, so that threads take whole columns.
+// column i's entries summed in their stored order, alternately into two sums that are added at
+// the end (each addition then waits on half as many: a column of the 25² cloth's A holds about
+// ten), so that threads take whole columns.
 void multiplySymmetric(WorkerPool* pool, const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& x,
                        Eigen::VectorXd& out);
 
