@@ -20,13 +20,13 @@
 //   cg_iterations   the implicit integrators' PCG iterations per step (mean; 0 on a step the direct
 //                   solve answered from fresh factors)
 //   factorizations  the direct solve's numeric factorisations per step (mean)
-// BM_SceneRun: a whole scene at dt per iteration (see there).
+// BM_SceneRun: a whole scene at dt per iteration (see there); BM_ImplicitCrossover: auto's rule.
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "core/solver.hpp"
 #include "core/system.hpp"
@@ -168,6 +168,33 @@ void BM_SceneRun(benchmark::State& state, const Case& c) {
   if (state.iterations() > 0) state.counters["steps"] = double(steps) / double(state.iterations());
 }
 
+// auto's crossover (core/implicit_step.hpp, autoDirectIterations): backward Euler over the first 3 s
+// at one step per frame, CG against direct, on the demo cloth scaled to n² particles over the same
+// square. Counters: per_step (CPU time a step), cg_iterations (PCG iterations a step, mean) and
+// factorizations (in the 180 steps); the break-even CG iterations at a size are direct's time a
+// step over CG's time per iteration.
+void BM_ImplicitCrossover(benchmark::State& state, const char* scene, int n, ImplicitSolver solve) {
+  long steps = 0, iterations = 0, factorizations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    scenario::Scenario s = loadCloth(scene, n);
+    s.system.setImplicitSolver(solve);
+    Solver solver(Integrator::BackwardEuler);
+    state.ResumeTiming();
+    for (int step = 0; step < 180; ++step) {
+      solver.doStep(s.system, kFrame);
+      iterations += solver.lastImplicitStep().iterations;
+    }
+    steps += 180;
+    factorizations += solver.factorizations();
+  }
+  state.counters["per_step"] =
+      benchmark::Counter(double(steps), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["cg_iterations"] = double(iterations) / double(std::max(steps, 1L));
+  state.counters["factorizations"] =
+      double(factorizations) / double(std::max(state.iterations(), benchmark::IterationCount(1)));
+}
+
 // Side by side per cloth: symplectic Euler at its limit (the cheapest explicit integrator per
 // simulated second on all three), RK4 at its limit, and the implicit ones at one step per frame.
 const Case kRuns[] = {
@@ -199,6 +226,19 @@ const bool kRegistered = [] {
     benchmark::RegisterBenchmark(caseName("BM_SceneRun", c).c_str(), [c](benchmark::State& state) {
       BM_SceneRun(state, c);
     })->Unit(benchmark::kMillisecond);
+  }
+  for (const char* scene : {"cloth.yaml", "cloth_stiff.yaml"}) {
+    for (int n : {25, 50, 100, 141}) {
+      if (std::string(scene) != "cloth.yaml" && n > 50) continue;
+      for (ImplicitSolver solve : {ImplicitSolver::cg, ImplicitSolver::direct}) {
+        const std::string name =
+            fmt::format("BM_ImplicitCrossover/{}/{}/{}", std::string(scene).substr(0, std::string(scene).find('.')), n,
+                        implicitSolverName(solve));
+        benchmark::RegisterBenchmark(name.c_str(), [scene, n, solve](benchmark::State& state) {
+          BM_ImplicitCrossover(state, scene, n, solve);
+        })->Unit(benchmark::kMillisecond);
+      }
+    }
   }
   // Issue 28's step targets: the 316² cloth on 1 and 2 threads (System::setThreads), wall time.
   for (Integrator integrator : {Integrator::Rk4, Integrator::SymplecticEuler, Integrator::BackwardEuler}) {

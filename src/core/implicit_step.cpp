@@ -56,7 +56,7 @@ void gatherRows(const std::vector<ConstraintRow>& from, const std::vector<int>& 
 }  // namespace
 
 double autoDirectIterations(long freeCoordinates) {
-  return 25.0 * std::pow(double(std::max(freeCoordinates, 1L)) / 1250.0, 0.25);
+  return 14.0 * std::pow(double(std::max(freeCoordinates, 1L)) / 1250.0, 0.3);
 }
 
 void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const ImplicitTarget& target,

@@ -46,12 +46,13 @@ class System;
 // auto's rule. CG's cost grows with the stiffness (its iterations, like h √(k/m)), the direct
 // solve's with the size (its factor's fill), so auto starts with CG and moves to the direct solve,
 // for the rest of the run, once CG's last kAutoWindow steps needed more iterations on average than
-// the direct solve costs in CG iterations at that size: 25 · (free coordinates / 1250)^¼. Measured over the first
-// 3 s of backward Euler at 1/60 s on the demo cloth (bench/README.md, "Implicit integration"):
-// CG and direct break even at 25 iterations on the 25² cloth (1,250 coordinates), 50 on the 100²
-// (20,000), 63 on the 141² (40,000); the demo cloth needs 18–21 (CG wins at every size), the
-// 100× stiff one 165 and the 10⁴× stiff one 400 (direct wins). Only when the other constraint
-// rows are few enough for the Schur complement (kMaxSchurRows).
+// the direct solve costs in CG iterations at that size: 14 · (free coordinates / 1250)^0.3.
+// Measured over the first 3 s of backward Euler at 1/60 s on the demo cloth scaled to n²
+// (bench/README.md, "Implicit integration"; BM_ImplicitCrossover): CG and direct break even at 14
+// iterations on the 25² cloth (1,250 coordinates), 20 on the 50², 30 on the 100², 39 on the 141²;
+// the demo cloth needs 18–20 at every size (direct wins at 25², they tie at 50², CG wins above),
+// the 100× stiff one 107–165 and the 10⁴× stiff one about 400 (direct wins). Only when the other
+// constraint rows are few enough for the Schur complement (kMaxSchurRows).
 double autoDirectIterations(long freeCoordinates);
 constexpr int kAutoWindow = 10;
 // The direct path's iterations on an earlier step's factors stop at this relative error in the
