@@ -57,9 +57,9 @@ double autoDirectIterations(long freeCoordinates);
 constexpr int kAutoWindow = 10;
 // The direct path's iterations on an earlier step's factors stop at this relative error in the
 // energy norm (core/projected_pcg.hpp), two digits below CG's; A's own factors answer exactly, in
-// one solve. Measured over the 10⁴× stiff cloth's 10 s at one backward Euler step per frame (one
-// core busy beside it): 1e-6 cost 588 µs a step, 1e-8 676 µs, 1e-10 720 µs (more iterations on
-// stale factors, more refactorisations).
+// one solve. Measured over the 10⁴× stiff cloth's 10 s at one backward Euler step per frame
+// (BM_SceneRun, nothing else running): 1e-6 cost 272 µs a step, 1e-8 309 µs, 1e-10 336 µs (more
+// iterations on stale factors, more refactorisations).
 constexpr double kDirectTolerance = 1e-8;
 // CG's relative residual (each step starts from the last one's Δv).
 constexpr double kCgTolerance = 1e-6;
