@@ -20,14 +20,17 @@
 //   cg_iterations   the implicit integrators' PCG iterations per step (mean; 0 on a step the direct
 //                   solve answered from fresh factors)
 //   factorizations  the direct solve's numeric factorisations per step (mean)
-// BM_SceneRun: a whole scene at dt per iteration (see there); BM_ImplicitCrossover: auto's rule.
+// BM_SceneRun: a whole scene at dt per iteration (see there); BM_ImplicitCrossover: auto's rule;
+// BM_CgPreconditioner: Jacobi against incomplete Cholesky on one step's A.
 #include <benchmark/benchmark.h>
 #include <fmt/format.h>
 
+#include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
 #include <string>
 #include <vector>
 
+#include "core/integrators/backward_euler.hpp"
 #include "core/solver.hpp"
 #include "core/system.hpp"
 #include "scenario/scenario.hpp"
@@ -195,6 +198,44 @@ void BM_ImplicitCrossover(benchmark::State& state, const char* scene, int n, Imp
       double(factorizations) / double(std::max(state.iterations(), benchmark::IterationCount(1)));
 }
 
+// The CG path's preconditioner (issue 29: block-Jacobi or incomplete Cholesky for the large case).
+// A and b of one backward Euler step of the n² demo cloth at t = 1 s (its rail's and fixed points'
+// rows the identity, no constraint rows: the preconditioners alone), solved to 1e-6 by Eigen's CG
+// with Jacobi or with Eigen's IncompleteCholesky (AMD ordering; its factorisation inside the
+// clock, as each step's new A would need). Counters: iterations.
+enum class CgPreconditioner { jacobi, incompleteCholesky };
+void BM_CgPreconditioner(benchmark::State& state, const char* scene, int n, CgPreconditioner which) {
+  scenario::Scenario s = loadCloth(scene, n);
+  const bool stiff = std::string(scene) != "cloth.yaml";
+  Stepper(s.system, stiff ? Integrator::BackwardEuler : Integrator::Rk4, stiff ? kFrame : 0.01).advanceTo(1.0);
+  s.system.setImplicitSolver(ImplicitSolver::cg);
+  IntegratorScratch w;
+  Eigen::VectorXd y = s.system.state();
+  integrateBackwardEuler(s.system, y, s.system.time(), kFrame, w);
+  const Eigen::SparseMatrix<double>& a = w.implicit.matrix;
+  const Eigen::VectorXd& b = w.implicit.rhs;
+  long iterations = 0;
+  for (auto _ : state) {
+    if (which == CgPreconditioner::jacobi) {
+      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
+      cg.setTolerance(1e-6);
+      cg.compute(a);
+      benchmark::DoNotOptimize(cg.solve(b).eval());
+      iterations += cg.iterations();
+    } else {
+      Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
+                               Eigen::IncompleteCholesky<double>>
+          cg;
+      cg.setTolerance(1e-6);
+      cg.compute(a);
+      benchmark::DoNotOptimize(cg.solve(b).eval());
+      iterations += cg.iterations();
+    }
+  }
+  state.counters["iterations"] =
+      double(iterations) / double(std::max(state.iterations(), benchmark::IterationCount(1)));
+}
+
 // Side by side per cloth: symplectic Euler at its limit (the cheapest explicit integrator per
 // simulated second on all three), RK4 at its limit, and the implicit ones at one step per frame.
 const Case kRuns[] = {
@@ -236,6 +277,19 @@ const bool kRegistered = [] {
                         implicitSolverName(solve));
         benchmark::RegisterBenchmark(name.c_str(), [scene, n, solve](benchmark::State& state) {
           BM_ImplicitCrossover(state, scene, n, solve);
+        })->Unit(benchmark::kMillisecond);
+      }
+    }
+  }
+  for (const char* scene : {"cloth.yaml", "cloth_stiff.yaml"}) {
+    for (int n : {100, 316}) {
+      if (std::string(scene) != "cloth.yaml" && n > 100) continue;
+      for (CgPreconditioner which : {CgPreconditioner::jacobi, CgPreconditioner::incompleteCholesky}) {
+        const std::string name =
+            fmt::format("BM_CgPreconditioner/{}/{}/{}", std::string(scene).substr(0, std::string(scene).find('.')), n,
+                        which == CgPreconditioner::jacobi ? "jacobi" : "incomplete_cholesky");
+        benchmark::RegisterBenchmark(name.c_str(), [scene, n, which](benchmark::State& state) {
+          BM_CgPreconditioner(state, scene, n, which);
         })->Unit(benchmark::kMillisecond);
       }
     }
