@@ -4,27 +4,23 @@
 
 #include <stdexcept>
 
+#include "core/name_table.hpp"
+
 namespace particles::render {
 
 namespace {
 
-constexpr std::pair<GlBackend, std::string_view> kNames[] = {
+constexpr NameTableRow<GlBackend> kNames[] = {
     {GlBackend::automatic, "auto"}, {GlBackend::egl, "egl"}, {GlBackend::osmesa, "osmesa"}};
 
 }  // namespace
 
 std::string_view glBackendName(GlBackend backend) {
-  for (const auto& [b, name] : kNames) {
-    if (b == backend) return name;
-  }
-  return "?";
+  return nameOf(kNames, backend, "?");
 }
 
 std::optional<GlBackend> glBackendFromName(std::string_view name) {
-  for (const auto& [b, n] : kNames) {
-    if (n == name) return b;
-  }
-  return std::nullopt;
+  return valueNamed(kNames, name);
 }
 
 std::vector<std::string> glBackendNames() {

@@ -1,29 +1,23 @@
 // What a golden run found: see results.hpp.
 #include "golden/results.hpp"
 
-#include <array>
+#include "core/name_table.hpp"
 
 namespace particles::golden {
 
 namespace {
 
-constexpr std::array<std::pair<Outcome, std::string_view>, 4> kOutcomeNames = {
-    {{Outcome::passed, "passed"}, {Outcome::failed, "failed"}, {Outcome::missing, "missing"}, {Outcome::error, "error"}}};
+constexpr NameTableRow<Outcome> kOutcomeNames[] = {
+    {Outcome::passed, "passed"}, {Outcome::failed, "failed"}, {Outcome::missing, "missing"}, {Outcome::error, "error"}};
 
 }  // namespace
 
 std::string_view outcomeName(Outcome outcome) {
-  for (const auto& [o, name] : kOutcomeNames) {
-    if (o == outcome) return name;
-  }
-  return "error";
+  return nameOf(kOutcomeNames, outcome, "error");
 }
 
 std::optional<Outcome> outcomeFromName(std::string_view name) {
-  for (const auto& [o, n] : kOutcomeNames) {
-    if (n == name) return o;
-  }
-  return std::nullopt;
+  return valueNamed(kOutcomeNames, name);
 }
 
 GoldenResults::Counts GoldenResults::counts() const {
