@@ -85,6 +85,26 @@ void BlockLdlt::analyze(const Eigen::SparseMatrix<double>& a) {
       }
     }
   }
+  // Row k's pattern in topological order (children before parents along the tree), what the
+  // numeric factorisation walks: the same for every factorisation of the pattern, so found once.
+  std::fill(mark_.begin(), mark_.end(), -1);
+  pattern_.assign(size_t(nodes_), 0);
+  rowPatternStart_.assign(size_t(nodes_) + 1, 0);
+  rowPattern_.clear();
+  for (int k = 0; k < nodes_; ++k) {
+    mark_[size_t(k)] = k;
+    int top = nodes_;
+    for (int p = upperStart_[size_t(k)]; p < upperStart_[size_t(k) + 1]; ++p) {
+      int length = 0;
+      for (int i = upperRow_[size_t(p)]; mark_[size_t(i)] != k; i = parent_[size_t(i)]) {
+        pattern_[size_t(length++)] = i;
+        mark_[size_t(i)] = k;
+      }
+      while (length > 0) pattern_[size_t(--top)] = pattern_[size_t(--length)];
+    }
+    rowPattern_.insert(rowPattern_.end(), pattern_.begin() + top, pattern_.end());
+    rowPatternStart_[size_t(k) + 1] = int(rowPattern_.size());
+  }
   columnStart_.assign(size_t(nodes_) + 1, 0);
   factorMultiplyAdds_ = 10.0 * double(nodes_);  // the pivots' inverses
   for (int j = 0; j < nodes_; ++j) {
@@ -98,7 +118,6 @@ void BlockLdlt::analyze(const Eigen::SparseMatrix<double>& a) {
   value_.assign(4 * rowIndex_.size(), 0.0);
   inverseD_.assign(size_t(nodes_), Eigen::Matrix2d::Zero());
   y_.assign(size_t(nodes_), Eigen::Matrix2d::Zero());
-  pattern_.assign(size_t(nodes_), 0);
   filled_.assign(size_t(nodes_), 0);
   work_.resize(2 * nodes_);
 }
@@ -112,26 +131,16 @@ bool BlockLdlt::factorize(const Eigen::SparseMatrix<double>& a) {
   for (size_t p = 0; p < slotTarget_.size(); ++p) {
     if (slotTarget_[p] >= 0) upperValue_[size_t(slotTarget_[p])] = aValue[p];
   }
-  std::fill(mark_.begin(), mark_.end(), -1);
   std::fill(filled_.begin(), filled_.end(), 0);
   for (int k = 0; k < nodes_; ++k) {
-    // Y = A's upper block column k, and row k's pattern in topological order (pattern_[top..]).
-    mark_[size_t(k)] = k;
-    int top = nodes_;
+    // Y = A's upper block column k; then along row k's pattern (analyze).
     for (int p = upperStart_[size_t(k)]; p < upperStart_[size_t(k) + 1]; ++p) {
-      int i = upperRow_[size_t(p)];
-      y_[size_t(i)] += ConstBlock(upperValue_.data() + 4 * p);
-      int length = 0;
-      for (; mark_[size_t(i)] != k; i = parent_[size_t(i)]) {
-        pattern_[size_t(length++)] = i;
-        mark_[size_t(i)] = k;
-      }
-      while (length > 0) pattern_[size_t(--top)] = pattern_[size_t(--length)];
+      y_[size_t(upperRow_[size_t(p)])] += ConstBlock(upperValue_.data() + 4 * p);
     }
     Eigen::Matrix2d d = y_[size_t(k)];
     y_[size_t(k)].setZero();
-    for (; top < nodes_; ++top) {
-      const int i = pattern_[size_t(top)];
+    for (int at = rowPatternStart_[size_t(k)]; at < rowPatternStart_[size_t(k) + 1]; ++at) {
+      const int i = rowPattern_[size_t(at)];
       const Eigen::Matrix2d yi = y_[size_t(i)];
       y_[size_t(i)].setZero();
       const int end = columnStart_[size_t(i)] + filled_[size_t(i)];

@@ -17,7 +17,7 @@
 //
 // Measured on the 25² cloth's A (1,250 coordinates): Eigen's SimplicialLDLT factors in 0.50 ms,
 // CHOLMOD's simplicial LDLᵀ (SuiteSparse 5.12, Debian's, through Eigen's CholmodSupport, with
-// OpenBLAS) in 0.55 ms and its supernodal LLᵀ in 1.1 ms, the 2 × 2 blocks in 0.15 ms; on the 100²
+// OpenBLAS) in 0.55 ms and its supernodal LLᵀ in 1.1 ms, the 2 × 2 blocks in 0.14 ms; on the 100²
 // cloth's (20,000) 42, 45, 53 and 13 ms. Supernodes are small on a cloth's grid, so CHOLMOD does
 // not pay; the blocks do (core/block_ldlt.hpp says why).
 
