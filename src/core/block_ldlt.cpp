@@ -70,39 +70,28 @@ void BlockLdlt::analyze(const Eigen::SparseMatrix<double>& a) {
     }
   }
 
-  // The elimination tree and L's block counts per column (Davis's ldl_symbolic): row k's pattern
-  // is every node on the tree paths from A's upper entries in column k up to k.
+  // The elimination tree, L's block counts per column and each block row's pattern (Davis's
+  // ldl_symbolic): row k's pattern is every node on the tree paths from A's upper entries in
+  // column k up to k, kept in topological order (children before parents), the order the numeric
+  // factorisation takes it in; the same for every factorisation of the pattern, so found once.
   parent_.assign(size_t(nodes_), -1);
-  mark_.assign(size_t(nodes_), -1);
-  std::vector<int> count(size_t(nodes_), 0);
-  for (int k = 0; k < nodes_; ++k) {
-    mark_[size_t(k)] = k;
-    for (int p = upperStart_[size_t(k)]; p < upperStart_[size_t(k) + 1]; ++p) {
-      for (int i = upperRow_[size_t(p)]; mark_[size_t(i)] != k; i = parent_[size_t(i)]) {
-        if (parent_[size_t(i)] == -1) parent_[size_t(i)] = k;
-        ++count[size_t(i)];
-        mark_[size_t(i)] = k;
-      }
-    }
-  }
-  // Row k's pattern in topological order (children before parents along the tree), what the
-  // numeric factorisation walks: the same for every factorisation of the pattern, so found once.
-  std::fill(mark_.begin(), mark_.end(), -1);
-  pattern_.assign(size_t(nodes_), 0);
+  std::vector<int> mark(size_t(nodes_), -1), path(size_t(nodes_), 0), count(size_t(nodes_), 0);
   rowPatternStart_.assign(size_t(nodes_) + 1, 0);
   rowPattern_.clear();
   for (int k = 0; k < nodes_; ++k) {
-    mark_[size_t(k)] = k;
+    mark[size_t(k)] = k;
     int top = nodes_;
     for (int p = upperStart_[size_t(k)]; p < upperStart_[size_t(k) + 1]; ++p) {
       int length = 0;
-      for (int i = upperRow_[size_t(p)]; mark_[size_t(i)] != k; i = parent_[size_t(i)]) {
-        pattern_[size_t(length++)] = i;
-        mark_[size_t(i)] = k;
+      for (int i = upperRow_[size_t(p)]; mark[size_t(i)] != k; i = parent_[size_t(i)]) {
+        if (parent_[size_t(i)] == -1) parent_[size_t(i)] = k;
+        ++count[size_t(i)];
+        path[size_t(length++)] = i;
+        mark[size_t(i)] = k;
       }
-      while (length > 0) pattern_[size_t(--top)] = pattern_[size_t(--length)];
+      while (length > 0) path[size_t(--top)] = path[size_t(--length)];
     }
-    rowPattern_.insert(rowPattern_.end(), pattern_.begin() + top, pattern_.end());
+    rowPattern_.insert(rowPattern_.end(), path.begin() + top, path.end());
     rowPatternStart_[size_t(k) + 1] = int(rowPattern_.size());
   }
   columnStart_.assign(size_t(nodes_) + 1, 0);

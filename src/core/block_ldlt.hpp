@@ -59,10 +59,9 @@ class BlockLdlt {
   double factorMultiplyAdds_ = 0.0;
   // Each block row's pattern in the order the factorisation takes it, from rowPatternStart_[k].
   std::vector<int> rowPatternStart_, rowPattern_;
-  // The factorisation's work arrays: Y's blocks, how many blocks each column holds so far; the
-  // analysis's tree walk (marks, a row's pattern).
+  // The factorisation's work arrays: Y's blocks, how many blocks each column holds so far.
   std::vector<Eigen::Matrix2d> y_;
-  std::vector<int> mark_, pattern_, filled_;
+  std::vector<int> filled_;
   mutable Eigen::VectorXd work_;
 };
 
