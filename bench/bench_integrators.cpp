@@ -137,8 +137,13 @@ const Case kCases[] = {
     {"cloth_very_stiff.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
 };
 
+// A scenario file's name without its extension: cloth_stiff for cloth_stiff.yaml.
+std::string sceneStem(const std::string& file) {
+  return file.substr(0, file.find('.'));
+}
+
 std::string caseName(const char* prefix, const Case& c) {
-  const std::string scene = std::string(c.scene).substr(0, std::string(c.scene).find('.'));
+  const std::string scene = sceneStem(c.scene);
   std::string name = fmt::format("{}/{}/{}/{}", prefix, scene, c.n, integratorName(c.integrator));
   if (c.solve != ImplicitSolver::automatic) name += fmt::format("/{}", implicitSolverName(c.solve));
   return name;
@@ -273,8 +278,7 @@ const bool kRegistered = [] {
       if (std::string(scene) != "cloth.yaml" && n > 50) continue;
       for (ImplicitSolver solve : {ImplicitSolver::cg, ImplicitSolver::direct}) {
         const std::string name =
-            fmt::format("BM_ImplicitCrossover/{}/{}/{}", std::string(scene).substr(0, std::string(scene).find('.')), n,
-                        implicitSolverName(solve));
+            fmt::format("BM_ImplicitCrossover/{}/{}/{}", sceneStem(scene), n, implicitSolverName(solve));
         benchmark::RegisterBenchmark(name.c_str(), [scene, n, solve](benchmark::State& state) {
           BM_ImplicitCrossover(state, scene, n, solve);
         })->Unit(benchmark::kMillisecond);
@@ -285,9 +289,8 @@ const bool kRegistered = [] {
     for (int n : {100, 316}) {
       if (std::string(scene) != "cloth.yaml" && n > 100) continue;
       for (CgPreconditioner which : {CgPreconditioner::jacobi, CgPreconditioner::incompleteCholesky}) {
-        const std::string name =
-            fmt::format("BM_CgPreconditioner/{}/{}/{}", std::string(scene).substr(0, std::string(scene).find('.')), n,
-                        which == CgPreconditioner::jacobi ? "jacobi" : "incomplete_cholesky");
+        const std::string name = fmt::format("BM_CgPreconditioner/{}/{}/{}", sceneStem(scene), n,
+                                             which == CgPreconditioner::jacobi ? "jacobi" : "incomplete_cholesky");
         benchmark::RegisterBenchmark(name.c_str(), [scene, n, which](benchmark::State& state) {
           BM_CgPreconditioner(state, scene, n, which);
         })->Unit(benchmark::kMillisecond);
