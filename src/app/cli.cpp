@@ -59,6 +59,11 @@ CommandFiles Cli::commandFiles() const {
   return command ? command->files() : CommandFiles{};
 }
 
+std::string Cli::recordFile() const {
+  const BoundCommand* command = parsedCommand();
+  return command ? command->job().record : std::string();
+}
+
 int Cli::dispatch(const std::vector<std::string>& args) {
   const BoundCommand* command = parsedCommand();
   if (!command) throw std::logic_error("Cli::dispatch: no command was parsed");

@@ -31,6 +31,8 @@ class Cli {
   // The parsed command's files, --record aside. gather has none here: its inputs are the records
   // its job table lists, which it checks once it has read the table.
   CommandFiles commandFiles() const;
+  // The parsed command's --record, or empty.
+  std::string recordFile() const;
 
   CLI::App app{"particles: 2D particle systems and rigid bodies after Witkin & Baraff", "particles"};
 

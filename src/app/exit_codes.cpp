@@ -8,8 +8,10 @@
 #include <typeinfo>
 
 #include "core/solver.hpp"
+#include "output/confined_folder.hpp"
 #include "output/distinct_files.hpp"
 #include "output/output_error.hpp"
+#include "output/printable_text.hpp"
 #include "plot/errors.hpp"
 #include "render/errors.hpp"
 #include "scenario/scenario.hpp"
@@ -18,7 +20,7 @@ namespace particles::app {
 
 int runReportingErrors(const ErrorContext& context, const std::function<int()>& command) {
   auto report = [&](ExitCode code, const std::string& message) {
-    fmt::print(stderr, "{}\n", message);
+    fmt::print(stderr, "{}\n", output::printableText(message));
     if (context.printed) *context.printed = message;
     return code;
   };
@@ -39,6 +41,8 @@ int runReportingErrors(const ErrorContext& context, const std::function<int()>& 
   } catch (const plot::CsvError& e) {
     return report(kBadInput, error(e));
   } catch (const output::SameFileError& e) {  // an output that is an input or another output
+    return report(kBadInput, error(e));
+  } catch (const output::OutsideFolderError& e) {  // a file of a command's folder that leads out of it
     return report(kBadInput, error(e));
   } catch (const output::OutputError& e) {
     return report(kOutputFailed, error(e));

@@ -4,14 +4,16 @@
 //   1  the simulation failed    SimulationError, SimulationFailure   "SCENARIO: error: …"
 //   2  bad input or usage       scenario::ScenarioError              its own "FILE:LINE:COL: error: …"
 //                               InputError, plot::CsvError,
-//                               output::SameFileError                "error: …"
+//                               output::SameFileError,
+//                               output::OutsideFolderError           "error: …"
 //   3  an output failed         output::OutputError, render::RenderError,
 //                               plot::FigureError                    "error: …"
 //      memory ran out           std::bad_alloc (render::OutOfMemory says for what)
 //                                                                    "error: out of memory: …"
 //   1  anything else: a bug     "particles: internal error: …"
 // A command returns the code of an outcome that is not an error: kOk, compare's differing frames
-// (1), an interrupted render (128 + signal).
+// (1), an interrupted render (128 + signal). What is printed has its control characters escaped
+// (output/printable_text.hpp): a message may quote a name from a file.
 
 #include <functional>
 #include <stdexcept>
@@ -38,7 +40,7 @@ class SimulationFailure : public std::runtime_error {
 
 // What the messages name.
 struct ErrorContext {
-  std::string scenario;  // the scenario file as given; empty for commands without one
+  std::string scenario;            // the scenario file as given; empty for commands without one
   std::string* printed = nullptr;  // when set, receives the error message printed (a job record keeps it)
 };
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "app/cli_support.hpp"
@@ -16,6 +17,7 @@
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
 #include "input/text_file.hpp"
+#include "output/confined_folder.hpp"
 #include "output/distinct_files.hpp"
 #include "output/output_file.hpp"
 #include "plot/figure.hpp"
@@ -130,7 +132,12 @@ int gatherCommand(const GatherOptions& o) {
   // results.csv
   size_t ok = 0, failed = 0, notRun = 0;
   {
-    output::OutputFile csv(csvPath);
+    // The default results.csv is the sweep folder's own file, written beneath it (issue 39); a
+    // file that -o names is the user's choice.
+    std::optional<output::ConfinedFolder> sweepFolder;
+    if (o.output.empty()) sweepFolder.emplace(dir);
+    output::OutputFile csv =
+        sweepFolder ? output::OutputFile(*sweepFolder, "results.csv") : output::OutputFile(csvPath);
     std::vector<std::string> head = {"index", "stage", "scenario"};
     head.insert(head.end(), parameters.begin(), parameters.end());
     head.insert(head.end(), {"segment", "status", "exit", "seconds"});

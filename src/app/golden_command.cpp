@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <charconv>
 #include <filesystem>
+#include <set>
 #include <stdexcept>
 
 #include "app/available_cores.hpp"
@@ -15,7 +16,9 @@
 #include "golden/check.hpp"
 #include "golden/references.hpp"
 #include "golden/results.hpp"
+#include "output/confined_folder.hpp"
 #include "output/output_error.hpp"
+#include "output/printable_text.hpp"
 #include "output/staging_directory.hpp"
 #include "render/image_compare.hpp"
 #include "scenario/golden_manifest.hpp"
@@ -140,26 +143,64 @@ std::optional<std::pair<int, int>> shardOf(const std::string& text) {
   throw InputError(fmt::format("--shard {}: expected K/N with 1 ≤ K ≤ N, e.g. 1/2", text));
 }
 
-// The report folder: replaced whole when it holds an earlier report (or nothing); anything else
-// there is refused, not overwritten. It may not hold what the command reads.
-void checkReportFolder(const fs::path& folder, const std::vector<fs::path>& inputs) {
+// The files an earlier report in `folder` consists of: its three pages, the files its results.json
+// lists, and the folders they are in. Everything in the folder must be one of those, or the
+// folder is no report of ours and is refused (InputError, exit 2), left as it is.
+std::vector<std::string> earlierReport(const fs::path& folder, std::uintmax_t maxInputMiB) {
+  const std::string shown = output::printableText(folder.string());
+  golden::GoldenResults earlier;
+  try {
+    earlier = golden::readResults(folder, maxInputMiB);
+  } catch (const std::exception& e) {
+    throw InputError(
+        fmt::format("-o {}: a folder that holds something other than a golden report ({}); choose "
+                    "another or empty it (it is replaced whole)",
+                    shown, e.what()));
+  }
+  // frames/ and states/ are made by every check, kept files or none.
+  std::set<std::string> files = golden::reportFiles(earlier), folders = {"frames", "states"};
+  for (const std::string& file : files) {
+    for (fs::path up = fs::path(file).parent_path(); !up.empty(); up = up.parent_path()) folders.insert(up.string());
+  }
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(folder, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    const std::string relative = it->path().lexically_relative(folder).generic_string();
+    const fs::file_type type = it->symlink_status(ec).type();
+    const bool listed = type == fs::file_type::regular     ? files.count(relative) > 0
+                        : type == fs::file_type::directory ? folders.count(relative) > 0
+                                                           : false;
+    if (!listed) {
+      throw InputError(
+          fmt::format("-o {}: it holds {}, which is not part of the golden report there; choose another "
+                      "folder or remove it (only a folder that is entirely an earlier report is replaced)",
+                      shown, output::printableText(relative)));
+    }
+  }
+  if (ec) throw InputError(fmt::format("-o {}: cannot list it: {}", shown, ec.message()));
+  std::vector<std::string> all(files.begin(), files.end());
+  all.insert(all.end(), folders.begin(), folders.end());
+  return all;
+}
+
+// The report folder: made new, or replacing a folder that is entirely an earlier report (its
+// results.json reads back as one, and it holds only what that report lists); anything else is
+// refused, not overwritten. It may not hold what the command reads. Returns the earlier report's
+// files and folders, the only things `publish` removes.
+std::vector<std::string> checkReportFolder(const fs::path& folder, const std::vector<fs::path>& inputs,
+                                           std::uintmax_t maxInputMiB) {
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(folder, ec);
+  std::vector<std::string> earlier;
+  const std::string shown = output::printableText(folder.string());
   if (st.type() != fs::file_type::not_found) {
     if (st.type() == fs::file_type::symlink) {
-      throw InputError(
-          fmt::format("-o {}: a symbolic link; give the folder itself (it is replaced whole)", folder.string()));
+      throw InputError(fmt::format("-o {}: a symbolic link; give the folder itself (it is replaced whole)", shown));
     }
     if (st.type() != fs::file_type::directory) {
-      throw InputError(fmt::format("-o {}: not a folder; the report is a folder", folder.string()));
+      throw InputError(fmt::format("-o {}: not a folder; the report is a folder", shown));
     }
-    const bool empty = fs::is_empty(folder, ec);
-    if (!empty && fs::symlink_status(folder / golden::kResultsJson, ec).type() != fs::file_type::regular) {
-      throw InputError(
-          fmt::format("-o {}: a folder that holds something other than a golden report; choose another "
-                      "or empty it (it is replaced whole)",
-                      folder.string()));
-    }
+    if (!fs::is_empty(folder, ec)) earlier = earlierReport(folder, maxInputMiB);
   }
   const fs::path out = fs::weakly_canonical(fs::absolute(folder), ec);
   for (const fs::path& input : inputs) {
@@ -167,9 +208,10 @@ void checkReportFolder(const fs::path& folder, const std::vector<fs::path>& inpu
     const fs::path rel = in.lexically_relative(out);
     if (in == out || (!rel.empty() && *rel.begin() != "..")) {
       throw InputError(fmt::format("-o {}: it holds {}, which the check reads; the report folder is replaced whole",
-                                   folder.string(), input.string()));
+                                   shown, output::printableText(input.string())));
     }
   }
+  return earlier;
 }
 
 // The folder the report folder goes in, made when it is not there (a build tree's golden/).
@@ -180,8 +222,10 @@ void makeParent(const fs::path& folder) {
   if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", parent.string(), ec.message()));
 }
 
-// Moves the staged report into place: the earlier one out of the way first, removed last.
-void publish(output::StagingDirectory& staged, const fs::path& folder) {
+// Moves the staged report into place: the earlier one out of the way first, then its files removed
+// (`earlier`, from checkReportFolder), one by one through its folder's descriptor. Whatever else
+// appeared there meanwhile is left, in FOLDER.previous-PID, and said so.
+void publish(output::StagingDirectory& staged, const fs::path& folder, std::vector<std::string> earlier) {
   std::error_code ec;
   fs::path previous;
   if (fs::exists(fs::symlink_status(folder, ec))) {
@@ -195,17 +239,35 @@ void publish(output::StagingDirectory& staged, const fs::path& folder) {
     if (!previous.empty()) fs::rename(previous, folder);
     throw output::OutputError(fmt::format("cannot write {}: {}", folder.string(), ec.message()));
   }
-  if (!previous.empty()) fs::remove_all(previous, ec);
+  if (previous.empty()) return;
+  // Deepest first: a folder's files before the folder.
+  std::sort(earlier.begin(), earlier.end(), [](const std::string& a, const std::string& b) { return a > b; });
+  try {
+    const output::ConfinedFolder old(previous);
+    for (const std::string& entry : earlier) old.remove(entry);
+  } catch (const std::exception&) {
+    // Left below, said so.
+  }
+  if (!fs::remove(previous, ec)) {
+    fmt::print(stderr, "note: left {}: it holds files that were not part of the earlier report\n",
+               output::printableText(previous.string()));
+  }
+}
+
+// One line of what a command prints, with the control characters of names and messages from files
+// escaped (output/printable_text.hpp).
+void printLine(const std::string& line) {
+  fmt::print("{}\n", output::printableText(line));
 }
 
 void printFailures(const golden::GoldenResults& r) {
   for (const golden::FrameResult& f : r.frames) {
     if (f.outcome != golden::Outcome::passed)
-      fmt::print("{} {}: {}\n", golden::outcomeName(f.outcome), f.name, f.message);
+      printLine(fmt::format("{} {}: {}", golden::outcomeName(f.outcome), f.name, f.message));
   }
   for (const golden::StateResult& s : r.states) {
     if (s.outcome != golden::Outcome::passed)
-      fmt::print("{} {}: {}\n", golden::outcomeName(s.outcome), s.name, s.message);
+      printLine(fmt::format("{} {}: {}", golden::outcomeName(s.outcome), s.name, s.message));
   }
 }
 
@@ -234,7 +296,8 @@ int goldenCheck(const GoldenCheckOptions& o) {
   for (const auto* entries : {&manifest.frames, &manifest.states}) {
     for (const scenario::GoldenEntry& e : *entries) inputs.push_back(e.scenario);
   }
-  checkReportFolder(folder, inputs);
+  golden::requireReferencesInPlace(manifest, false);
+  std::vector<std::string> earlier = checkReportFolder(folder, inputs, o.run.maxInputMiB);
   makeParent(folder);
   output::StagingDirectory staged(folder);
   const auto start = std::chrono::steady_clock::now();
@@ -245,9 +308,9 @@ int goldenCheck(const GoldenCheckOptions& o) {
   if (const char* threads = std::getenv("LP_NUM_THREADS")) facts.lpNumThreads = threads;
   facts.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   golden::writeReport(staged.path(), run.results);
-  publish(staged, folder);
+  publish(staged, folder, std::move(earlier));
   if (!o.run.quiet) printFailures(run.results);
-  fmt::print("{}\n", golden::summaryLine(run.results, folder));
+  printLine(golden::summaryLine(run.results, folder));
   if (run.badReference) return kBadInput;
   return run.results.allPassed() ? kOk : kSimulationFailed;
 }
@@ -258,29 +321,30 @@ int printUpdate(const golden::UpdateOutcome& u, bool quiet) {
     switch (c.kind) {
       case golden::ReferenceChange::Kind::created:
         ++created;
-        fmt::print("created {}{}\n", c.name, c.from.empty() ? "" : " from " + c.from);
+        printLine(fmt::format("created {}{}", c.name, c.from.empty() ? "" : " from " + c.from));
         break;
       case golden::ReferenceChange::Kind::changed:
         ++changed;
-        fmt::print("changed {}: {}{}\n", c.name, c.how, c.from.empty() ? "" : " (from " + c.from + ")");
+        printLine(fmt::format("changed {}: {}{}", c.name, c.how, c.from.empty() ? "" : " (from " + c.from + ")"));
         break;
       case golden::ReferenceChange::Kind::unchanged:
         ++unchanged;
-        if (!quiet) fmt::print("unchanged {}\n", c.name);
+        if (!quiet) printLine(fmt::format("unchanged {}", c.name));
         break;
     }
   }
-  for (const std::string& note : u.notes) fmt::print("{}\n", note);
-  for (const golden::Refusal& r : u.refused) fmt::print("refused {}: {}\n", r.name, r.why);
-  for (const std::string& e : u.errors) fmt::print("error {}\n", e);
-  fmt::print("golden update: {} created, {} changed, {} unchanged{}{}\n", created, changed, unchanged,
-             u.refused.empty() ? "" : fmt::format(", {} refused", u.refused.size()),
-             u.errors.empty() ? "" : fmt::format(", {} could not be made", u.errors.size()));
+  for (const std::string& note : u.notes) printLine(note);
+  for (const golden::Refusal& r : u.refused) printLine(fmt::format("refused {}: {}", r.name, r.why));
+  for (const std::string& e : u.errors) printLine(fmt::format("error {}", e));
+  printLine(fmt::format("golden update: {} created, {} changed, {} unchanged{}{}", created, changed, unchanged,
+                        u.refused.empty() ? "" : fmt::format(", {} refused", u.refused.size()),
+                        u.errors.empty() ? "" : fmt::format(", {} could not be made", u.errors.size())));
   return u.refused.empty() && u.errors.empty() ? kOk : kSimulationFailed;
 }
 
 int goldenUpdate(const GoldenUpdateOptions& o) {
   const scenario::GoldenManifest manifest = loadManifest(o.run);
+  golden::requireReferencesInPlace(manifest, true);
   if (!o.from.empty()) {
     if (o.missing) throw InputError("--missing and --from: --from accepts what the report failed on, missing or not");
     std::vector<fs::path> folders(o.from.begin(), o.from.end());
@@ -306,7 +370,7 @@ int goldenUpdate(const GoldenUpdateOptions& o) {
 int goldenReport(const GoldenReportOptions& o) {
   const fs::path folder = o.output;
   std::vector<fs::path> inputs(o.folders.begin(), o.folders.end());
-  checkReportFolder(folder, inputs);
+  std::vector<std::string> earlier = checkReportFolder(folder, inputs, o.maxInputMiB);
   makeParent(folder);
   output::StagingDirectory staged(folder);
   golden::GoldenResults merged;
@@ -316,9 +380,9 @@ int goldenReport(const GoldenReportOptions& o) {
     throw InputError(e.what());
   }
   golden::writeReport(staged.path(), merged);
-  publish(staged, folder);
+  publish(staged, folder, std::move(earlier));
   if (!o.quiet) printFailures(merged);
-  fmt::print("{}\n", golden::summaryLine(merged, folder));
+  printLine(golden::summaryLine(merged, folder));
   return merged.allPassed() ? kOk : kSimulationFailed;
 }
 

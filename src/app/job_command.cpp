@@ -13,6 +13,9 @@
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
 #include "app/thread_count.hpp"
+#include "output/confined_folder.hpp"
+#include "output/printable_text.hpp"
+#include "output/write_sandbox.hpp"
 
 namespace particles::app {
 
@@ -41,6 +44,41 @@ void addRunJobOptions(CLI::App& command, RunJobOptions& o) {
       "  particles job cloth-sweep 0\n"
       "  particles job cloth-sweep 0 --threads 2          # what 'particles sweep' starts: its share of the CPUs\n"
       "  SLURM_ARRAY_TASK_ID=3 bash cloth-sweep/sweep.sbatch   # what a Slurm array task runs\n");
+}
+
+// Every file the row's command writes lies beneath the sweep's folder (issue 39): its command line
+// names it inside the folder, and it is reached from there without a link that leads out. The job's
+// folder and record are what `particles sweep` made them: a folder, and a record or nothing; a link
+// or a file of another kind there is refused, as is an output that is a link. The folder is anyone's
+// to touch (docs/sweeps.md): a row edited to `--stats /elsewhere/victim.csv` stops here, exit 2.
+void requireFilesBeneath(const std::filesystem::path& outDir, const JobTable& table, size_t index, const Cli& cli) {
+  const std::string where = fmt::format("{}:{}: job {}", table.file, table.rowLines[index], index);
+  const output::ConfinedFolder folder(outDir);
+  const std::string& jobDir = table.rows[index][table.dirColumn()];
+  const output::PlacedName dir = folder.place(jobDir, false);
+  if (dir.kind != output::EntryKind::directory && dir.kind != output::EntryKind::absent) {
+    throw InputError(fmt::format("{}: its folder {} is {}; a job's folder is a folder that `particles sweep` made",
+                                 where, dir.shown.string(),
+                                 dir.kind == output::EntryKind::symlink ? "a symbolic link" : "not a folder"));
+  }
+  std::vector<output::NamedFile> files = cli.commandFiles().outputs;
+  const std::string record = cli.recordFile();
+  if (!record.empty()) files.push_back({"--record", record});
+  for (const output::NamedFile& f : files) {
+    if (f.path.empty()) continue;
+    const std::filesystem::path relative = output::relativeBeneath(f.path, outDir);
+    if (relative.empty()) {
+      throw InputError(fmt::format("{}: {} {} is outside the sweep's folder {}; a job writes only beneath it", where,
+                                   f.role, f.path.string(), outDir.string()));
+    }
+    const output::PlacedName placed = folder.place(relative, false);  // throws OutsideFolderError
+    const bool folderOutput = f.role != "--record" && placed.kind == output::EntryKind::directory;  // a PNG sequence
+    if (placed.kind != output::EntryKind::absent && placed.kind != output::EntryKind::regular && !folderOutput) {
+      throw InputError(fmt::format(
+          "{}: {} {} is {}; a job's files are regular files, left as they are here", where, f.role,
+          placed.shown.string(), placed.kind == output::EntryKind::symlink ? "a symbolic link" : "not a regular file"));
+    }
+  }
 }
 
 int runJobCommand(const RunJobOptions& o) {
@@ -83,6 +121,9 @@ int runJobCommand(const RunJobOptions& o) {
       cli = parsed(withThreads);
     }
   }
+  requireFilesBeneath(o.outDir, table, index, *cli);
+  // From here on the kernel refuses writes outside the folder, where it can (write_sandbox.hpp).
+  output::restrictWritesBeneath(o.outDir);
   // The record names the job's own line, `args`, whatever threads it runs on.
   return cli->dispatch(args);
 }

@@ -18,6 +18,8 @@
 
 namespace particles::app {
 
+namespace fs = std::filesystem;
+
 namespace {
 
 // The headline of this process's command; one process runs one command.
@@ -296,6 +298,16 @@ int runRecordedJob(const JobOptions& options, const std::vector<std::string>& ar
     // Not a record this program wrote: refused before anything runs, and left as it is.
     return runReportingErrors(
         context, [&]() -> int { throw InputError(fmt::format("--record {}: {}", options.record, e.what())); });
+  }
+  std::error_code ec;
+  if (!previous && fs::exists(fs::symlink_status(options.record, ec)) && fs::file_size(options.record, ec) > 0 && !ec) {
+    // A file of its own that is no record (notes.txt, a figure): refused, never replaced.
+    return runReportingErrors(context, [&]() -> int {
+      throw InputError(
+          fmt::format("--record {}: not a job record; it is left as it is (choose another file, or "
+                      "remove it)",
+                      options.record));
+    });
   }
   if (!options.force && jobDone(previous, text)) {
     fmt::print(stderr, "{}: done before by this command and version; skipped (--force runs it again)\n",

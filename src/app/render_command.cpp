@@ -128,27 +128,29 @@ auto refusedOptionsAreInputErrors(F&& f) {
 // --frames A:B (or A: for A to the end) against the video's `total` frames. Throws InputError.
 std::pair<long, long> parseFrameRange(const std::string& text, long total) {
   const size_t colon = text.find(':');
-  auto number = [&](const std::string& part) -> std::optional<long> {
-    if (part.empty() || part.size() > 12 || part.find_first_not_of("0123456789") != std::string::npos) return {};
+  // A frame number, or -1 for what is not one. (Not std::optional: GCC 12 at -O3 takes the
+  // optionals' values for maybe-uninitialized, a false positive.)
+  auto number = [&](const std::string& part) -> long {
+    if (part.empty() || part.size() > 12 || part.find_first_not_of("0123456789") != std::string::npos) return -1;
     return std::stol(part);
   };
-  const auto first = colon == std::string::npos ? std::nullopt : number(text.substr(0, colon));
+  const long first = colon == std::string::npos ? -1 : number(text.substr(0, colon));
   const std::string rest = colon == std::string::npos ? "" : text.substr(colon + 1);
-  const auto end = rest.empty() ? std::optional<long>(total) : number(rest);
-  if (!first || !end) {
+  const long end = rest.empty() ? total : number(rest);
+  if (first < 0 || end < 0) {
     throw InputError(fmt::format("--frames: expected A:B (frames A … B−1) or A: (A to the end), not '{}'", text));
   }
-  if (!(*first < *end && *end <= total)) {
+  if (!(first < end && end <= total)) {
     throw InputError(fmt::format("--frames {}: not a range of the video's {} frames (0:{})", text, total, total));
   }
-  return {*first, *end};
+  return {first, end};
 }
 
 // --fps, --keyint and --at as numbers, before the output says what they mean for it.
 void checkNumbers(const RenderCommandOptions& options) {
   if (options.fps && !(*options.fps >= 1 && *options.fps <= 1000)) {  // NaN fails both
-    throw InputError(fmt::format("--fps: expected a whole number of frames per second from 1 to 1000, not {}",
-                                 *options.fps));
+    throw InputError(
+        fmt::format("--fps: expected a whole number of frames per second from 1 to 1000, not {}", *options.fps));
   }
   if (!(options.keyint >= kMinKeyintSeconds && options.keyint <= render::kMaxKeyintSeconds)) {  // NaN fails both
     throw InputError(fmt::format("--keyint: expected seconds from {} to {} between keyframes, not {}",

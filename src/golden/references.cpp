@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "golden/state_table.hpp"
 #include "input/text_file.hpp"
-#include "output/output_file.hpp"
+#include "output/confined_folder.hpp"
+#include "output/distinct_files.hpp"
 #include "render/png_io.hpp"
 
 namespace particles::golden {
@@ -46,6 +48,16 @@ std::string readWhole(const fs::path& file, std::uintmax_t maxInputMiB) {
   }
 }
 
+// A kept file of a report folder, read only when it lies beneath the folder once resolved.
+std::string readKept(const fs::path& folder, const std::string& kept, std::uintmax_t maxInputMiB) {
+  try {
+    output::ConfinedFolder(folder).kindOf(kept);
+  } catch (const output::OutsideFolderError& e) {
+    throw std::invalid_argument(e.what());
+  }
+  return readWhole(folder / kept, maxInputMiB);
+}
+
 // The file's bytes once they are known to be what a reference of this kind holds.
 void checkContent(const std::string& bytes, bool frame, const std::string& label) {
   if (frame) {
@@ -55,14 +67,15 @@ void checkContent(const std::string& bytes, bool frame, const std::string& label
   }
 }
 
-// Writes `bytes` as the reference when they differ from what is there; says what it did.
-ReferenceChange writeReference(const fs::path& reference, const std::string& bytes, const std::string& name,
-                               std::uintmax_t maxInputMiB) {
+// Writes `bytes` as the reference when they differ from what is there; says what it did. The file
+// is written from the references folder's descriptor (output/confined_folder.hpp): a link that
+// leads out of it is refused where it is written, even one made after requireReferencesInPlace.
+ReferenceChange writeReference(const output::ConfinedFolder& references, const fs::path& reference,
+                               const std::string& bytes, const std::string& name, std::uintmax_t maxInputMiB) {
   ReferenceChange change;
   change.name = name;
-  std::error_code ec;
-  const bool exists = fs::symlink_status(reference, ec).type() != fs::file_type::not_found;
-  if (exists) {
+  const fs::path relative = reference.lexically_relative(references.root());
+  if (references.kindOf(relative) != output::EntryKind::absent) {
     std::string old;
     try {
       old = input::readBinaryFile(reference, maxInputMiB, input::Accept::regularOnly);
@@ -73,11 +86,14 @@ ReferenceChange writeReference(const fs::path& reference, const std::string& byt
   } else {
     change.kind = ReferenceChange::Kind::created;
   }
-  fs::create_directories(reference.parent_path().empty() ? fs::path(".") : reference.parent_path(), ec);
-  output::OutputFile out(reference);
-  out.write(bytes);
-  out.commit();
+  references.writeFile(relative, bytes);
   return change;
+}
+
+// The references folder, made when missing.
+output::ConfinedFolder referencesFolder(const GoldenManifest& manifest) {
+  return output::ConfinedFolder(manifest.references.empty() ? fs::path(".") : manifest.references,
+                                output::ConfinedFolder::Create::yes);
 }
 
 std::string frameChange(const FrameResult& r) {
@@ -96,9 +112,29 @@ std::string stateChange(const StateResult& r) {
 
 }  // namespace
 
+fs::path referenceName(const fs::path& reference, const GoldenManifest& manifest) {
+  return reference.lexically_relative(manifest.references.empty() ? fs::path(".") : manifest.references);
+}
+
+void requireReferencesInPlace(const GoldenManifest& manifest, bool written) {
+  const fs::path root = manifest.references.empty() ? fs::path(".") : manifest.references;
+  std::error_code ec;
+  if (!fs::exists(root, ec)) return;  // nothing there yet: update makes it, check finds every reference missing
+  const output::ConfinedFolder references(root);
+  std::vector<output::NamedFile> inputs = {{"the manifest", manifest.file}};
+  for (const auto* entries : {&manifest.frames, &manifest.states}) {
+    for (const GoldenEntry& e : *entries) inputs.push_back({"scenario", e.scenario});
+  }
+  for (const auto& [name, check] : checksByName(manifest)) {
+    references.kindOf(referenceName(check.reference, manifest));  // throws OutsideFolderError
+    if (written && check.writable) output::requireDistinctFiles({{"reference " + name, check.reference}}, inputs);
+  }
+}
+
 UpdateOutcome writeRenderedReferences(const GoldenManifest& manifest, const fs::path& folder, const CheckRun& run,
                                       std::uintmax_t maxInputMiB) {
   const std::map<std::string, Named> named = checksByName(manifest);
+  const output::ConfinedFolder references = referencesFolder(manifest);
   UpdateOutcome out;
   auto take = [&](const std::string& name, Outcome outcome, const std::string& message, const KeptFiles& files,
                   const std::string& how) {
@@ -114,7 +150,8 @@ UpdateOutcome writeRenderedReferences(const GoldenManifest& manifest, const fs::
       out.errors.push_back(fmt::format("{}: {}", name, message));
       return;
     }
-    ReferenceChange c = writeReference(n.reference, readWhole(folder / files.actual, maxInputMiB), name, maxInputMiB);
+    ReferenceChange c =
+        writeReference(references, n.reference, readWhole(folder / files.actual, maxInputMiB), name, maxInputMiB);
     if (c.kind == ReferenceChange::Kind::changed) c.how = how;
     out.changes.push_back(std::move(c));
   };
@@ -184,6 +221,7 @@ UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector
   UpdateOutcome out;
   out.refused = std::move(refused);
   out.notes = std::move(notes);
+  std::optional<output::ConfinedFolder> references;  // made at the first reference written
   for (const std::string& name : order) {
     const bool refusedAlready =
         std::any_of(out.refused.begin(), out.refused.end(), [&](const Refusal& r) { return r.name == name; });
@@ -203,7 +241,7 @@ UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector
         break;
       }
       try {
-        std::string these = readWhole(s.folder / s.actual, maxInputMiB);
+        std::string these = readKept(s.folder, s.actual, maxInputMiB);
         if (!first) {
           checkContent(these, n.frame, (s.folder / s.actual).string());
           first = &s;
@@ -225,7 +263,8 @@ UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector
       out.refused.push_back({name, why});
       continue;
     }
-    ReferenceChange c = writeReference(n.reference, bytes, name, maxInputMiB);
+    if (!references) references.emplace(referencesFolder(manifest));
+    ReferenceChange c = writeReference(*references, n.reference, bytes, name, maxInputMiB);
     c.from = (first->folder / first->actual).string();
     if (c.kind == ReferenceChange::Kind::changed) c.how = first->how;
     out.changes.push_back(std::move(c));
@@ -259,15 +298,40 @@ GoldenResults mergeReports(const std::vector<fs::path>& folders, const fs::path&
                                               it->second.string(), folder.string(), name));
     }
   };
+  // Every kept file of every part, with the folder that holds it; the pages are the merge's own.
+  std::map<std::string, fs::path> kept;
+  for (std::string_view page : {kReportHtml, kJunitXml, kResultsJson}) kept.emplace(page, into);
+  auto claimFile = [&](const std::string& file, const fs::path& folder) {
+    if (file.empty()) return;
+    const auto [it, fresh] = kept.emplace(file, folder);
+    if (!fresh) {
+      throw std::invalid_argument(
+          it->second == into
+              ? fmt::format("{} keeps a file named {}, which is the merged report's own page", folder.string(), file)
+              : fmt::format("{} and {} both keep {}: one check would show the other's file", it->second.string(),
+                            folder.string(), file));
+    }
+  };
+  for (const Part& p : parts) {
+    for (const FrameResult& r : p.results.frames) {
+      for (const std::string* f : {&r.files.actual, &r.files.expected, &r.files.diff}) claimFile(*f, p.folder);
+    }
+    for (const StateResult& r : p.results.states) {
+      for (const std::string* f : {&r.files.actual, &r.files.expected, &r.files.diff}) claimFile(*f, p.folder);
+    }
+  }
+  // A file whose path is a folder of another's ("frames/a.png" and "frames/a.png/b.png"): in
+  // sorted order the folder's path comes right before the paths beneath it.
+  for (auto it = kept.begin(), next = std::next(it); next != kept.end(); ++it, ++next) {
+    if (next->first.starts_with(it->first + "/")) {
+      throw std::invalid_argument(fmt::format("{} keeps {} and {} keeps {}: one file's path is the other's folder",
+                                              it->second.string(), it->first, next->second.string(), next->first));
+    }
+  }
+  const output::ConfinedFolder target(into);
   auto copy = [&](const fs::path& folder, const KeptFiles& files) {
     for (const std::string* f : {&files.actual, &files.expected, &files.diff}) {
-      if (f->empty()) continue;
-      const std::string bytes = readWhole(folder / *f, maxInputMiB);
-      std::error_code ec;
-      fs::create_directories((into / *f).parent_path(), ec);
-      output::OutputFile out(into / *f);
-      out.write(bytes);
-      out.commit();
+      if (!f->empty()) target.writeFile(*f, readKept(folder, *f, maxInputMiB));
     }
   };
   for (Part& p : parts) {

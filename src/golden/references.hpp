@@ -33,6 +33,16 @@ struct UpdateOutcome {
   std::vector<std::string> notes;   // --from: folders set aside (another manifest, other settings), and why
 };
 
+// Where a manifest's references may be read and written (issue 39): every reference lies beneath
+// the references folder once resolved, or OutsideFolderError names it (a link that leads out); and
+// for `update` (`written`), none is the same file as the manifest or one of its scenarios
+// (output::SameFileError: update would overwrite its own input). Check, update and update --from
+// call this before they read a reference, write one or remove anything: both are exit 2.
+void requireReferencesInPlace(const scenario::GoldenManifest& manifest, bool written);
+
+// A reference's name relative to the references folder (NAME.png, NAME.csv).
+std::filesystem::path referenceName(const std::filesystem::path& reference, const scenario::GoldenManifest& manifest);
+
 // Writes the actual frame or state of every result of `run` (made with keepAll into `folder`) as
 // its reference. Controls (`expect: differ`) and checks that compare with another's reference are
 // never written. Throws OutputError when a reference cannot be written.
@@ -52,7 +62,9 @@ UpdateOutcome acceptReferences(const scenario::GoldenManifest& manifest,
 
 // Merges the report folders of a run's shards into `into` (which exists, empty): their results in
 // one, the kept files copied. Folders are taken in shard order when each names its shard. Throws
-// std::invalid_argument when a folder is not a report or two hold the same check.
+// std::invalid_argument when a folder is not a report, two hold the same check, or two kept files
+// collide: the same path claimed twice (one would show the other's picture), one file's path a
+// folder of another's, or a kept file named as one of the report's pages.
 GoldenResults mergeReports(const std::vector<std::filesystem::path>& folders, const std::filesystem::path& into,
                            std::uintmax_t maxInputMiB);
 

@@ -35,4 +35,16 @@ GoldenResults::Counts GoldenResults::counts() const {
   return c;
 }
 
+std::set<std::string> reportFiles(const GoldenResults& results) {
+  std::set<std::string> files = {std::string(kReportHtml), std::string(kJunitXml), std::string(kResultsJson)};
+  auto add = [&files](const KeptFiles& kept) {
+    for (const std::string* f : {&kept.actual, &kept.expected, &kept.diff}) {
+      if (!f->empty()) files.insert(*f);
+    }
+  };
+  for (const FrameResult& f : results.frames) add(f.files);
+  for (const StateResult& s : results.states) add(s.files);
+  return files;
+}
+
 }  // namespace particles::golden

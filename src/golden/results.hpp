@@ -14,6 +14,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -29,12 +30,12 @@ std::optional<Outcome> outcomeFromName(std::string_view name);
 
 // The numbers of one frame comparison, as `particles compare` prints them.
 struct FrameNumbers {
-  int threshold = 0;        // per channel, 0 … 255
-  double maxShare = 0.0;    // 0 … 1
-  long differing = 0;       // pixels with a channel difference > threshold
-  long pixels = 0;          // width × height
-  double share = 0.0;       // differing / pixels
-  int largest = 0;          // largest channel difference, 0 … 255
+  int threshold = 0;                      // per channel, 0 … 255
+  double maxShare = 0.0;                  // 0 … 1
+  long differing = 0;                     // pixels with a channel difference > threshold
+  long pixels = 0;                        // width × height
+  double share = 0.0;                     // differing / pixels
+  int largest = 0;                        // largest channel difference, 0 … 255
   std::optional<std::array<int, 4>> box;  // x0, y0, x1, y1 of the differing pixels, inclusive; none: none differ
   int width = 0, height = 0;
 };
@@ -48,15 +49,15 @@ struct KeptFiles {
 };
 
 struct FrameResult {
-  std::string name;            // the frame's name in the manifest (cloth_t2.5)
-  std::string scenario;        // as the manifest writes it
-  std::string time;            // seconds, as the manifest writes it
-  bool expectDiffer = false;   // a control
+  std::string name;           // the frame's name in the manifest (cloth_t2.5)
+  std::string scenario;       // as the manifest writes it
+  std::string time;           // seconds, as the manifest writes it
+  bool expectDiffer = false;  // a control
   Outcome outcome = Outcome::error;
-  std::string message;         // one line for a failure, missing reference or error; empty when passed
+  std::string message;                  // one line for a failure, missing reference or error; empty when passed
   std::optional<FrameNumbers> numbers;  // when it was compared
   KeptFiles files;
-  std::string reference;  // the reference's path as the manifest resolves it, relative to where check ran
+  std::string reference;               // the reference's path as the manifest resolves it, relative to where check ran
   std::vector<std::string> reproduce;  // shell commands that reproduce the result, quoted for a POSIX shell
   double seconds = 0.0;                // wall time of its share of the run (render, read, compare)
 };
@@ -87,13 +88,13 @@ struct StateResult {
 
 // How the run was made: what a frame's pixels depend on beyond the manifest.
 struct RunFacts {
-  std::string manifest;       // as given on the command line
-  std::string program;        // `particles 0.x.y`
-  std::string gl;             // the backend, device and GL renderer that drew the frames, or empty
-  std::string lpNumThreads;   // LP_NUM_THREADS, when set
-  std::string overrides;      // command-line settings over the manifest's (--raster tiles --max-share 0.0005), or empty
-  std::string shard;          // "2/3", or empty for the whole manifest
-  double seconds = 0.0;       // wall time of the run
+  std::string manifest;      // as given on the command line
+  std::string program;       // `particles 0.x.y`
+  std::string gl;            // the backend, device and GL renderer that drew the frames, or empty
+  std::string lpNumThreads;  // LP_NUM_THREADS, when set
+  std::string overrides;     // command-line settings over the manifest's (--raster tiles --max-share 0.0005), or empty
+  std::string shard;         // "2/3", or empty for the whole manifest
+  double seconds = 0.0;      // wall time of the run
 };
 
 struct GoldenResults {
@@ -106,7 +107,10 @@ struct GoldenResults {
     long total() const { return passed + failed + missing + error; }
   };
   Counts counts() const;
-  bool allPassed() const { const Counts c = counts(); return c.total() == c.passed; }
+  bool allPassed() const {
+    const Counts c = counts();
+    return c.total() == c.passed;
+  }
 };
 
 // The file names in a report folder.
@@ -122,6 +126,10 @@ void writeReport(const std::filesystem::path& folder, const GoldenResults& resul
 // a kept file's path that leaves the folder or is absolute) throws std::invalid_argument naming
 // the file and what is wrong; at most maxInputMiB are read.
 GoldenResults readResults(const std::filesystem::path& folder, std::uintmax_t maxInputMiB);
+
+// What a report folder consists of: its three pages and every kept file its results list
+// (paths relative to the folder, with '/').
+std::set<std::string> reportFiles(const GoldenResults& results);
 
 // The one-line summary `golden check` prints: "golden: 17 frames, 3 states: 18 passed, 1 failed,
 // 1 missing (report: DIR/report.html)".

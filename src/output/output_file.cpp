@@ -10,6 +10,9 @@ namespace particles::output {
 
 OutputFile::OutputFile(std::filesystem::path path) : pending_(std::move(path)), file_(pending_.openStream()) {}
 
+OutputFile::OutputFile(const ConfinedFolder& folder, const std::filesystem::path& relative)
+    : pending_(folder, relative), file_(pending_.openStream()) {}
+
 void OutputFile::write(std::string_view text) {
   if (std::fwrite(text.data(), 1, text.size(), file_.get()) != text.size()) {
     throw OutputError(fmt::format("cannot write {}: {}", pending_.destination().string(), std::strerror(errno)));

@@ -16,6 +16,8 @@ namespace particles::output {
 class OutputFile {
  public:
   explicit OutputFile(std::filesystem::path path);
+  // A file of a folder the command owns, reached beneath it (PendingOutput's confined form).
+  OutputFile(const ConfinedFolder& folder, const std::filesystem::path& relative);
   OutputFile(const OutputFile&) = delete;
   OutputFile& operator=(const OutputFile&) = delete;
 

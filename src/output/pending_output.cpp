@@ -104,9 +104,39 @@ PendingOutput::PendingOutput(fs::path destination, Temporary temporary) : destin
     fail(errnoText(errno));
   }
   if (!target_.has_filename()) fail("a file name cannot end in '/'");
-  removeStalePartials(folderOf(target_), target_.filename().string());
+  folder_ = FileDescriptor(::open(folderOf(target_).c_str(), O_PATH | O_DIRECTORY | O_CLOEXEC));
+  if (!folder_.valid()) fail(fmt::format("its folder {}: {}", folderOf(target_).string(), errnoText(errno)));
+  name_ = target_.filename().string();
+  openReplacement(temporary);
+}
+
+PendingOutput::PendingOutput(const ConfinedFolder& folder, const fs::path& relative, Temporary temporary)
+    : destination_(folder.shown(relative)) {
+  target_ = destination_;
+  PlacedName placed = folder.place(relative, true, ConfinedFolder::Create::yes);
+  target_ = placed.shown;
+  if (placed.kind != EntryKind::absent && placed.kind != EntryKind::regular) {
+    fail(placed.kind == EntryKind::directory ? "it is a directory" : "it is not a regular file");
+  }
+  folder_ = std::move(placed.folder);
+  name_ = std::move(placed.name);
+  confined_ = true;
+  openReplacement(temporary);
+}
+
+void PendingOutput::openReplacement(Temporary temporary) {
+  // The stale temporaries of killed runs, listed through this very folder's descriptor.
+  const fs::path procFolder = fmt::format("/proc/self/fd/{}", folder_.get());
+  removeStalePartials(::access(procFolder.c_str(), F_OK) == 0 ? procFolder : folderOf(target_), name_);
   if (temporary == Temporary::anonymousWherePossible && openAnonymous()) return;
   openNamed();
+}
+
+fs::path PendingOutput::reopenableName(const std::string& name) const {
+  if (!confined_) return folderOf(target_) / name;
+  const fs::path procName = fmt::format("/proc/self/fd/{}/{}", folder_.get(), name);
+  if (::access(procName.c_str(), F_OK) == 0) return procName;
+  return folderOf(target_) / name;
 }
 
 PendingOutput::~PendingOutput() {
@@ -130,7 +160,7 @@ void PendingOutput::openInPlace(int flags) {
 bool PendingOutput::openAnonymous() {
 #ifdef O_TMPFILE
   // Mode 0666 is reduced by the umask as for any created file (checked by tests/test_output.cpp).
-  const int fd = ::open(folderOf(target_).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  const int fd = ::openat(folder_.get(), ".", O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
   // Not supported here (EOPNOTSUPP, EISDIR from kernels before 3.11, EINVAL), or any other
   // failure: the named route tries again and reports its own error, which names the real cause.
   if (fd < 0) return false;
@@ -154,8 +184,8 @@ void PendingOutput::openNamed() {
   // A name can be taken only by a run of the same pid (reused after a killed run) that is still
   // alive: another number then.
   for (int attempt = 0; fd_ < 0; ++attempt) {
-    temporary_ = nextPartialPath(target_);
-    fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    temporary_ = nextPartialPath(name_).string();
+    fd_ = ::openat(folder_.get(), temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (fd_ < 0 && (errno != EEXIST || attempt == 99)) {
       const int error = errno;
       temporary_.clear();
@@ -163,7 +193,7 @@ void PendingOutput::openNamed() {
     }
   }
   route_ = Route::named;
-  reopenablePath_ = temporary_;
+  reopenablePath_ = reopenableName(temporary_);
 }
 
 FilePtr PendingOutput::openStream() {
@@ -183,8 +213,8 @@ void PendingOutput::linkAnonymous() {
   // and renamed over the target from there. This name exists only between the two calls.
   int error = 0;
   for (int attempt = 0; attempt < 100; ++attempt) {
-    const fs::path name = nextPartialPath(target_);
-    if (::linkat(AT_FDCWD, reopenablePath_.c_str(), AT_FDCWD, name.c_str(), AT_SYMLINK_FOLLOW) == 0) {
+    const std::string name = nextPartialPath(name_).string();
+    if (::linkat(AT_FDCWD, reopenablePath_.c_str(), folder_.get(), name.c_str(), AT_SYMLINK_FOLLOW) == 0) {
       temporary_ = name;
       return;
     }
@@ -192,7 +222,7 @@ void PendingOutput::linkAnonymous() {
     if (error == EEXIST) continue;
     // /proc was there when the file was opened; should it be gone, the descriptor itself can be
     // linked, which Linux allows only with CAP_DAC_READ_SEARCH.
-    if (::linkat(fd_, "", AT_FDCWD, name.c_str(), AT_EMPTY_PATH) == 0) {
+    if (::linkat(fd_, "", folder_.get(), name.c_str(), AT_EMPTY_PATH) == 0) {
       temporary_ = name;
       return;
     }
@@ -206,7 +236,7 @@ void PendingOutput::commit() {
   if (done_) throw std::logic_error("PendingOutput::commit called after commit or discard");
   if (route_ != Route::inPlace) {
     struct stat existing {};
-    if (::lstat(target_.c_str(), &existing) == 0) {
+    if (::fstatat(folder_.get(), name_.c_str(), &existing, AT_SYMLINK_NOFOLLOW) == 0) {
       // Checked again: between open and now something else may have taken the name, and a
       // device, FIFO, directory or link there is not ours to replace.
       if (!S_ISREG(existing.st_mode)) {
@@ -230,8 +260,9 @@ void PendingOutput::commit() {
     discard();
     fail(errnoText(error));
   }
-  if (route_ != Route::inPlace && ::rename(temporary_.c_str(), target_.c_str()) != 0) {
-    const std::string reason = fmt::format("rename from {}: {}", temporary_.string(), errnoText(errno));
+  if (route_ != Route::inPlace && ::renameat(folder_.get(), temporary_.c_str(), folder_.get(), name_.c_str()) != 0) {
+    const std::string reason =
+        fmt::format("rename from {}: {}", (folderOf(target_) / temporary_).string(), errnoText(errno));
     discard();
     fail(reason);
   }
@@ -241,7 +272,7 @@ void PendingOutput::commit() {
 
 void PendingOutput::discard() noexcept {
   if (fd_ >= 0) ::close(std::exchange(fd_, -1));
-  if (!temporary_.empty()) ::unlink(temporary_.c_str());
+  if (!temporary_.empty()) ::unlinkat(folder_.get(), temporary_.c_str(), 0);
   temporary_.clear();
   done_ = true;
 }

@@ -27,6 +27,8 @@
 #include <memory>
 #include <string>
 
+#include "output/confined_folder.hpp"
+
 namespace particles::output {
 
 struct FileCloser {
@@ -51,6 +53,14 @@ class PendingOutput {
   // Opens the file to write (see above). Never waits: a FIFO without a reader is refused. Throws
   // OutputError naming the destination and the reason.
   explicit PendingOutput(std::filesystem::path destination, Temporary temporary = Temporary::anonymousWherePossible);
+  // A file of a folder the command owns (confined_folder.hpp): `relative` is reached from the
+  // folder's descriptor, the folders on its way made when missing; a link at its end is followed
+  // only while it stays beneath the folder (OutsideFolderError otherwise, exit 2), and only a
+  // regular file or nothing may be there (no device, FIFO or folder: OutputError). The temporary
+  // is made in the folder that holds the file and renamed over it from that folder's descriptor,
+  // so a folder swapped for a link meanwhile cannot send the file elsewhere.
+  PendingOutput(const ConfinedFolder& folder, const std::filesystem::path& relative,
+                Temporary temporary = Temporary::anonymousWherePossible);
   ~PendingOutput();  // discard() unless committed
   PendingOutput(const PendingOutput&) = delete;
   PendingOutput& operator=(const PendingOutput&) = delete;
@@ -80,13 +90,20 @@ class PendingOutput {
 
  private:
   void openInPlace(int flags);
+  void openReplacement(Temporary temporary);
   bool openAnonymous();
   void openNamed();
   void linkAnonymous();
+  // A name in folder_ under which the temporary can be opened again: through /proc where it is
+  // there, so that the name reaches this very folder (confined), else beside the target.
+  std::filesystem::path reopenableName(const std::string& name) const;
   [[noreturn]] void fail(const std::string& reason) const;
 
   std::filesystem::path destination_, target_;
-  std::filesystem::path temporary_;  // the temporary's name while it has one (removed by discard)
+  FileDescriptor folder_;  // the folder holding target_ (not for the in-place route)
+  std::string name_;       // target_'s last component, in folder_
+  std::string temporary_;  // the temporary's name in folder_ while it has one (removed by discard)
+  bool confined_ = false;  // made from a ConfinedFolder: names reach folder_ only through its descriptor
   std::filesystem::path reopenablePath_;
   Route route_ = Route::named;
   int fd_ = -1;
