@@ -1,11 +1,17 @@
 #include "render/png_sequence_writer.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <system_error>
 
+#include "output/confined_folder.hpp"
 #include "render/errors.hpp"
 
 namespace particles::render {
@@ -76,17 +82,29 @@ PngSequenceWriter::~PngSequenceWriter() {
 }
 
 void PngSequenceWriter::publish() {
-  std::error_code ec;
+  // The frames are moved in, and an earlier run's extra frames removed, from the folders' own
+  // descriptors (output/confined_folder.hpp): a frame's name that is a link in the folder is
+  // replaced as a name, never followed, and the folder swapped for a link meanwhile changes nothing.
+  const output::ConfinedFolder folder(directory_);
+  const output::ConfinedFolder staged(staging_->path());
   for (long i = 0; i < frames_; ++i) {
     const std::string name = sequenceFrameName(firstIndex_ + i);
-    fs::rename(staging_->path() / name, directory_ / name, ec);
-    if (ec) throw OutputError("cannot move " + name + " into " + directory_.string() + ": " + ec.message());
+    if (::renameat(staged.fd(), name.c_str(), folder.fd(), name.c_str()) != 0) {
+      throw OutputError("cannot move " + name + " into " + directory_.string() + ": " + std::strerror(errno));
+    }
   }
   // Frames beyond this run's last, left by an earlier run (a range leaves the others' frames).
+  std::error_code ec;
   for (const fs::directory_entry& entry : fs::directory_iterator(directory_, ec)) {
     if (!wholeSequence_) break;
-    const std::optional<long> index = sequenceFrameIndex(entry.path().filename().string());
-    if (index && *index >= frames_) fs::remove(entry.path(), ec);
+    const std::string name = entry.path().filename().string();
+    const std::optional<long> index = sequenceFrameIndex(name);
+    if (!index || *index < frames_) continue;
+    try {
+      folder.remove(name);
+    } catch (const OutputError&) {
+      // Best effort: what cannot be removed (a folder of that name) is left; the frames are in.
+    }
   }
   staging_->discard();
 }
