@@ -67,8 +67,12 @@ TEST_CASE("golden update and check: a reference that is a link out of its folder
   SUBCASE("a dangling link that would create a file elsewhere") {
     fs::create_symlink("../decoy/new.csv", s.dir / "refs/springs.csv");
   }
-  for (const char* command :
-       {"golden update m.yaml", "golden update m.yaml --from rep", "golden check m.yaml -o rep2"}) {
+  SUBCASE("a link into the report folder that check -o would replace") {
+    fs::create_symlink("../rep/results.json", s.dir / "refs/springs.csv");
+  }
+  const std::string report = slurp(s.dir / "rep/results.json");
+  for (const char* command : {"golden update m.yaml", "golden update m.yaml --from rep", "golden check m.yaml -o rep2",
+                              "golden check m.yaml -o rep"}) {
     CAPTURE(command);
     const auto r = s.run(command);
     CHECK(r.code == 2);
@@ -76,6 +80,7 @@ TEST_CASE("golden update and check: a reference that is a link out of its folder
     s.decoyUntouched();
   }
   CHECK_FALSE(fs::exists(s.dir / "rep2"));
+  CHECK(slurp(s.dir / "rep/results.json") == report);
 }
 
 TEST_CASE("golden update: a frame reference that links to a picture elsewhere is refused, the picture kept") {
@@ -225,6 +230,15 @@ TEST_CASE("job: a row, a record or a job folder that points outside the sweep's 
     s.write("out/jobs.csv", edited(stats, (out / "jobs/000000/../../../decoy/notes.txt").string()));
     r = s.run("job out 0");
     CHECK(r.code == 2);
+    // Inside the sweep's folder but over what the job reads, or into another job's folder.
+    for (const fs::path& inside : {out / "jobs.csv", out / "jobs/000001/stats.csv"}) {
+      CAPTURE(inside);
+      s.write("out/jobs.csv", edited(stats, inside.string()));
+      r = s.run("job out 0");
+      CHECK(r.code == 2);
+      CHECK_MESSAGE(r.err.find("outside the job's own folder jobs/000000") != std::string::npos, r.err);
+    }
+    CHECK_FALSE(fs::exists(out / "jobs/000001/stats.csv"));
   }
   SUBCASE("the record a link to a file elsewhere") {
     fs::create_symlink(s.decoy / "notes.txt", out / "jobs/000000/record.txt");

@@ -71,6 +71,12 @@ void requireFilesBeneath(const std::filesystem::path& outDir, const JobTable& ta
       throw InputError(fmt::format("{}: {} {} is outside the sweep's folder {}; a job writes only beneath it", where,
                                    f.role, f.path.string(), outDir.string()));
     }
+    // Within the folder, a job writes only in its own: never over jobs.csv, which it reads, nor
+    // into another job's folder, whose record and outputs are that job's.
+    if (output::relativeBeneath(f.path, outDir / jobDir).empty()) {
+      throw InputError(
+          fmt::format("{}: {} {} is outside the job's own folder {}", where, f.role, f.path.string(), jobDir));
+    }
     const output::PlacedName placed = folder.place(relative, false);  // throws OutsideFolderError
     const bool folderOutput = f.role != "--record" && placed.kind == output::EntryKind::directory;  // a PNG sequence
     if (placed.kind != output::EntryKind::absent && placed.kind != output::EntryKind::regular && !folderOutput) {
