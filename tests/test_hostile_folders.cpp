@@ -275,6 +275,28 @@ TEST_CASE("job: a row, a record or a job folder that points outside the sweep's 
   CHECK(fs::exists(out / "jobs/000001/record.txt"));
 }
 
+TEST_CASE("sweep: an output folder whose jobs/, jobs.csv or job list leads elsewhere is refused, exit 2") {
+  Hostile s;
+  s.write("sw.yaml",
+          "scenarios: [springs.yaml]\ncommand: run\noptions: {duration: 0.1}\n"
+          "parameters:\n  - {key: \"forces[1].ks\", values: [50, 60]}\n");
+  fs::create_directories(s.dir / "out");
+  SUBCASE("jobs/ a link to a folder elsewhere") { fs::create_symlink(s.decoy, s.dir / "out/jobs"); }
+  SUBCASE("jobs.csv a link to a file elsewhere") {
+    fs::create_symlink(s.decoy / "notes.txt", s.dir / "out/jobs.csv");
+  }
+  SUBCASE("jobs.txt a dangling link out") { fs::create_symlink("../decoy/new.txt", s.dir / "out/jobs.txt"); }
+  SUBCASE("sweep.sbatch a link out") { fs::create_symlink("../decoy/figure.png", s.dir / "out/sweep.sbatch"); }
+  const auto parallel = s.run("sweep sw.yaml -o out --emit parallel");
+  const auto slurm = s.run("sweep sw.yaml -o out --emit slurm");
+  CHECK(parallel.code + slurm.code >= 2);
+  CHECK((parallel.code == 0 || parallel.code == 2));
+  CHECK((slurm.code == 0 || slurm.code == 2));
+  const std::string errors = parallel.err + slurm.err;
+  CHECK_MESSAGE(Hostile::says(parallel.code ? parallel : slurm, "leads outside"), errors);
+  s.decoyUntouched();
+}
+
 TEST_CASE("write sandbox: after restrictWritesBeneath the kernel refuses writes elsewhere") {
   Scratch s;
   fs::create_directories(s.dir / "inside");

@@ -1,7 +1,9 @@
 // A sweep file turned into jobs: see sweep_plan.hpp.
 #include "app/sweep_plan.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <charconv>
@@ -13,6 +15,7 @@
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
 #include "app/thread_count.hpp"
+#include "output/confined_folder.hpp"
 #include "output/output_error.hpp"
 #include "output/output_file.hpp"
 #include "render/frame_writer.hpp"
@@ -308,13 +311,12 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
 }
 
 void writeJobTable(const SweepPlan& plan) {
-  std::error_code ec;
-  for (const SweepJob& job : plan.jobs) {
-    std::filesystem::create_directories(plan.outDir / job.dir, ec);
-    if (ec)
-      throw output::OutputError(fmt::format("cannot create {}: {}", (plan.outDir / job.dir).string(), ec.message()));
-  }
-  output::OutputFile csv(plan.outDir / "jobs.csv");
+  // Everything the sweep writes lies beneath its folder (output/confined_folder.hpp): the folder
+  // may be an earlier sweep's, touched by anyone since, and a `jobs` that is now a link out of it
+  // must not make the sweep write elsewhere.
+  const output::ConfinedFolder folder(plan.outDir, output::ConfinedFolder::Create::yes);
+  for (const SweepJob& job : plan.jobs) folder.openFolder(job.dir, output::ConfinedFolder::Create::yes);
+  output::OutputFile csv(folder, "jobs.csv");
   csv.write(csvRow(jobTableHeader(plan.columns)));
   for (const SweepJob& job : plan.jobs) {
     std::vector<std::string> row = {std::to_string(job.index), job.stage, job.scenario};
@@ -343,8 +345,8 @@ std::string jobLine(const SweepPlan& plan, size_t index) {
   return commandText({plan.program, "job", plan.outDir.string(), std::to_string(index)});
 }
 
-void writeLines(const std::filesystem::path& file, const SweepPlan& plan, size_t from, size_t to) {
-  output::OutputFile out(file);
+void writeLines(const std::string& name, const SweepPlan& plan, size_t from, size_t to) {
+  output::OutputFile out(output::ConfinedFolder(plan.outDir), name);
   for (size_t i = from; i < to; ++i) out.write(jobLine(plan, i) + "\n");
   out.commit();
 }
@@ -352,12 +354,23 @@ void writeLines(const std::filesystem::path& file, const SweepPlan& plan, size_t
 // A Slurm array script: task i runs job first + i. Nothing of the sweep's values is in it, only
 // the program and the output folder, quoted; the task id comes from Slurm and is only ever a number
 // added to `first` by bash's arithmetic; `particles job` refuses an index past the end.
-void writeArrayScript(const std::filesystem::path& file, const SweepPlan& plan, size_t first, size_t count,
+// Writes the script `name` in the sweep's folder, executable.
+void writeScript(const SweepPlan& plan, const std::string& name, const std::string& text, mode_t executable) {
+  const output::ConfinedFolder folder(plan.outDir);
+  output::OutputFile out(folder, name);
+  out.write(text);
+  out.commit();
+  const output::PlacedName placed = folder.place(name, true);
+  struct stat st {};
+  if (::fstatat(placed.folder.get(), placed.name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode)) {
+    ::fchmodat(placed.folder.get(), placed.name.c_str(), (st.st_mode & 07777) | executable, 0);
+  }
+}
+
+void writeArrayScript(const std::string& name, const SweepPlan& plan, size_t first, size_t count,
                       const std::string& what) {
   const std::string logs = (plan.outDir / "logs").string();
-  std::error_code ec;
-  std::filesystem::create_directories(logs, ec);
-  if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", logs, ec.message()));
+  output::ConfinedFolder(plan.outDir).openFolder("logs", output::ConfinedFolder::Create::yes);
   std::string text = fmt::format(
       "#!/bin/bash\n"
       "# particles sweep {name}: {what} as a Slurm job array, one job per task; task i runs job {first} + i\n"
@@ -389,11 +402,7 @@ void writeArrayScript(const std::filesystem::path& file, const SweepPlan& plan, 
       "exec {program} job {out} \"$(({first} + SLURM_ARRAY_TASK_ID))\"\n",
       fmt::arg("program", shellQuote(plan.program)), fmt::arg("out", shellQuote(plan.outDir.string())),
       fmt::arg("first", first));
-  output::OutputFile out(file);
-  out.write(text);
-  out.commit();
-  std::filesystem::permissions(file, std::filesystem::perms::owner_exec | std::filesystem::perms::group_exec,
-                               std::filesystem::perm_options::add, ec);
+  writeScript(plan, name, text, S_IXUSR | S_IXGRP);
 }
 
 }  // namespace
@@ -406,14 +415,14 @@ void checkListPaths(const SweepPlan& plan) {
 std::string emitParallel(const SweepPlan& plan) {
   checkListPaths(plan);
   const auto jobs = plan.outDir / "jobs.txt";
-  writeLines(jobs, plan, 0, plan.firstStageCount);
+  writeLines("jobs.txt", plan, 0, plan.firstStageCount);
   // parallel runs one job per CPU unless told otherwise (-j), so one thread each: together they
   // fill the CPUs without oversubscribing them (docs/sweeps.md, "Order and threads").
   std::string how = fmt::format("{}=1 parallel --joblog {} < {}", kThreadsEnvironmentVariable,
                                 shellQuote((plan.outDir / "joblog.txt").string()), shellQuote(jobs.string()));
   if (plan.firstStageCount < plan.jobs.size()) {
     const auto concat = plan.outDir / "concat.txt";
-    writeLines(concat, plan, plan.firstStageCount, plan.jobs.size());
+    writeLines("concat.txt", plan, plan.firstStageCount, plan.jobs.size());
     how += fmt::format(" && parallel < {}", shellQuote(concat.string()));
   }
   return how;
@@ -422,26 +431,21 @@ std::string emitParallel(const SweepPlan& plan) {
 std::string emitSlurm(const SweepPlan& plan) {
   checkListPaths(plan);
   const auto script = plan.outDir / "sweep.sbatch";
-  writeArrayScript(script, plan, 0, plan.firstStageCount, fmt::format("{} jobs", plan.firstStageCount));
+  writeArrayScript("sweep.sbatch", plan, 0, plan.firstStageCount, fmt::format("{} jobs", plan.firstStageCount));
   if (plan.firstStageCount == plan.jobs.size()) return fmt::format("sbatch {}", shellQuote(script.string()));
 
   const auto concatScript = plan.outDir / "concat.sbatch";
-  writeArrayScript(concatScript, plan, plan.firstStageCount, plan.jobs.size() - plan.firstStageCount,
+  writeArrayScript("concat.sbatch", plan, plan.firstStageCount, plan.jobs.size() - plan.firstStageCount,
                    "the joins of the split renders");
   const auto submit = plan.outDir / "submit.sh";
-  {
-    output::OutputFile out(submit);
-    out.write(
-        fmt::format("#!/bin/bash\n"
-                    "# Submits the segments, then the joins once every segment has succeeded (docs/sweeps.md).\n"
-                    "set -eu\n"
-                    "segments=$(sbatch --parsable \"$@\" {})\n"
-                    "sbatch --dependency=afterok:\"${{segments%%;*}}\" \"$@\" {}\n",
-                    shellQuote(script.string()), shellQuote(concatScript.string())));
-    out.commit();
-  }
-  std::error_code ec;
-  std::filesystem::permissions(submit, std::filesystem::perms::owner_exec, std::filesystem::perm_options::add, ec);
+  writeScript(plan, "submit.sh",
+              fmt::format("#!/bin/bash\n"
+                          "# Submits the segments, then the joins once every segment has succeeded (docs/sweeps.md).\n"
+                          "set -eu\n"
+                          "segments=$(sbatch --parsable \"$@\" {})\n"
+                          "sbatch --dependency=afterok:\"${{segments%%;*}}\" \"$@\" {}\n",
+                          shellQuote(script.string()), shellQuote(concatScript.string())),
+              S_IXUSR);
   return fmt::format("bash {}   # sbatch's options (e.g. --wait) may follow", shellQuote(submit.string()));
 }
 
