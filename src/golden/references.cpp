@@ -90,10 +90,19 @@ ReferenceChange writeReference(const output::ConfinedFolder& references, const f
   return change;
 }
 
+// The references' folder as the manifest resolves it ("." when it names none).
+fs::path referencesRoot(const GoldenManifest& manifest) {
+  return manifest.references.empty() ? fs::path(".") : manifest.references;
+}
+
+// A reference's name within its folder (NAME.png, NAME.csv).
+fs::path referenceName(const fs::path& reference, const GoldenManifest& manifest) {
+  return reference.lexically_relative(referencesRoot(manifest));
+}
+
 // The references folder, made when missing.
 output::ConfinedFolder referencesFolder(const GoldenManifest& manifest) {
-  return output::ConfinedFolder(manifest.references.empty() ? fs::path(".") : manifest.references,
-                                output::ConfinedFolder::Create::yes);
+  return output::ConfinedFolder(referencesRoot(manifest), output::ConfinedFolder::Create::yes);
 }
 
 std::string frameChange(const FrameResult& r) {
@@ -112,15 +121,10 @@ std::string stateChange(const StateResult& r) {
 
 }  // namespace
 
-fs::path referenceName(const fs::path& reference, const GoldenManifest& manifest) {
-  return reference.lexically_relative(manifest.references.empty() ? fs::path(".") : manifest.references);
-}
-
 void requireReferencesInPlace(const GoldenManifest& manifest, bool written) {
-  const fs::path root = manifest.references.empty() ? fs::path(".") : manifest.references;
   std::error_code ec;
-  if (!fs::exists(root, ec)) return;  // nothing there yet: update makes it, check finds every reference missing
-  const output::ConfinedFolder references(root);
+  if (!fs::exists(referencesRoot(manifest), ec)) return;  // nothing there yet: update makes it, check finds all missing
+  const output::ConfinedFolder references(referencesRoot(manifest));
   std::vector<output::NamedFile> inputs = {{"the manifest", manifest.file}};
   for (const auto* entries : {&manifest.frames, &manifest.states}) {
     for (const GoldenEntry& e : *entries) inputs.push_back({"scenario", e.scenario});

@@ -40,9 +40,6 @@ struct UpdateOutcome {
 // call this before they read a reference, write one or remove anything: both are exit 2.
 void requireReferencesInPlace(const scenario::GoldenManifest& manifest, bool written);
 
-// A reference's name relative to the references folder (NAME.png, NAME.csv).
-std::filesystem::path referenceName(const std::filesystem::path& reference, const scenario::GoldenManifest& manifest);
-
 // Writes the actual frame or state of every result of `run` (made with keepAll into `folder`) as
 // its reference. Controls (`expect: differ`) and checks that compare with another's reference are
 // never written. Throws OutputError when a reference cannot be written.
