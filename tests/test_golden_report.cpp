@@ -16,8 +16,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "cli_support.hpp"
 #include "golden/check.hpp"
+#include "golden/report_text.hpp"
 #include "golden/results.hpp"
+#include "golden/results_json.hpp"
 #include "output/output_error.hpp"
 #include "render/image.hpp"
 #include "render/image_compare.hpp"
@@ -382,8 +385,25 @@ std::string refusal(const fs::path& folder, const std::string& text) {
   } catch (const std::invalid_argument& e) {
     return e.what();
   }
-  FAIL("read without an error: " << text);
+  FAIL("read without an error: " << text.substr(0, 200));
   return "";
+}
+
+// `depth` arrays, each the only value of the one around it.
+std::string nested(std::size_t depth) {
+  return std::string(depth, '[') + std::string(depth, ']');
+}
+
+// Every path under `dir`, relative to it, sorted, one a line: what a refused command must leave
+// as it was.
+std::string listing(const fs::path& dir) {
+  std::vector<std::string> paths;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    paths.push_back(e.path().lexically_relative(dir).string());
+  std::sort(paths.begin(), paths.end());
+  std::string text;
+  for (const std::string& path : paths) text += path + "\n";
+  return text;
 }
 
 }  // namespace
@@ -608,4 +628,131 @@ TEST_CASE("golden report: a sample report for the browser test") {
 TEST_CASE("golden report: writing into a folder that is not there fails as an output error") {
   TempDir t;
   CHECK_THROWS_AS(writeReport(t.dir / "missing", everyField()), particles::output::OutputError);
+}
+
+TEST_CASE("golden report: a value in a message is quoted by at most 80 bytes, whole characters, controls escaped") {
+  using report::kMaxQuotedBytes;
+  using report::quotedExcerpt;
+  CHECK(quotedExcerpt("flaky") == "\"flaky\"");
+  CHECK(quotedExcerpt("a\"b\\c\n\t\r\x1b[31m\x7f\xc2\x9b") == R"("a\"b\\c\n\t\r\u001b[31m\u007f\u009b")");
+  CHECK(quotedExcerpt("it's \"x\"", '\'') == R"('it\'s "x"')");
+  CHECK(quotedExcerpt("bad \xff byte") == "\"bad \xef\xbf\xbd byte\"");
+  const std::string fits(kMaxQuotedBytes, 'x');
+  CHECK(quotedExcerpt(fits) == "\"" + fits + "\"");
+  // One byte more: cut to leave room for the 3 bytes of "…".
+  CHECK(quotedExcerpt(fits + "y") == "\"" + std::string(kMaxQuotedBytes - 3, 'x') + "…\" (81 bytes)");
+  // A 2-byte character is not cut in two: 38 of them (76 bytes) fit beside "…", 39 do not.
+  std::string accents;
+  for (int i = 0; i < 100; ++i) accents += "é";
+  std::string kept;
+  for (int i = 0; i < 38; ++i) kept += "é";
+  CHECK(quotedExcerpt(accents) == "\"" + kept + "…\" (200 bytes)");
+  // Escapes count as what they take: 12 "\u0001" (72 bytes) fit, a 13th does not.
+  std::string escapes;
+  for (int i = 0; i < 12; ++i) escapes += "\\u0001";
+  CHECK(quotedExcerpt(std::string(1'000'000, '\x01')) == "\"" + escapes + "…\" (1000000 bytes)");
+  CHECK(isValidUtf8(quotedExcerpt(std::string(100, '\xe2'))));
+}
+
+TEST_CASE("golden report: results.json nested more than 64 deep is refused where it passes the limit") {
+  TempDir t;
+  const std::string valid = oneFrameJson(t.dir);
+  const std::string file = (t.dir / "results.json").string();
+  const std::size_t limit = report::kMaxResultsDepth;
+  REQUIRE(limit == 64);  // the messages below say so
+  // At the limit (the file's object is the first level): read, and refused for what "version" is.
+  CHECK(refusal(t.dir, replaced(valid, "\"version\": 1", "\"version\": " + nested(limit - 1))) ==
+        file + ": version: is an array of 1 value, and this particles reads version 1");
+  CHECK(refusal(t.dir, replaced(valid, "\"version\": 1", "\"version\": {\"a\": []}")) ==
+        file + ": version: is an object of 1 key, and this particles reads version 1");
+  // One level more: refused at its bracket, line 3 `  "version": [[…`, before anything is parsed.
+  const std::string past = file + ": line 3, column 77: arrays and objects nested more than 64 deep, the limit";
+  CHECK(refusal(t.dir, replaced(valid, "\"version\": 1", "\"version\": " + nested(limit))) == past);
+  // Objects are levels as arrays are, and an unfinished text is refused at the same bracket.
+  std::string objects;
+  for (std::size_t i = 0; i < limit; ++i) objects += "{\"a\":";
+  CHECK(refusal(t.dir, replaced(valid, "\"version\": 1", "\"version\": " + objects)).starts_with(file + ": line 3, "));
+  // Issue 39: 200,000 levels overflowed the stack (exit 139) when the message printed the value.
+  CHECK(refusal(t.dir, replaced(valid, "\"version\": 1", "\"version\": " + nested(200'000))) == past);
+  // Brackets in strings are text, an escaped quote does not end its string, an escaped backslash
+  // does not escape the quote after it.
+  const std::string brackets = R"(\"[{)" + std::string(200, '[') + R"(\\)";
+  writeAll(t.dir / "results.json", replaced(valid, "\"message\": \"\"", "\"message\": \"" + brackets + "\""));
+  CHECK(readResults(t.dir, 64).frames.at(0).message == "\"[{" + std::string(200, '[') + "\\");
+  CHECK(refusal(t.dir, replaced(valid, "\"version\": 1", R"("version": "\\", "x": )" + nested(limit))) ==
+        file + ": line 3, column 88: arrays and objects nested more than 64 deep, the limit");
+}
+
+TEST_CASE("golden report: a megabyte of one value in results.json makes a message of a few hundred bytes") {
+  TempDir t;
+  const std::string valid = oneFrameJson(t.dir);
+  const std::string file = (t.dir / "results.json").string();
+  const std::string mb(1 << 20, 'x');
+  const std::string cut = std::string(report::kMaxQuotedBytes - 3, 'x') + "…";
+  struct Case {
+    std::string from, to, message;
+  };
+  const Case cases[] = {
+      {"\"version\": 1", "\"version\": \"" + mb + "\"",
+       file + ": version: is \"" + cut + "\" (1048576 bytes), and this particles reads version 1"},
+      {"\"outcome\": \"failed\"", "\"outcome\": \"" + mb + "\"",
+       file + ": frames[0].outcome: unknown outcome \"" + cut +
+           "\" (1048576 bytes) (passed, failed, missing or error)"},
+      {"\"name\": \"a\"", "\"" + mb + "\": \"a\"",
+       file + ": frames[0]: has an unknown key \"" + cut + "\" (1048576 bytes)"},
+      {"\"threshold\": 16", "\"threshold\": \"" + mb + "\"", file + ": frames[0].numbers.threshold: is not an integer"},
+      {"\"actual\": \"frames/a.png\"", "\"actual\": [\"" + mb + "\"]",
+       file + ": frames[0].files.actual: is not a string"},
+      // nlohmann's own message quotes the token it stopped in, here the rest of the file: cut.
+      {"\"name\": \"a\"", "\"name\": \"" + mb + "\n",
+       file +
+           ": not JSON: parse error at line 24, column 0: syntax error while parsing value - invalid string: "
+           "control character U+000A (LF) must be escaped to \\u000A or \\n; last read: '\"" +
+           std::string(report::kMaxQuotedBytes - 4, 'x') + "…' (1048585 bytes)"},
+      // A number past a double: nlohmann's out_of_range, once "internal error" and exit 1.
+      {"\"threshold\": 16", "\"threshold\": 1" + std::string(1 << 20, '0'),
+       file + ": line 30, column 1048599: number overflow parsing '1" + std::string(report::kMaxQuotedBytes - 4, '0') +
+           "…' (1048577 bytes)"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.from);
+    const std::string message = refusal(t.dir, replaced(valid, c.from, c.to));
+    CHECK(message == c.message);
+    CHECK(message.size() - file.size() < 300);  // the file's name is the caller's, the rest bounded
+  }
+}
+
+TEST_CASE("golden report and update --from: results.json nested 200,000 deep is exit 2, and nothing is left behind") {
+  particles::test::Scratch s;
+  fs::create_directories(s.dir / "good" / "frames");
+  fs::create_directories(s.dir / "deep");
+  const std::string valid = oneFrameJson(s.dir / "good");
+  writeAll(s.dir / "good" / "frames" / "a.png", "kept");  // merging copies it, unread
+  fs::copy(s.dir / "good", s.dir / "twin", fs::copy_options::recursive);
+  writeAll(s.dir / "deep" / "results.json", replaced(valid, "\"version\": 1", "\"version\": " + nested(200'000)));
+  s.write("m.yaml", "references: refs\nframes:\n  - {scenario: s.yaml, times: [0.5]}\n");
+  s.write("s.yaml", particles::test::kSwingScenario);
+  const std::string before = listing(s.dir);
+  const std::string deep =
+      "error: deep/results.json: line 3, column 77: arrays and objects nested more than 64 deep, the limit\n";
+  struct Row {
+    std::string args, err;
+  };
+  const Row rows[] = {
+      {"golden report deep -o merged", deep},
+      {"golden report good deep -o merged", deep},
+      {"golden update m.yaml --from deep", deep},
+      {"golden update m.yaml --from good --from deep", deep},
+      // Refused after good's kept file was copied into the staging folder, which is removed.
+      {"golden report good twin -o merged",
+       "error: good and twin both hold a: merge the shards of one run, each once\n"},
+  };
+  for (const Row& row : rows) {
+    CAPTURE(row.args);
+    const particles::test::Result r = s.run(row.args);
+    CHECK(r.code == 2);
+    CHECK(r.err == row.err);
+    CHECK(r.err.size() < 300);
+    CHECK(listing(s.dir) == before);  // no merged/, no merged.partial-*, no refs/
+  }
 }

@@ -80,6 +80,39 @@ std::string validUtf8(std::string_view text) {
   return out;
 }
 
+std::string quotedExcerpt(std::string_view text, char quote) {
+  constexpr std::string_view kEllipsis = "…";
+  std::string inside;
+  std::size_t keep = 0;  // the longest run of whole characters that leaves room for the ellipsis
+  bool whole = true;
+  for (std::size_t i = 0; i < text.size();) {
+    const char32_t code = nextCodePoint(text, i).value_or(kReplacement);
+    std::string piece;
+    if (code == char32_t(quote) || code == '\\') {
+      piece = {'\\', char(code)};
+    } else if (code == '\n') {
+      piece = "\\n";
+    } else if (code == '\t') {
+      piece = "\\t";
+    } else if (code == '\r') {
+      piece = "\\r";
+    } else if (code < 0x20 || (code >= 0x7F && code <= 0x9F)) {
+      piece = fmt::format("\\u{:04x}", unsigned(code));
+    } else {
+      appendUtf8(piece, code);
+    }
+    if (inside.size() + piece.size() > kMaxQuotedBytes) {
+      whole = false;  // only the first kMaxQuotedBytes of a 20 MB value are ever looked at
+      break;
+    }
+    inside += piece;
+    if (inside.size() + kEllipsis.size() <= kMaxQuotedBytes) keep = inside.size();
+  }
+  if (whole) return fmt::format("{0}{1}{0}", quote, inside);
+  inside.resize(keep);
+  return fmt::format("{0}{1}{2}{0} ({3} bytes)", quote, inside, kEllipsis, text.size());
+}
+
 std::string escapeMarkup(std::string_view text, Markup where) {
   std::string out;
   out.reserve(text.size());

@@ -7,6 +7,7 @@
 // invalid UTF-8 becomes U+FFFD (one per maximal subpart of an invalid sequence, the Unicode
 // standard's practice and the WHATWG decoder's), in every file, so each is valid UTF-8.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -17,6 +18,16 @@ namespace particles::golden::report {
 // `text` with every invalid UTF-8 sequence replaced by U+FFFD; control characters kept (JSON
 // escapes them).
 std::string validUtf8(std::string_view text);
+
+// The most bytes a message quotes of a value read from a file, between the quotes: a 20 MB string
+// in results.json once made a 20 MB message.
+inline constexpr std::size_t kMaxQuotedBytes = 80;
+
+// `text` as a message quotes it: between `quote`s, valid UTF-8, a backslash, the quote and the
+// control characters (C0, DEL, C1: a terminal acts on them) escaped as JSON writes them ("\n",
+// "\u001b"), whole when that takes at most kMaxQuotedBytes, else cut at a character before that
+// with "…" and followed by the whole length: `"aaaa…" (20000000 bytes)`.
+std::string quotedExcerpt(std::string_view text, char quote = '"');
 
 // Where escaped text goes: an element's content, or an attribute value in double quotes, where
 // tab and line breaks are written as character references (an XML parser turns them into spaces).

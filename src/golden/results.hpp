@@ -122,14 +122,21 @@ inline constexpr std::string_view kResultsJson = "results.json";
 // the kept files), each under a temporary name renamed when complete. Throws OutputError.
 void writeReport(const std::filesystem::path& folder, const GoldenResults& results);
 
-// The results.json of a report folder, checked: a file that is not one (bad JSON, unknown outcome,
-// a kept file's path that leaves the folder or is absolute) throws std::invalid_argument naming
-// the file and what is wrong; at most maxInputMiB are read.
+// The results.json of a report folder, checked: a file that is not one (bad JSON, nested too deep,
+// unknown outcome, a kept file's path that leaves the folder or is absolute) throws
+// std::invalid_argument naming the file and what is wrong; at most maxInputMiB are read.
 GoldenResults readResults(const std::filesystem::path& folder, std::uintmax_t maxInputMiB);
 
 // What a report folder consists of: its three pages and every kept file its results list
 // (paths relative to the folder, with '/').
 std::set<std::string> reportFiles(const GoldenResults& results);
+
+// The same checks of results.json's text in memory (`file` names it in messages; the fuzzer's
+// entry point), but those that need the folder: a kept file's path must still be relative and
+// free of "..", but whether it leads out through a symbolic link is readResults' to check. Also
+// refused: arrays and objects nested more than report::kMaxResultsDepth deep (results_json.hpp).
+// Every message quotes at most about 80 bytes of a value from the text.
+GoldenResults parseResultsJson(std::string_view text, const std::string& file);
 
 // The one-line summary `golden check` prints: "golden: 17 frames, 3 states: 18 passed, 1 failed,
 // 1 missing (report: DIR/report.html)".

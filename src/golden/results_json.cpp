@@ -3,12 +3,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <string_view>
+#include <utility>
 
 #include "golden/report_text.hpp"
 #include "input/text_file.hpp"
@@ -18,6 +21,10 @@ namespace particles::golden {
 namespace {
 
 using OrderedJson = nlohmann::ordered_json;
+
+std::string countText(long count, std::string_view one, std::string_view many) {
+  return fmt::format("{} {}", count, count == 1 ? one : many);
+}
 
 // ---- writing ----------------------------------------------------------------------------------
 
@@ -106,6 +113,107 @@ OrderedJson jsonCounts(const GoldenResults::Counts& c) {
 
 // ---- reading ----------------------------------------------------------------------------------
 
+// "line 3, column 17" of a byte offset into `text`, counted as nlohmann counts (bytes, lines
+// ending in '\n'; both from 1).
+std::string lineColumn(std::string_view text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  const std::string_view before = text.substr(0, offset);
+  const std::size_t lastBreak = before.rfind('\n');
+  const std::size_t lineStart = lastBreak == std::string_view::npos ? 0 : lastBreak + 1;
+  return fmt::format("line {}, column {}", std::count(before.begin(), before.end(), '\n') + 1, offset - lineStart + 1);
+}
+
+// Refuses arrays and objects nested deeper than kMaxResultsDepth before nlohmann parses the text.
+// Its parser keeps its stack on the heap, but what walks a parsed value recurses (dump(): a
+// "version" of 200,000 nested arrays overflowed the stack, exit 139). One pass counting brackets
+// outside strings: where the text is JSON this is the parser's own depth, and where it is not the
+// parser stops at the first mistake, never deeper than the brackets counted up to it.
+void checkNesting(std::string_view text, const std::string& file) {
+  int depth = 0;
+  bool inString = false, escaped = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        inString = false;
+      }
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > report::kMaxResultsDepth) {
+        throw std::invalid_argument(fmt::format("{}: {}: arrays and objects nested more than {} deep, the limit", file,
+                                                lineColumn(text, i), report::kMaxResultsDepth));
+      }
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
+
+// Where nlohmann's parser stopped, and its message. The message quotes the token it stopped in
+// whole ("last read: '…'", "number overflow parsing '…'"): for a string without its closing quote
+// that is the rest of the file. Its SAX interface hands that token over apart from the message,
+// so a text that failed is read once more, building nothing, to find the token and cut it.
+class ParseFailure final : public nlohmann::json_sax<nlohmann::json> {
+ public:
+  std::size_t position = 0;
+  int id = 0;
+  std::string message, token;
+
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override { return true; }
+  bool key(string_t&) override { return true; }
+  bool end_object() override { return true; }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t at, const std::string& lastToken, const nlohmann::json::exception& e) override {
+    position = at;
+    id = e.id;
+    message = e.what();
+    token = lastToken;
+    return false;
+  }
+};
+
+// The message for a text nlohmann::json::parse refused: "FILE: not JSON: parse error at line 1,
+// column 13: …", or for a number past a double "FILE: line 1, column 12: number overflow parsing
+// '1e500'", the token quoted by at most report::kMaxQuotedBytes.
+std::string notJsonMessage(std::string_view text, const std::string& file) {
+  ParseFailure failure;
+  nlohmann::json::sax_parse(text, &failure);
+  std::string what = failure.message;
+  // "[json.exception.parse_error.101] parse error at line 1, column 1: …" without its tag.
+  if (const std::size_t tag = what.find("] "); what.starts_with("[json.exception.") && tag != std::string::npos) {
+    what.erase(0, tag + 2);
+  }
+  const std::string quotedToken = "'" + failure.token + "'";
+  if (const std::size_t at = what.find(quotedToken); at != std::string::npos) {
+    what.replace(at, quotedToken.size(), report::quotedExcerpt(failure.token, '\''));
+  }
+  const bool parseError = failure.id / 100 == 1;  // nlohmann's ids: 1xx parse_error, 4xx out_of_range
+  if (parseError) return fmt::format("{}: not JSON: {}", file, what);
+  return fmt::format("{}: {}: {}", file, lineColumn(text, failure.position), what);
+}
+
+// A value as a message names it: a number, true, false or null as written, a string quoted (at
+// most report::kMaxQuotedBytes of it), an array or object by its size (its text may be megabytes).
+std::string valueText(const nlohmann::json& value) {
+  if (value.is_string()) return report::quotedExcerpt(value.get_ref<const std::string&>());
+  if (value.is_array()) return "an array of " + countText(long(value.size()), "value", "values");
+  if (value.is_object()) return "an object of " + countText(long(value.size()), "key", "keys");
+  return value.dump();
+}
+
 // A value of the file being read, with its JSON path ("frames[3].files.actual") for messages.
 struct JsonAt {
   const nlohmann::json& value;
@@ -129,7 +237,7 @@ struct JsonAt {
     for (const auto& [key, ignored] : value.items()) {
       bool known = false;
       for (std::string_view name : names) known = known || key == name;
-      if (!known) fail(fmt::format("has an unknown key \"{}\"", report::validUtf8(key)));
+      if (!known) fail(fmt::format("has an unknown key {}", report::quotedExcerpt(key)));
     }
     for (std::string_view name : names) member(name);
   }
@@ -182,13 +290,15 @@ std::vector<std::string> readTexts(const JsonAt& at) {
 Outcome readOutcome(const JsonAt& at) {
   const std::string name = at.text();
   const std::optional<Outcome> outcome = outcomeFromName(name);
-  if (!outcome) at.fail(fmt::format("unknown outcome \"{}\" (passed, failed, missing or error)", name));
+  if (!outcome)
+    at.fail(fmt::format("unknown outcome {} (passed, failed, missing or error)", report::quotedExcerpt(name)));
   return *outcome;
 }
 
 // A kept file's path: relative to the report folder and inside it, in the form the writer gives
-// (components separated by '/', none empty, "." or ".."), not through a symbolic link out of it.
-std::string readKeptPath(const JsonAt& at, const std::filesystem::path& folder) {
+// (components separated by '/', none empty, "." or ".."). That it leads through no symbolic link
+// out of the folder is readResults' check (leavesFolder), made where there is a folder.
+std::string readKeptPath(const JsonAt& at) {
   const std::string path = at.text();
   if (path.empty()) return path;  // not kept
   if (path.find('\0') != std::string::npos) at.fail("holds a NUL byte");
@@ -202,20 +312,39 @@ std::string readKeptPath(const JsonAt& at, const std::filesystem::path& folder) 
     if (component.empty() || component == ".") at.fail("is not a plain relative path (an empty or \".\" component)");
     start = end + 1;
   }
-  std::error_code error;
-  const std::filesystem::path inside = std::filesystem::weakly_canonical(folder / path, error);
-  const std::filesystem::path base = std::filesystem::weakly_canonical(folder, error);
-  if (!error) {
-    const std::filesystem::path relative = inside.lexically_relative(base);
-    if (relative.empty() || *relative.begin() == "..") at.fail("leaves the report folder (through a symbolic link)");
-  }
   return path;
 }
 
-KeptFiles readFiles(const JsonAt& at, const std::filesystem::path& folder) {
+KeptFiles readFiles(const JsonAt& at) {
   at.requireObject({"actual", "expected", "diff"});
-  return {readKeptPath(at.member("actual"), folder), readKeptPath(at.member("expected"), folder),
-          readKeptPath(at.member("diff"), folder)};
+  return {readKeptPath(at.member("actual")), readKeptPath(at.member("expected")), readKeptPath(at.member("diff"))};
+}
+
+// Whether the kept file `path` (which readKeptPath accepted) resolves, through symbolic links in
+// the folder, to somewhere outside it.
+bool leavesFolder(const std::filesystem::path& folder, const std::string& path) {
+  std::error_code error;
+  const std::filesystem::path inside = std::filesystem::weakly_canonical(folder / path, error);
+  const std::filesystem::path base = std::filesystem::weakly_canonical(folder, error);
+  if (error) return false;
+  const std::filesystem::path relative = inside.lexically_relative(base);
+  return relative.empty() || *relative.begin() == "..";
+}
+
+// Refuses results whose kept files lead out of `folder` through a symbolic link, naming the field
+// as the reader names it ("frames[1].files.actual").
+void checkKeptInside(const GoldenResults& results, const std::filesystem::path& folder, const std::string& file) {
+  auto check = [&](const KeptFiles& files, std::string_view list, std::size_t i) {
+    for (const auto& [name, path] :
+         {std::pair{"actual", &files.actual}, std::pair{"expected", &files.expected}, std::pair{"diff", &files.diff}}) {
+      if (!path->empty() && leavesFolder(folder, *path)) {
+        throw std::invalid_argument(fmt::format(
+            "{}: {}[{}].files.{}: leaves the report folder (through a symbolic link)", file, list, i, name));
+      }
+    }
+  };
+  for (std::size_t i = 0; i < results.frames.size(); ++i) check(results.frames[i].files, "frames", i);
+  for (std::size_t i = 0; i < results.states.size(); ++i) check(results.states[i].files, "states", i);
 }
 
 std::optional<FrameNumbers> readNumbers(const JsonAt& at) {
@@ -258,7 +387,7 @@ RunFacts readRun(const JsonAt& at) {
           at.member("seconds").number()};
 }
 
-FrameResult readFrame(const JsonAt& at, const std::filesystem::path& folder) {
+FrameResult readFrame(const JsonAt& at) {
   at.requireObject({"name", "scenario", "time", "expect_differ", "outcome", "message", "numbers", "files", "reference",
                     "reproduce", "seconds"});
   FrameResult f;
@@ -269,14 +398,14 @@ FrameResult readFrame(const JsonAt& at, const std::filesystem::path& folder) {
   f.outcome = readOutcome(at.member("outcome"));
   f.message = at.member("message").text();
   f.numbers = readNumbers(at.member("numbers"));
-  f.files = readFiles(at.member("files"), folder);
+  f.files = readFiles(at.member("files"));
   f.reference = at.member("reference").text();
   f.reproduce = readTexts(at.member("reproduce"));
   f.seconds = at.member("seconds").number();
   return f;
 }
 
-StateResult readState(const JsonAt& at, const std::filesystem::path& folder) {
+StateResult readState(const JsonAt& at) {
   at.requireObject({"name", "scenario", "times", "outcome", "message", "first_beyond", "largest", "values", "files",
                     "reference", "reproduce", "seconds"});
   StateResult s;
@@ -288,15 +417,11 @@ StateResult readState(const JsonAt& at, const std::filesystem::path& folder) {
   s.firstBeyond = readDeviation(at.member("first_beyond"));
   s.largest = readDeviation(at.member("largest"));
   s.values = at.member("values").integer();
-  s.files = readFiles(at.member("files"), folder);
+  s.files = readFiles(at.member("files"));
   s.reference = at.member("reference").text();
   s.reproduce = readTexts(at.member("reproduce"));
   s.seconds = at.member("seconds").number();
   return s;
-}
-
-std::string countText(long count, std::string_view one, std::string_view many) {
-  return fmt::format("{} {}", count, count == 1 ? one : many);
 }
 
 }  // namespace
@@ -312,6 +437,42 @@ std::string report::resultsJson(const GoldenResults& results) {
   return json.dump(2) + "\n";
 }
 
+GoldenResults parseResultsJson(std::string_view text, const std::string& file) {
+  checkNesting(text, file);
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception&) {
+    // parse_error, or out_of_range for a number past a double (1e500).
+    throw std::invalid_argument(notJsonMessage(text, file));
+  }
+  const JsonAt top{json, "", file};
+  top.requireObject({"format", "version", "counts", "runs", "frames", "states"});
+  if (top.member("format").text() != report::kResultsFormat) {
+    top.member("format").fail(fmt::format("is not \"{}\": not a golden results file", report::kResultsFormat));
+  }
+  const JsonAt version = top.member("version");
+  if (!version.value.is_number_integer() || version.value.get<std::int64_t>() != report::kResultsVersion) {
+    version.fail(
+        fmt::format("is {}, and this particles reads version {}", valueText(version.value), report::kResultsVersion));
+  }
+  GoldenResults results;
+  const JsonAt runs = top.member("runs"), frames = top.member("frames"), states = top.member("states");
+  for (std::size_t i = 0, n = runs.arraySize(); i < n; ++i) results.runs.push_back(readRun(runs.element(i)));
+  for (std::size_t i = 0, n = frames.arraySize(); i < n; ++i) results.frames.push_back(readFrame(frames.element(i)));
+  for (std::size_t i = 0, n = states.arraySize(); i < n; ++i) results.states.push_back(readState(states.element(i)));
+
+  const JsonAt counts = top.member("counts");
+  counts.requireObject({"passed", "failed", "missing", "error"});
+  const GoldenResults::Counts c = results.counts();
+  if (counts.member("passed").integer() != c.passed || counts.member("failed").integer() != c.failed ||
+      counts.member("missing").integer() != c.missing || counts.member("error").integer() != c.error) {
+    counts.fail(fmt::format("do not match the results ({} passed, {} failed, {} missing, {} error)", c.passed, c.failed,
+                            c.missing, c.error));
+  }
+  return results;
+}
+
 GoldenResults readResults(const std::filesystem::path& folder, std::uintmax_t maxInputMiB) {
   const std::filesystem::path path = folder / kResultsJson;
   const std::string file = path.string();
@@ -322,43 +483,8 @@ GoldenResults readResults(const std::filesystem::path& folder, std::uintmax_t ma
   } catch (const input::ReadError& e) {
     throw std::invalid_argument(fmt::format("{}: {}", file, e.what()));
   }
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    // "[json.exception.parse_error.101] parse error at line 1, column 1: …" without its tag.
-    std::string what = e.what();
-    if (const std::size_t tag = what.find("] "); what.starts_with("[json.exception.") && tag != std::string::npos) {
-      what.erase(0, tag + 2);
-    }
-    throw std::invalid_argument(fmt::format("{}: not JSON: {}", file, what));
-  }
-  const JsonAt top{json, "", file};
-  top.requireObject({"format", "version", "counts", "runs", "frames", "states"});
-  if (top.member("format").text() != report::kResultsFormat) {
-    top.member("format").fail(fmt::format("is not \"{}\": not a golden results file", report::kResultsFormat));
-  }
-  const JsonAt version = top.member("version");
-  if (!version.value.is_number_integer() || version.value.get<std::int64_t>() != report::kResultsVersion) {
-    version.fail(
-        fmt::format("is {}, and this particles reads version {}", version.value.dump(), report::kResultsVersion));
-  }
-  GoldenResults results;
-  const JsonAt runs = top.member("runs"), frames = top.member("frames"), states = top.member("states");
-  for (std::size_t i = 0, n = runs.arraySize(); i < n; ++i) results.runs.push_back(readRun(runs.element(i)));
-  for (std::size_t i = 0, n = frames.arraySize(); i < n; ++i)
-    results.frames.push_back(readFrame(frames.element(i), folder));
-  for (std::size_t i = 0, n = states.arraySize(); i < n; ++i)
-    results.states.push_back(readState(states.element(i), folder));
-
-  const JsonAt counts = top.member("counts");
-  counts.requireObject({"passed", "failed", "missing", "error"});
-  const GoldenResults::Counts c = results.counts();
-  if (counts.member("passed").integer() != c.passed || counts.member("failed").integer() != c.failed ||
-      counts.member("missing").integer() != c.missing || counts.member("error").integer() != c.error) {
-    counts.fail(fmt::format("do not match the results ({} passed, {} failed, {} missing, {} error)", c.passed, c.failed,
-                            c.missing, c.error));
-  }
+  GoldenResults results = parseResultsJson(text, file);
+  checkKeptInside(results, folder, file);
   return results;
 }
 
