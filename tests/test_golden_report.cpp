@@ -743,7 +743,7 @@ TEST_CASE("golden report and update --from: results.json nested 200,000 deep is 
       {"golden report good deep -o merged", deep},
       {"golden update m.yaml --from deep", deep},
       {"golden update m.yaml --from good --from deep", deep},
-      // Refused after good's kept file was copied into the staging folder, which is removed.
+      // Refused before any kept file is copied: the staging folder is removed.
       {"golden report good twin -o merged",
        "error: good and twin both hold a: merge the shards of one run, each once\n"},
   };

@@ -316,6 +316,11 @@ GoldenResults mergeReports(const std::vector<fs::path>& folders, const fs::path&
                             folder.string(), file));
     }
   };
+  // Every check by name, then every kept file, before anything is copied.
+  for (const Part& p : parts) {
+    for (const FrameResult& r : p.results.frames) claim(r.name, p.folder);
+    for (const StateResult& r : p.results.states) claim(r.name, p.folder);
+  }
   for (const Part& p : parts) {
     for (const FrameResult& r : p.results.frames) {
       for (const std::string* f : {&r.files.actual, &r.files.expected, &r.files.diff}) claimFile(*f, p.folder);
@@ -341,12 +346,10 @@ GoldenResults mergeReports(const std::vector<fs::path>& folders, const fs::path&
   for (Part& p : parts) {
     merged.runs.insert(merged.runs.end(), p.results.runs.begin(), p.results.runs.end());
     for (FrameResult& r : p.results.frames) {
-      claim(r.name, p.folder);
       copy(p.folder, r.files);
       merged.frames.push_back(std::move(r));
     }
     for (StateResult& r : p.results.states) {
-      claim(r.name, p.folder);
       copy(p.folder, r.files);
       merged.states.push_back(std::move(r));
     }
