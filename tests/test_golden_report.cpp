@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -755,4 +756,18 @@ TEST_CASE("golden report and update --from: results.json nested 200,000 deep is 
     CHECK(r.err.size() < 300);
     CHECK(listing(s.dir) == before);  // no merged/, no merged.partial-*, no refs/
   }
+}
+
+TEST_CASE("golden report: the fuzzer's dictionary has every key results.json is written with") {
+  TempDir t;
+  writeReport(t.dir, everyField());
+  const std::string json = readAll(t.dir / "results.json");
+  const std::string dict = readAll(fs::path(PARTICLES_SOURCE_DIR) / "tests/fuzz/results_json.dict");
+  const std::regex key(R"re("([a-z_]+)": )re");
+  std::size_t keys = 0;
+  for (auto it = std::sregex_iterator(json.begin(), json.end(), key); it != std::sregex_iterator(); ++it, ++keys) {
+    const std::string entry = "\"\\\"" + (*it)[1].str() + "\\\": \"\n";  // "\"name\": " in libFuzzer's syntax
+    CHECK_MESSAGE(dict.find(entry) != std::string::npos, "tests/fuzz/results_json.dict has no " << entry);
+  }
+  CHECK(keys > 40);  // the regular expression finds them
 }
