@@ -138,6 +138,39 @@ TEST_CASE("sweep: a scaled parameter multiplies the scenario's own value") {
   CHECK(jobs[1].at("command").find("--set 'grids[0].springs.structural.ks=[100, 4]'") != std::string::npos);
 }
 
+TEST_CASE("sweep: planned from one folder with a relative sweep path, the jobs run from any other") {
+  Scratch s, elsewhere;
+  fs::create_directories(s.dir / "sweeps");
+  fs::create_directories(s.dir / "deep/scenes");
+  s.write("swing.yaml", particles::test::kSwingScenario);
+  s.write("deep/swing.yaml", particles::test::kSwingScenario);
+  // `..` after a link leads from the link's target: scenes/../swing.yaml is deep/swing.yaml, which
+  // the sweep checks and the job must read, not the swing.yaml beside the link.
+  fs::create_directory_symlink(s.dir / "deep/scenes", s.dir / "scenes");
+  s.write("sweeps/swing.yaml",
+          "scenarios: [../swing.yaml, ./../scenes/../swing.yaml]\ncommand: run\n"
+          "parameters:\n  - {key: dt, values: [0.01, 0.02]}\n");
+  const auto r = s.run("sweep sweeps/swing.yaml -o out --emit parallel");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  const auto jobs = table(s.dir / "out/jobs.csv");
+  REQUIRE(jobs.size() == 4);
+  // The scenario column keeps the sweep file's spelling (the results' legends); the command line
+  // names the file by its absolute path, normal where that is the same file.
+  CHECK(jobs[0].at("scenario") == "../swing.yaml");
+  CHECK(jobs[2].at("scenario") == "./../scenes/../swing.yaml");
+  CHECK_MESSAGE(jobs[0].at("command").find(" run " + (s.dir / "swing.yaml").string() + " ") != std::string::npos,
+                jobs[0].at("command"));
+  CHECK_MESSAGE(jobs[2].at("command").find(" run " + fs::canonical(s.dir / "deep/swing.yaml").string() + " ") !=
+                    std::string::npos,
+                jobs[2].at("command"));
+  for (const int index : {0, 3}) {
+    CAPTURE(index);
+    const auto job = elsewhere.run("job " + (s.dir / "out").string() + " " + std::to_string(index));
+    CHECK_MESSAGE(job.code == 0, job.err);
+    CHECK(fs::exists(s.dir / "out/jobs" / jobDir(index) / "stats.csv"));
+  }
+}
+
 TEST_CASE("sweep: a bad sweep file is refused with its file, line and key before any job runs") {
   const std::string head = "scenarios: [" + kSource + "/scenarios/springs.yaml]\ncommand: run\n";
   struct Case {

@@ -103,6 +103,21 @@ scenario::SweepPosition optionPosition(const SweepSpec& spec, const std::string&
   return spec.options.empty() ? spec.commandAt : spec.options.front().at;
 }
 
+// The scenario as a job's command line names it: absolute, so that the job lists run from any
+// folder (a parallel --sshlogin host, a Slurm node that starts elsewhere), and lexically normal
+// (`sweeps/../cloth.yaml` as `cloth.yaml`) so that it reads as the file it is, links left as they
+// are. Unless that names another file: `..` after a link leads from the link's target, not from
+// the folder the link is in, so then the links are resolved (weakly_canonical): the job must read
+// the file the sweep checked.
+std::string scenarioArgument(const std::filesystem::path& path) {
+  const std::filesystem::path absolute = std::filesystem::absolute(path);
+  const std::filesystem::path normal = absolute.lexically_normal();
+  std::error_code ec;
+  if (std::filesystem::equivalent(absolute, normal, ec)) return normal.string();
+  const std::filesystem::path resolved = std::filesystem::weakly_canonical(absolute, ec);
+  return ec ? absolute.string() : resolved.string();  // as given, `..` and all, the kernel's reading
+}
+
 // The next combination of the groups' values, counting with the last group fastest; false after
 // the last one.
 bool nextCombination(std::vector<size_t>& digit, const std::vector<scenario::SweepGroup>& groups) {
@@ -157,8 +172,9 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
     fixed.push_back({spec.sets[k].first, spec.sets[k].second,
                      fmt::format("the sweep's options.set ({}:{})", spec.file, spec.setsAt[k].line)});
   }
-  std::vector<std::string> texts;
+  std::vector<std::string> texts, scenarioArgs;
   for (const auto& s : spec.scenarios) {
+    scenarioArgs.push_back(scenarioArgument(s.path));
     try {
       texts.push_back(scenario::readScenarioText(s.path, maxInputMiB));
       scenario::loadScenarioText(texts.back(), s.path.string(), fixed);
@@ -170,7 +186,7 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
   // The command takes the options: one job's command line parsed as main() would.
   {
     std::vector<std::string> outputs;
-    std::vector<std::string> args = {spec.command, spec.scenarios.front().path.string()};
+    std::vector<std::string> args = {spec.command, scenarioArgs.front()};
     const auto options = optionArgs(spec);
     args.insert(args.end(), options.begin(), options.end());
     const auto out = outputArgs(spec.command, plan.outDir / "probe", "", outputs);
@@ -268,7 +284,7 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
         job.values = shown;
         if (spec.split > 1) job.segment = fmt::format("{}/{}", k + 1, spec.split);
         job.dir = jobFolder(job.index);
-        job.args = {spec.command, spec.scenarios[s].path.string()};
+        job.args = {spec.command, scenarioArgs[s]};
         job.args.insert(job.args.end(), options.begin(), options.end());
         job.args.insert(job.args.end(), params.begin(), params.end());
         const auto out = outputArgs(spec.command, plan.outDir / job.dir, frames[k], job.outputs);
