@@ -208,7 +208,7 @@ SweepPlan planSweep(const SweepSpec& spec, const std::filesystem::path& outDir, 
         try {
           if (p->scale) {
             const std::string path = isShorthand(p->key) ? "simulation." + p->key : p->key;
-            text = scenario::scaledValueAt(texts[s], file, path, *v.number);
+            text = scenario::ScaledValue(texts[s], file, path).times(*v.number);
           }
           std::vector<Override> overrides = fixed;
           overrides.push_back(overrideOf(*p, text));
