@@ -281,7 +281,7 @@ int sweepCommand(const SweepOptions& o) {
       o.program.empty() ? thisProgram() : std::filesystem::absolute(o.program).lexically_normal().string();
   const std::filesystem::path out =
       o.out.empty() ? std::filesystem::path("sweep-" + spec.name) : std::filesystem::path(o.out);
-  const SweepPlan plan = planSweep(spec, out, program, o.maxInputMiB);
+  const SweepPlan plan = planSweep(spec, out, program, o.maxInputMiB, !o.quiet);
   if (!o.emit.empty()) checkListPaths(plan);
   const std::string threadsGiven = o.emit.empty() ? explicitThreads(spec) : std::string();
   writeJobTable(plan);

@@ -2,8 +2,10 @@
 // A sweep file turned into jobs (docs/sweeps.md): every job one plain `particles …` command line
 // (kept in jobs.csv, run by `particles job OUT INDEX`, never by a shell) with its outputs and record
 // in its own folder under the output folder. Everything that can be
-// checked is checked here, before any job runs: each scenario loads with each parameter value,
-// the command accepts the options, a split render has frames for every segment.
+// checked is checked here, before any job runs: each scenario loads with each parameter value
+// (parsed and loaded once, each value read where it changes the file: scenario/override_check.hpp),
+// a job's values together where they change one part of it, the command accepts the options, a
+// split render has frames for every segment.
 
 #include <cstddef>
 #include <filesystem>
@@ -42,9 +44,10 @@ struct SweepPlan {
   std::string commandLine(const SweepJob& job) const;
 };
 
-// Expands and checks the sweep. Throws scenario::ScenarioError in the sweep file.
+// Expands and checks the sweep, with progress on stderr when `showProgress` and it is a terminal.
+// Throws scenario::ScenarioError in the sweep file.
 SweepPlan planSweep(const scenario::SweepSpec& spec, const std::filesystem::path& outDir, const std::string& program,
-                    std::uintmax_t maxInputMiB);
+                    std::uintmax_t maxInputMiB, bool showProgress = false);
 
 // Creates the output folder with each job's folder and writes jobs.csv: index, stage, scenario,
 // the parameters, segment, dir, command. Throws output::OutputError.

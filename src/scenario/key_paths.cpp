@@ -64,8 +64,7 @@ void appendSegment(std::string& canonical, const PathSegment& s) {
   canonical += s.isIndex ? fmt::format("[{}]", s.index) : (canonical.empty() ? s.key : "." + s.key);
 }
 
-std::string applyOverride(YAML::Node root, const Override& o, const std::string& file) {
-  const std::vector<PathSegment> segments = splitPath(o, file);
+YAML::Node overrideValue(const Override& o, const std::string& file) {
   YAML::Node value;
   try {
     value = YAML::Load(o.value);
@@ -75,6 +74,12 @@ std::string applyOverride(YAML::Node root, const Override& o, const std::string&
   if (o.value.empty() || value.IsNull()) {
     throw ScenarioError(file, 0, 0, o.path, "expected a value after '='", o.origin);
   }
+  return value;
+}
+
+std::string applyOverride(YAML::Node root, const Override& o, const std::string& file) {
+  const std::vector<PathSegment> segments = splitPath(o, file);
+  const YAML::Node value = overrideValue(o, file);
   std::string canonical;
   YAML::Node cur = root;
   for (size_t k = 0; k < segments.size(); ++k) {
@@ -108,6 +113,65 @@ std::string applyOverride(YAML::Node root, const Override& o, const std::string&
     }
   }
   return canonical;
+}
+
+InPlaceOverrides::InPlaceOverrides(YAML::Node root, std::string file)
+    : root_(std::move(root)), file_(std::move(file)), saved_(YAML::NodeType::Sequence) {}
+
+std::optional<YAML::Node> parentInPlace(const YAML::Node& root, const std::vector<PathSegment>& segments) {
+  // Walked read-only: a const node's operator[] adds nothing to the tree.
+  YAML::Node parent = root;
+  for (size_t k = 0; k + 1 < segments.size(); ++k) {
+    const PathSegment& s = segments[k];
+    const YAML::Node& here = parent;
+    const YAML::Node next = s.isIndex ? (here.IsSequence() && s.index < here.size() ? here[s.index] : YAML::Node())
+                                      : (here.IsMap() ? here[s.key] : YAML::Node());
+    if (!next.IsDefined() || !(next.IsMap() || next.IsSequence())) return std::nullopt;
+    parent.reset(next);
+  }
+  const PathSegment& last = segments.back();
+  const bool reachable = last.isIndex ? parent.IsSequence() && last.index < parent.size() : parent.IsMap();
+  return reachable ? std::optional<YAML::Node>(parent) : std::nullopt;
+}
+
+std::optional<std::string> InPlaceOverrides::apply(const std::vector<PathSegment>& segments, const YAML::Node& value) {
+  const std::optional<YAML::Node> found = parentInPlace(root_, segments);
+  if (!found) return std::nullopt;
+  YAML::Node parent = *found;
+  std::string canonical;
+  for (const PathSegment& s : segments) appendSegment(canonical, s);
+  const PathSegment& last = segments.back();
+  const YAML::Node& here = parent;
+  const bool present = last.isIndex || here[last.key].IsDefined();
+  Change change{parent, last, !present, 0};
+  if (present) {
+    change.slot = changes_.size();
+    while (saved_.size() <= change.slot) saved_.push_back(YAML::Node(YAML::NodeType::Null));
+    if (last.isIndex) {
+      saved_[change.slot] = parent[last.index];
+      parent[last.index] = value;
+    } else {
+      saved_[change.slot] = parent[last.key];
+      parent[last.key] = value;
+    }
+  } else {
+    parent[last.key] = value;
+  }
+  changes_.push_back(std::move(change));
+  return canonical;
+}
+
+void InPlaceOverrides::undo() {
+  for (auto c = changes_.rbegin(); c != changes_.rend(); ++c) {
+    if (c->added) {
+      c->parent.remove(c->segment.key);
+    } else if (c->segment.isIndex) {
+      c->parent[c->segment.index] = saved_[c->slot];
+    } else {
+      c->parent[c->segment.key] = saved_[c->slot];
+    }
+  }
+  changes_.clear();
 }
 
 }  // namespace detail

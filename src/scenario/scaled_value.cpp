@@ -4,7 +4,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <vector>
 
 #include "scenario/key_paths.hpp"
 #include "scenario/scenario_error.hpp"
@@ -14,25 +13,32 @@ namespace particles::scenario {
 
 namespace {
 
-// `node` with every number times `factor`, in YAML flow form; throws `fail` at anything else.
+// Splits `node` into the text around its numbers and the numbers, in YAML flow form; throws
+// `fail` at anything but numbers and lists of them.
 template <class Fail>
-std::string scaledFlow(const YAML::Node& node, double factor, const Fail& fail) {
+void splitNumbers(const YAML::Node& node, std::vector<std::string>& pieces, std::vector<double>& numbers,
+                  const Fail& fail) {
   if (node.IsSequence()) {
-    std::vector<std::string> items;
-    for (const YAML::Node& item : node) items.push_back(scaledFlow(item, factor, fail));
-    return fmt::format("[{}]", fmt::join(items, ", "));
+    pieces.back() += "[";
+    for (size_t i = 0; i < node.size(); ++i) {
+      if (i > 0) pieces.back() += ", ";
+      splitNumbers(node[i], pieces, numbers, fail);
+    }
+    pieces.back() += "]";
+    return;
   }
   double x = 0.0;
   if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, x) || !std::isfinite(x)) {
     fail(node.IsMap() ? std::string("holds a map, not numbers")
                       : fmt::format("holds '{}', not a number", node.IsScalar() ? node.Scalar() : ""));
   }
-  return detail::formatNumber(x * factor);
+  numbers.push_back(x);
+  pieces.emplace_back();
 }
 
 }  // namespace
 
-std::string scaledValueAt(std::string_view text, const std::string& file, const std::string& path, double factor) {
+ScaledValue::ScaledValue(std::string_view text, const std::string& file, const std::string& path) : pieces_(1) {
   const Override o{path, "", ""};
   const std::vector<detail::PathSegment> segments = detail::splitPath(o, file);
   YAML::Node cur = detail::loadOneDocument(std::string(text), file);
@@ -48,10 +54,16 @@ std::string scaledValueAt(std::string_view text, const std::string& file, const 
     cur.reset(next);
   }
   const YAML::Mark m = cur.Mark();
-  return scaledFlow(cur, factor, [&](const std::string& why) {
+  splitNumbers(cur, pieces_, numbers_, [&](const std::string& why) {
     throw ScenarioError(file, m.is_null() ? 0 : m.line + 1, m.is_null() ? 0 : m.column + 1, canonical,
                         fmt::format("cannot scale it: it {}", why));
   });
+}
+
+std::string ScaledValue::times(double factor) const {
+  std::string text = pieces_.front();
+  for (size_t k = 0; k < numbers_.size(); ++k) text += detail::formatNumber(numbers_[k] * factor) + pieces_[k + 1];
+  return text;
 }
 
 }  // namespace particles::scenario

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "core/forces/damped_spring_force.hpp"
 #include "core/grid.hpp"
@@ -17,6 +18,7 @@
 #include "scenario/budget.hpp"
 #include "scenario/entry_args.hpp"
 #include "scenario/key_paths.hpp"
+#include "scenario/part_reader.hpp"
 #include "scenario/references.hpp"
 #include "scenario/yaml_reader.hpp"
 
@@ -53,17 +55,17 @@ int lineOf(const Value& v) {
   return v.node().Mark().is_null() ? 0 : v.node().Mark().line + 1;
 }
 
-class Loader {
+}  // namespace
+
+// Declared in part_reader.hpp, which reads parts of a loaded file again with it.
+class detail::Loader {
  public:
   Loader(detail::Source source, const SceneLimits& limits) : source_(std::move(source)), limits_(limits) {}
 
   Scenario load(const YAML::Node& document) {
     const Value root(source_, document, "", document.Mark());
     detail::checkSceneBudget(root, limits_);
-    std::vector<std::string_view> keys = {"name", "description", "simulation", "render", "particles", "grids",
-                                          "rigid_bodies"};
-    for (const KindSection& section : kindSections()) keys.push_back(section.key);
-    const MapReader top(root, keys);
+    const MapReader top(root, topKeys());
     std::string name = top.required("name").string();
     std::string description = top.optional("description") ? top.optional("description")->string() : "";
     const SimulationSettings simulation = readSimulation(top.optional("simulation"));
@@ -73,7 +75,7 @@ class Loader {
     if (auto v = top.optional("grids")) readGrids(*v);
     if (auto v = top.optional("rigid_bodies")) readBodies(*v);
     for (const KindSection& section : kindSections()) {
-      if (auto v = top.optional(section.key)) readKinds(section, *v);
+      if (auto v = top.optional(section.key)) readKinds(section, *v, builder_);
     }
 
     try {
@@ -86,7 +88,51 @@ class Loader {
     }
   }
 
+  // After load(document): one part of the same tree, changed since in that part alone, read again
+  // as load() reads it, against the names and points load() declared (part_reader.hpp).
+  void setOverridden(std::vector<std::pair<std::string, std::string>> overridden) {
+    source_.overridden = std::move(overridden);
+  }
+  SimulationSettings readSimulationAgain(const YAML::Node& document) {
+    return readSimulation(topOf(document).optional("simulation"));
+  }
+  RenderSettings readRenderAgain(const YAML::Node& document) { return readRender(topOf(document).optional("render")); }
+  void readEntryAgain(const YAML::Node& document, const detail::FilePart& part) {
+    using Kind = detail::FilePart::Kind;
+    const MapReader top = topOf(document);
+    std::optional<Name> name;
+    switch (part.kind) {
+      case Kind::particle: readParticle(top.required("particles").item(part.index), name); break;
+      case Kind::grid: readGrid(top.required("grids").item(part.index), name); break;
+      case Kind::rigidBody: readBody(top.required("rigid_bodies").item(part.index), name); break;
+      case Kind::kindEntry: {
+        const KindSection& section = kindSections().at(part.section);
+        SystemBuilder scratch;  // what the entry builds is of no use here, only its checks
+        readKind(kindsIn(section), top.required(section.key).item(part.index), scratch);
+        break;
+      }
+      case Kind::simulation:
+      case Kind::render: throw std::logic_error("readEntryAgain reads entries of lists, not settings");
+    }
+  }
+
  private:
+  // A name as the file writes it, where it is written, declared after the rest of its entry is read.
+  struct Name {
+    std::string text;
+    Value at;
+  };
+
+  static std::vector<std::string_view> topKeys() {
+    std::vector<std::string_view> keys = {"name",      "description", "simulation",  "render",
+                                          "particles", "grids",       "rigid_bodies"};
+    for (const KindSection& section : kindSections()) keys.push_back(section.key);
+    return keys;
+  }
+  MapReader topOf(const YAML::Node& document) const {
+    return MapReader(Value(source_, document, "", document.Mark()), topKeys());
+  }
+
   // --- settings ----------------------------------------------------------------------------------
   SimulationSettings readSimulation(const std::optional<Value>& v) {
     SimulationSettings s;
@@ -146,44 +192,61 @@ class Loader {
   }
 
   // --- things with names -------------------------------------------------------------------------
+  // An entry read and checked, its name too (when it has one) but not yet declared: the readers
+  // below declare it, readEntryAgain does not (it is declared already).
+  ParticleSpec readParticle(const Value& item, std::optional<Name>& name) {
+    const MapReader m(item, {"name", "pos", "vel", "mass", "fixed"});
+    ParticleSpec p;
+    p.pos = m.required("pos").vec2();
+    if (auto v = m.optional("vel")) p.vel = v->vec2();
+    if (auto v = m.optional("mass")) p.mass = v->positive();
+    if (auto v = m.optional("fixed")) p.fixed = v->boolean();
+    if (auto v = m.optional("name")) {
+      p.name = v->string();
+      name = Name{p.name, *v};
+    }
+    return p;
+  }
+
   void readParticles(const Value& list) {
     for (const Value& item : list.items()) {
-      const MapReader m(item, {"name", "pos", "vel", "mass", "fixed"});
-      ParticleSpec p;
-      p.pos = m.required("pos").vec2();
-      if (auto v = m.optional("vel")) p.vel = v->vec2();
-      if (auto v = m.optional("mass")) p.mass = v->positive();
-      if (auto v = m.optional("fixed")) p.fixed = v->boolean();
-      if (auto v = m.optional("name")) {
-        p.name = v->string();
-        names_.add(*v, p.name, {NameTable::Kind::Particle, builder_.numParticles(), {}, lineOf(*v)});
-      }
+      std::optional<Name> name;
+      const ParticleSpec p = readParticle(item, name);
+      if (name)
+        names_.add(name->at, p.name, {NameTable::Kind::Particle, builder_.numParticles(), {}, lineOf(name->at)});
       addParticle(p);
       book_.particleNames.push_back(p.name.empty() ? fmt::format("#{}", book_.particleNames.size()) : p.name);
     }
   }
 
+  GridSpec readGrid(const Value& item, std::optional<Name>& nameAt) {
+    const MapReader m(item, {"name", "origin", "size", "spacing", "mass", "springs"});
+    GridSpec g;
+    const Value name = m.required("name");
+    g.name = name.string();
+    nameAt = Name{g.name, name};
+    if (auto v = m.optional("origin")) g.origin = v->vec2();
+    const Value size = m.required("size");
+    if (!size.isSequence() || size.node().size() != 2) {
+      size.fail(fmt::format("expected [columns, rows], {}", size.found()));
+    }
+    g.cols = int(size.item(0).integer(1, kMaxGridSide));
+    g.rows = int(size.item(1).integer(1, kMaxGridSide));
+    if (auto v = m.optional("spacing")) g.spacing = v->positiveVec2();
+    if (auto v = m.optional("mass")) g.mass = v->positive();
+    if (auto springs = m.optional("springs")) {
+      const MapReader sm(*springs, {"structural", "shear", "flexion"});
+      if (auto f = sm.optional("structural")) g.structural = readSpringFamily(*f);
+      if (auto f = sm.optional("shear")) g.shear = readSpringFamily(*f);
+      if (auto f = sm.optional("flexion")) g.flexion = readSpringFamily(*f);
+    }
+    return g;
+  }
+
   void readGrids(const Value& list) {
     for (const Value& item : list.items()) {
-      const MapReader m(item, {"name", "origin", "size", "spacing", "mass", "springs"});
-      GridSpec g;
-      const Value name = m.required("name");
-      g.name = name.string();
-      if (auto v = m.optional("origin")) g.origin = v->vec2();
-      const Value size = m.required("size");
-      if (!size.isSequence() || size.node().size() != 2) {
-        size.fail(fmt::format("expected [columns, rows], {}", size.found()));
-      }
-      g.cols = int(size.item(0).integer(1, kMaxGridSide));
-      g.rows = int(size.item(1).integer(1, kMaxGridSide));
-      if (auto v = m.optional("spacing")) g.spacing = v->positiveVec2();
-      if (auto v = m.optional("mass")) g.mass = v->positive();
-      if (auto springs = m.optional("springs")) {
-        const MapReader sm(*springs, {"structural", "shear", "flexion"});
-        if (auto f = sm.optional("structural")) g.structural = readSpringFamily(*f);
-        if (auto f = sm.optional("shear")) g.shear = readSpringFamily(*f);
-        if (auto f = sm.optional("flexion")) g.flexion = readSpringFamily(*f);
-      }
+      std::optional<Name> name;
+      const GridSpec g = readGrid(item, name);
       const bool hasSprings = g.structural || g.shear || g.flexion;
       DampedSpringForce scratch;
       const GridIndices indices = addGrid(builder_, hasSprings ? builder_.sharedForce<DampedSpringForce>("grid springs") : scratch, g);
@@ -192,7 +255,7 @@ class Loader {
           book_.particlePos.push_back(g.origin + Vec2(c * g.spacing.x(), -r * g.spacing.y()));
           book_.particleNames.push_back(fmt::format("{}[{}][{}]", g.name, r, c));
         }
-      names_.add(name, g.name, {NameTable::Kind::Grid, -1, indices, lineOf(name)});
+      names_.add(name->at, g.name, {NameTable::Kind::Grid, -1, indices, lineOf(name->at)});
       names_.numParticles = builder_.numParticles();
     }
   }
@@ -212,20 +275,27 @@ class Loader {
     return f;
   }
 
+  RigidBodySpec readBody(const Value& item, std::optional<Name>& name) {
+    const MapReader m(item, {"name", "pos", "angle", "size", "mass", "vel", "omega"});
+    RigidBodySpec b;
+    b.pos = m.required("pos").vec2();
+    b.size = m.required("size").positiveVec2();
+    if (auto v = m.optional("angle")) b.angle = v->number();
+    if (auto v = m.optional("mass")) b.mass = v->positive();
+    if (auto v = m.optional("vel")) b.vel = v->vec2();
+    if (auto v = m.optional("omega")) b.omega = v->number();
+    if (auto v = m.optional("name")) {
+      b.name = v->string();
+      name = Name{b.name, *v};
+    }
+    return b;
+  }
+
   void readBodies(const Value& list) {
     for (const Value& item : list.items()) {
-      const MapReader m(item, {"name", "pos", "angle", "size", "mass", "vel", "omega"});
-      RigidBodySpec b;
-      b.pos = m.required("pos").vec2();
-      b.size = m.required("size").positiveVec2();
-      if (auto v = m.optional("angle")) b.angle = v->number();
-      if (auto v = m.optional("mass")) b.mass = v->positive();
-      if (auto v = m.optional("vel")) b.vel = v->vec2();
-      if (auto v = m.optional("omega")) b.omega = v->number();
-      if (auto v = m.optional("name")) {
-        b.name = v->string();
-        names_.add(*v, b.name, {NameTable::Kind::Body, builder_.numBodies(), {}, lineOf(*v)});
-      }
+      std::optional<Name> name;
+      const RigidBodySpec b = readBody(item, name);
+      if (name) names_.add(name->at, b.name, {NameTable::Kind::Body, builder_.numBodies(), {}, lineOf(name->at)});
       builder_.addRigidBody(b);
       book_.bodyPos.push_back(b.pos);
       book_.bodyAngle.push_back(b.angle);
@@ -234,15 +304,28 @@ class Loader {
   }
 
   // --- forces, constraints, colliders, the mouse: kinds described in the core ----------------------
-  void readKinds(const KindSection& section, const Value& list) {
-    const std::vector<const KindSpec*> kinds = kindsOf(section.key);
+  // The kinds of a section and their type names.
+  struct SectionKinds {
+    const KindSection& section;
+    std::vector<const KindSpec*> kinds;
     std::vector<std::string> types;
-    for (const KindSpec* k : kinds) types.emplace_back(k->type);
-    for (const Value& item : list.items()) {
-      const KindSpec& kind = section.typed ? *findKind(section.key, readType(item, types)) : *kinds.front();
-      const detail::EntryArgs args(kind, item, section.typed, names_, book_);
-      kind.build(args, builder_);
-    }
+  };
+  static SectionKinds kindsIn(const KindSection& section) {
+    SectionKinds out{section, kindsOf(section.key), {}};
+    for (const KindSpec* k : out.kinds) out.types.emplace_back(k->type);
+    return out;
+  }
+
+  // An entry reads the names and points declared before it, and nothing of the other entries.
+  void readKind(const SectionKinds& in, const Value& item, SystemBuilder& builder) const {
+    const KindSpec& kind = in.section.typed ? *findKind(in.section.key, readType(item, in.types)) : *in.kinds.front();
+    const detail::EntryArgs args(kind, item, in.section.typed, names_, book_);
+    kind.build(args, builder);
+  }
+
+  void readKinds(const KindSection& section, const Value& list, SystemBuilder& builder) const {
+    const SectionKinds in = kindsIn(section);
+    for (const Value& item : list.items()) readKind(in, item, builder);
   }
 
   // --- helpers -------------------------------------------------------------------------------------
@@ -259,6 +342,20 @@ class Loader {
   detail::PointBook book_;
 };
 
+namespace {
+
+// yaml-cpp's conversions that can throw are not used; anything it still throws is reported at its
+// mark rather than escaping as an unexplained exception.
+template <class Read>
+auto readingYaml(const std::string& file, const Read& read) {
+  try {
+    return read();
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",
+                        fmt::format("cannot read YAML: {}", e.msg));
+  }
+}
+
 Scenario loadDocument(const std::string& text, const std::string& file, std::span<const Override> overrides,
                       const SceneLimits& limits) {
   YAML::Node root = detail::loadOneDocument(text, file);
@@ -268,17 +365,45 @@ Scenario loadDocument(const std::string& text, const std::string& file, std::spa
   }
   detail::Source source{file, {}};
   for (const Override& o : overrides) source.overridden.emplace_back(detail::applyOverride(root, o, file), o.origin);
-  try {
-    return Loader(std::move(source), limits).load(root);
-  } catch (const YAML::Exception& e) {
-    // The loader only uses non-throwing conversions; anything yaml-cpp still throws is reported
-    // at its mark rather than escaping as an unexplained exception.
-    throw ScenarioError(file, e.mark.is_null() ? 0 : e.mark.line + 1, e.mark.is_null() ? 0 : e.mark.column + 1, "",
-                        fmt::format("cannot read YAML: {}", e.msg));
-  }
+  return readingYaml(file, [&] { return detail::Loader(std::move(source), limits).load(root); });
 }
 
 }  // namespace
+
+namespace detail {
+
+PartReader::PartReader(std::string file, const SceneLimits& limits)
+    : file_(std::move(file)),
+      limits_(std::make_unique<SceneLimits>(limits)),
+      loader_(std::make_unique<Loader>(Source{file_, {}}, *limits_)) {}
+PartReader::~PartReader() = default;
+PartReader::PartReader(PartReader&&) noexcept = default;
+PartReader& PartReader::operator=(PartReader&&) noexcept = default;
+
+Scenario PartReader::load(const YAML::Node& document, OverriddenPaths overridden) {
+  loader_->setOverridden(std::move(overridden));
+  return readingYaml(file_, [&] { return loader_->load(document); });
+}
+
+SimulationSettings PartReader::readSimulation(const YAML::Node& document, OverriddenPaths overridden) {
+  loader_->setOverridden(std::move(overridden));
+  return readingYaml(file_, [&] { return loader_->readSimulationAgain(document); });
+}
+
+RenderSettings PartReader::readRender(const YAML::Node& document, OverriddenPaths overridden) {
+  loader_->setOverridden(std::move(overridden));
+  return readingYaml(file_, [&] { return loader_->readRenderAgain(document); });
+}
+
+void PartReader::readEntry(const YAML::Node& document, const FilePart& part, OverriddenPaths overridden) {
+  loader_->setOverridden(std::move(overridden));
+  readingYaml(file_, [&] {
+    loader_->readEntryAgain(document, part);
+    return 0;
+  });
+}
+
+}  // namespace detail
 
 long SimulationSettings::steps() const {
   // The tolerance keeps 10 s / 0.01 s at 1000 steps despite rounding in the division.

@@ -30,11 +30,15 @@ bool startsWithPath(const std::string& path, const std::string& prefix) {
 class DocumentMarks final : public YAML::EventHandler {
  public:
   std::vector<YAML::Mark> starts;
+  bool aliases = false;  // whether a node is repeated by an alias (`*name`)
 
   void OnDocumentStart(const YAML::Mark&) override { wanted_ = true; }
   void OnDocumentEnd() override {}
   void OnNull(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
-  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override { node(m); }
+  void OnAlias(const YAML::Mark& m, YAML::anchor_t) override {
+    aliases = true;
+    node(m);
+  }
   void OnScalar(const YAML::Mark& m, const std::string&, YAML::anchor_t, const std::string&) override { node(m); }
   void OnSequenceStart(const YAML::Mark& m, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {
     node(m);
@@ -177,7 +181,7 @@ class ShapeCheck final : public YAML::EventHandler {
 // The file's one document. yaml-cpp 0.7's LoadAll never returns on some malformed input (a lone
 // ',': the parser reports document after document without reading on, yaml-cpp issue 1040), so the
 // documents are counted through the event parser, two at most, and the first is loaded alone.
-YAML::Node loadOneDocument(const std::string& text, const std::string& file) {
+YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases) {
   try {
     std::istringstream in(text);
     YAML::Parser parser(in);
@@ -191,6 +195,7 @@ YAML::Node loadOneDocument(const std::string& text, const std::string& file) {
                           movedOn ? "the file holds more than one YAML document; expected one scenario"
                                   : "YAML syntax error: cannot read on from here (a stray ',' or bracket?)");
     }
+    if (aliases) *aliases = marks.aliases;
     YAML::Node root = YAML::Load(text);
     if (marks.starts.empty() || root.IsNull()) {
       throw ScenarioError(file, 1, 1, "", "the file is empty; expected a scenario (a map with at least 'name')");

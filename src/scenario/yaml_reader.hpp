@@ -21,8 +21,9 @@ namespace particles::scenario::detail {
 
 // The one document of a scenario's text, which must not be empty; throws ScenarioError at the
 // second document or at a syntax error. Works around yaml-cpp 0.7's LoadAll, which never returns
-// on some malformed input (yaml-cpp issue 1040).
-YAML::Node loadOneDocument(const std::string& text, const std::string& file);
+// on some malformed input (yaml-cpp issue 1040). With `aliases`, sets it to whether the document
+// repeats a node by an alias (`*name`): its tree then holds that node at two key paths.
+YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases = nullptr);
 
 // The most a file read whole may hold, checked before any of its nodes is built (a sweep file, a
 // golden manifest): each limit's message is the file's own, since it says how to split the file.
