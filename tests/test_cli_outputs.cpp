@@ -206,7 +206,9 @@ TEST_CASE("issue 26 row 15: an output at a FIFO nobody reads is refused at once,
       {"run s.yaml --quiet --stats k.csv", 3, "error: cannot write k.csv: it is a FIFO and no process is reading it\n"},
       {"plot good.csv -o k.svg --quiet", 3, "error: cannot write k.svg: it is a FIFO and no process is reading it\n"},
       {"sweep sweep.yaml -o out --emit parallel --quiet", 3,
-       "error: cannot write " + (s.dir / "out/jobs.csv").string() + ": it is a FIFO and no process is reading it\n"},
+       // The sweep's own folder: a FIFO there is refused whether or not someone reads it (issue 39).
+       "error: cannot write " + (s.dir / "out/jobs.csv").string() + ": it is a FIFO; a file of " +
+           (s.dir / "out").string() + " is a regular file\n"},
       {"run s.yaml --quiet --record record.txt", 2,
        "error: --record record.txt: not a regular file; a record is a regular file\n"},
   };

@@ -22,7 +22,8 @@ struct JobEstimate {
 };
 
 // The estimate (app/job_cost.hpp) of each of `jobs` (indices into plan.jobs): its scenario loaded
-// with what its command line overrides. Cost 0 for a concat job (nothing to simulate) and for a
+// with what its command line overrides; for a scenario with more than 64 jobs, the first job's
+// estimate for all of them (sweep_schedule.cpp: loading each would delay the first job). Cost 0 for a concat job (nothing to simulate) and for a
 // job whose scenario does not load (it fails at once, saying why).
 std::vector<JobEstimate> estimateJobs(const SweepPlan& plan, const std::vector<size_t>& jobs,
                                       std::uintmax_t maxInputMiB);

@@ -116,7 +116,12 @@ PendingOutput::PendingOutput(const ConfinedFolder& folder, const fs::path& relat
   PlacedName placed = folder.place(relative, true, ConfinedFolder::Create::yes);
   target_ = placed.shown;
   if (placed.kind != EntryKind::absent && placed.kind != EntryKind::regular) {
-    fail(placed.kind == EntryKind::directory ? "it is a directory" : "it is not a regular file");
+    // A file of the command's own folder is a regular file: a device or FIFO there is refused at
+    // once, never written in place (nor waited on), whoever reads it.
+    struct stat st {};
+    const bool known = ::fstatat(placed.folder.get(), placed.name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0;
+    fail(fmt::format("it is {}; a file of {} is a regular file", known ? fileKind(st.st_mode) : "not a regular file",
+                     folder.root().string()));
   }
   folder_ = std::move(placed.folder);
   name_ = std::move(placed.name);
