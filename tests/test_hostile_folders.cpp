@@ -45,6 +45,14 @@ struct Hostile : Scratch {
     write("m.yaml", "references: refs\nstates:\n  - {scenario: springs.yaml, times: [0.1]}\n");
     fs::create_directories(dir / "refs");
   }
+  // A report of a failing state check in `folder`: the reference changed after it was made, so the
+  // check keeps its actual and expected files.
+  void failingReport(const std::string& folder) const {
+    statesManifest();
+    REQUIRE(run("golden update m.yaml -q").code == 0);
+    write("refs/springs.csv", slurp(dir / "refs/springs.csv") + "0.1,extra,1,1,1,1,0,0\n");
+    REQUIRE(run("golden check m.yaml -o " + folder + " -q").code != 0);
+  }
   static bool says(const particles::test::Result& r, const std::string& what) {
     return r.err.find(what) != std::string::npos || r.out.find(what) != std::string::npos;
   }
@@ -149,11 +157,7 @@ TEST_CASE("golden -o: only a folder that is entirely an earlier report is replac
 
 TEST_CASE("golden report: kept files that collide or are claimed twice are refused, exit 2") {
   Hostile s;
-  s.statesManifest();
-  REQUIRE(s.run("golden update m.yaml -q").code == 0);
-  s.write("refs/springs.csv", slurp(s.dir / "refs/springs.csv") + "0.1,extra,1,1,1,1,0,0\n");
-  // A failing check keeps its actual and expected files; two copies of the report, renamed.
-  REQUIRE(s.run("golden check m.yaml -o a -q").code != 0);
+  s.failingReport("a");  // two copies of it, one renamed
   const std::string json = slurp(s.dir / "a/results.json");
   REQUIRE(json.find("\"springs\"") != std::string::npos);
   fs::copy(s.dir / "a", s.dir / "b", fs::copy_options::recursive);
@@ -186,10 +190,7 @@ TEST_CASE("golden report: kept files that collide or are claimed twice are refus
 
 TEST_CASE("golden: names with control bytes reach the terminal escaped") {
   Hostile s;
-  s.statesManifest();
-  REQUIRE(s.run("golden update m.yaml -q").code == 0);
-  s.write("refs/springs.csv", slurp(s.dir / "refs/springs.csv") + "0.1,extra,1,1,1,1,0,0\n");
-  REQUIRE(s.run("golden check m.yaml -o a -q").code != 0);
+  s.failingReport("a");
   std::string text = slurp(s.dir / "a/results.json");
   const std::string from = "\"name\": \"springs\"";
   REQUIRE(text.find(from) != std::string::npos);
@@ -281,12 +282,18 @@ TEST_CASE("sweep: an output folder whose jobs/, jobs.csv or job list leads elsew
           "scenarios: [springs.yaml]\ncommand: run\noptions: {duration: 0.1}\n"
           "parameters:\n  - {key: \"forces[1].ks\", values: [50, 60]}\n");
   fs::create_directories(s.dir / "out");
-  SUBCASE("jobs/ a link to a folder elsewhere") { fs::create_symlink(s.decoy, s.dir / "out/jobs"); }
+  SUBCASE("jobs/ a link to a folder elsewhere") {
+    fs::create_symlink(s.decoy, s.dir / "out/jobs");
+  }
   SUBCASE("jobs.csv a link to a file elsewhere") {
     fs::create_symlink(s.decoy / "notes.txt", s.dir / "out/jobs.csv");
   }
-  SUBCASE("jobs.txt a dangling link out") { fs::create_symlink("../decoy/new.txt", s.dir / "out/jobs.txt"); }
-  SUBCASE("sweep.sbatch a link out") { fs::create_symlink("../decoy/figure.png", s.dir / "out/sweep.sbatch"); }
+  SUBCASE("jobs.txt a dangling link out") {
+    fs::create_symlink("../decoy/new.txt", s.dir / "out/jobs.txt");
+  }
+  SUBCASE("sweep.sbatch a link out") {
+    fs::create_symlink("../decoy/figure.png", s.dir / "out/sweep.sbatch");
+  }
   const auto parallel = s.run("sweep sw.yaml -o out --emit parallel");
   const auto slurm = s.run("sweep sw.yaml -o out --emit slurm");
   CHECK(parallel.code + slurm.code >= 2);
