@@ -339,7 +339,12 @@ TEST_CASE("golden manifest: the file as a whole") {
   }
   SUBCASE("more checks than a manifest may make, refused before the rest is read") {
     std::string times;
-    for (int i = 0; i < 60'000; ++i) times += (i ? "," : "") + std::to_string(i);
+    for (int i = 0; i < 60'000; ++i) {
+      // Not `(i ? "," : "") + std::to_string(i)`: GCC 12 at -O3 sees a memcpy overlap there
+      // (-Wrestrict, a false positive: GCC bug 105329).
+      if (i > 0) times += ',';
+      times += std::to_string(i);
+    }
     const std::string yaml =
         "frames:\n  - {scenario: a.yaml, times: [" + times + "]}\n  - {scenario: b.yaml, times: [" + times + "]}\n";
     expectError(yaml, 3, 5, "frames[1]", "more than 100000 checks");
