@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "output/output_error.hpp"
-#include "output/pending_output.hpp"
+#include "output/output_file.hpp"
 
 namespace particles::output {
 
@@ -162,9 +162,7 @@ PlacedName ConfinedFolder::place(const fs::path& relative, bool followLast, Crea
 
 EntryKind ConfinedFolder::kindOf(const fs::path& relative) const {
   try {
-    return place(relative, true).kind;
-  } catch (const OutsideFolderError&) {
-    throw;
+    return place(relative, true).kind;  // OutsideFolderError, no OutputError, goes on to the caller
   } catch (const OutputError&) {
     return EntryKind::absent;  // a file where a folder should be: nothing of that name
   }
@@ -188,14 +186,8 @@ FileDescriptor ConfinedFolder::openFolder(const fs::path& relative, Create creat
 }
 
 void ConfinedFolder::writeFile(const fs::path& relative, std::string_view bytes) const {
-  PendingOutput out(*this, relative);
-  size_t written = 0;
-  while (written < bytes.size()) {
-    const ssize_t n = ::write(out.fd(), bytes.data() + written, bytes.size() - written);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) throw OutputError(fmt::format("cannot write {}: {}", shown(relative).string(), errnoText(errno)));
-    written += size_t(n);
-  }
+  OutputFile out(*this, relative);
+  out.write(bytes);
   out.commit();
 }
 

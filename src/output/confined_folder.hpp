@@ -95,7 +95,7 @@ class ConfinedFolder {
   // Throws OutsideFolderError, or OutputError when it is missing or not a folder.
   FileDescriptor openFolder(const std::filesystem::path& relative, Create create) const;
 
-  // Writes `bytes` to `relative` whole (output::PendingOutput: a temporary in the same folder,
+  // Writes `bytes` to `relative` whole (output::OutputFile: a temporary in the same folder,
   // renamed over the name on success), making the folders on its way. A link at the end that stays
   // beneath is followed: its target is replaced, the link stays. Anything but a regular file or
   // nothing at the end is refused (OutsideFolderError when it leads out, OutputError otherwise).
