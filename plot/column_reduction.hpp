@@ -9,8 +9,8 @@
 // Internal to plot/.
 //
 // Why: cairo rasterises a stroke as one polygon, at a cost that grows with its edges times the rows
-// they cross; 100,000 points alternating ±1 took 8.8 s to draw into a PNG (issue 26), and cost
-// about 0.3 µs per row once reduced (bench/bench_plot.cpp, bench/README.md).
+// they cross: 100,000 points alternating ±1 took seconds to draw into a PNG (issue 26), and a small
+// cost per row once reduced (bench/bench_plot.cpp; bench/README.md, "Figures of long runs").
 
 #include <cstddef>
 #include <vector>
@@ -26,8 +26,8 @@ struct Point {
 // a 1200 × 800 stats figure of 100,000 rows (a random walk): with whole-pixel columns the PNG
 // differed from the full line's by up to 205 of 255 in 0.5 % of its pixels; with quarter pixels by
 // at most 49, in 0.01 % (tests/test_plot_reduction.cpp checks the same on a small image). The
-// price: 300,000 rows alternating ±1 to PNG took 0.19 s of CPU with whole pixels, 0.39 s with
-// quarters (the whole `particles plot`, of which 0.12 s is reading the CSV and encoding).
+// price: quarter pixels take about twice the CPU of whole ones (bench/README.md, "Figures of long
+// runs").
 inline constexpr double kReductionColumnPx = 0.25;
 
 // `run` reduced column by column (columns are [k·w, (k + 1)·w) in x for integer k, w =

@@ -9,9 +9,7 @@
 namespace particles::render {
 
 bool isX264Preset(const std::string& name) {
-  static const char* const presets[] = {"ultrafast", "superfast", "veryfast", "faster",   "fast",
-                                        "medium",    "slow",      "slower",   "veryslow", "placebo"};
-  return std::any_of(std::begin(presets), std::end(presets), [&](const char* p) { return name == p; });
+  return std::find(kX264Presets.begin(), kX264Presets.end(), name) != kX264Presets.end();
 }
 
 int VideoOptions::keyframeInterval() const {

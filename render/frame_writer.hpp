@@ -28,12 +28,15 @@
 // when the output is already complete. Letting the writer go out of scope (an exception unwinding
 // the loop) has the same effect as abort().
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
+#include "core/drawing.hpp"
 #include "render/image.hpp"
 #include "render/output_formats.hpp"
 #include "render/png_io.hpp"
@@ -60,11 +63,11 @@ struct VideoOptions {
   // Constant rate factor (quality) of the encoder, in the range of its format's row
   // (render/output_formats.hpp; crfOf). Nothing: the row's default.
   std::optional<int> crf;
-  // x264 preset: ultrafast … placebo. Encoding alone, 25×25 cloth at 1280×720 on 2 shared cores:
-  // medium about 55 frames/s, veryfast about 114 frames/s with 5 % larger files.
+  // x264 preset: ultrafast … placebo (kX264Presets). veryfast encodes about twice as fast as
+  // medium, for slightly larger files (bench/README.md, "Measurements behind choices in the source").
   std::string preset = "medium";
-  // x264 tune, "" for none. "animation" sounds right for line art but measured worse on the 25×25
-  // cloth at 1280×720, crf 18: 15 % larger files and no faster than none.
+  // x264 tune, "" for none. "animation" sounds right for line art but measured worse on the cloth:
+  // larger files and no faster than none (bench/README.md, "Measurements behind choices in the source").
   std::string tune;
   // Longest time between keyframes, s: a web player seeks to the keyframe before the time asked
   // for and decodes on from there, so 2 s keeps scrubbing quick. x264's default, 250 frames, is
@@ -81,8 +84,17 @@ struct VideoOptions {
 };
 // The largest --keyint, s: an hour.
 inline constexpr double kMaxKeyintSeconds = 3600.0;
+// The frame rates every output takes (render --fps, whole frames a second; the video writers check
+// them again): from 1 to particles::kMaxFps (core/drawing.hpp), a scenario's largest render.fps.
+inline constexpr int kMinFps = 1;
+using particles::kMaxFps;
 
-// True for the names x264 accepts as --preset.
+// The names x264 accepts as --preset, fastest first (x264 --fullhelp). The help shows the range
+// up to veryslow: placebo, the last, costs far more for no visible gain.
+inline constexpr std::array<std::string_view, 10> kX264Presets = {
+    "ultrafast", "superfast", "veryfast", "faster", "fast", "medium", "slow", "slower", "veryslow", "placebo"};
+
+// True for the names x264 accepts as --preset (kX264Presets).
 bool isX264Preset(const std::string& name);
 
 struct FrameWriterOptions {

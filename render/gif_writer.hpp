@@ -6,7 +6,8 @@
 //      histogram and kept, deflated (zlib level 1), in memory;
 //   2. in finish(): palettegen gives the palette; each kept frame is inflated again, mapped to the
 //      palette by paletteuse, encoded and muxed.
-// Kept frames cost little: a 1280×720 cloth frame (3.7 MB) deflates to about 70 kB in 5 ms.
+// Kept frames cost little: a cloth frame deflates to a fiftieth of its size, in a fraction of the
+// time the frame took to draw (bench/README.md, "Measurements behind choices in the source").
 //
 // Palette: palettegen's stats_mode=full counts every pixel of every frame, so the flat colours
 // that cover most of a frame (background, particles, bodies) get exact entries and the rest

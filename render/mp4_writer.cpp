@@ -1,5 +1,7 @@
 #include "render/mp4_writer.hpp"
 
+#include <fmt/format.h>
+
 #include <string>
 
 #include "render/output_formats.hpp"
@@ -10,12 +12,11 @@ namespace particles::render {
 namespace {
 
 void validate(const FrameWriterOptions& o) {
-  validateYuvVideo(o, "MP4 (H.264, yuv420p)");
+  validateYuvVideo(outputFormat(OutputKind::mp4), o);
   crfOf(outputFormat(OutputKind::mp4), o.video.crf);
   if (!isX264Preset(o.video.preset)) {
-    throw std::invalid_argument("unknown x264 preset '" + o.video.preset +
-                                "' (ultrafast, superfast, veryfast, faster, fast, medium, slow, slower, veryslow, "
-                                "placebo)");
+    throw std::invalid_argument(
+        fmt::format("unknown x264 preset '{}' ({})", o.video.preset, fmt::join(kX264Presets, ", ")));
   }
   static const char* const tunes[] = {"",     "film", "animation",  "grain",      "stillimage",
                                       "psnr", "ssim", "fastdecode", "zerolatency"};

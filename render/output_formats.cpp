@@ -37,6 +37,8 @@ const std::array<OutputFormat, 5> kOutputFormats{{
      .crf = CrfRange{0, 51, 18},
      // Segments join without re-encoding (particles concat).
      .splits = true,
+     .joinedByConcat = true,
+     .halvedChroma = "yuv420p",
      .open = &openWriter<Mp4Writer>},
     {.kind = OutputKind::webm,
      .extension = ".webm",
@@ -51,6 +53,8 @@ const std::array<OutputFormat, 5> kOutputFormats{{
      .crf = CrfRange{0, 63, 31},
      // Its keyframes and alpha stream would not join.
      .splits = false,
+     .halvedChroma = "yuv420p",
+     .halvedChromaAlpha = "yuva420p",
      .open = &openWriter<WebmWriter>},
     {.kind = OutputKind::gif,
      .extension = ".gif",
@@ -192,9 +196,29 @@ void checkFormatOptions(const OutputFormat& format, const std::filesystem::path&
         rowsWhere(&OutputFormat::splits, &OutputFormat::name, "and"),
         rowsWhere(&OutputFormat::splits, &OutputFormat::example, "or"), format.name, path.string()));
   }
-  if (!format.takesHud && options.hud) {
-    throw std::invalid_argument(fmt::format("--hud: not for {} output ({})", format.name, path.string()));
+  if (options.hud && options.transparentBackground) {
+    throw std::invalid_argument("--hud draws an opaque panel over the frame: not with --background transparent");
   }
+}
+
+void checkFrameSize(const OutputFormat& format, int width, int height, bool alpha) {
+  if (format.halvedChroma.empty() || (width >= 2 && height >= 2 && width % 2 == 0 && height % 2 == 0)) return;
+  const std::string_view pixels = alpha && format.keepsAlpha ? format.halvedChromaAlpha : format.halvedChroma;
+  throw std::invalid_argument(fmt::format(
+      "{} ({}, {}) needs an even width and height; {}x{} is not (try {}x{}, or write PNG frames)", format.name,
+      format.codec, pixels, width, height, width + (width & 1), height + (height & 1)));
+}
+
+void checkConcatOutput(const std::filesystem::path& path) {
+  bool joined = false;
+  try {
+    joined = outputFormatOf(path).joinedByConcat;
+  } catch (const std::invalid_argument&) {
+    // No format at all: refused below like any other that concat does not write.
+  }
+  if (joined) return;
+  throw std::invalid_argument(fmt::format("-o {}: the joined video must be a {} file", path.string(),
+                                          rowsWhere(&OutputFormat::joinedByConcat, &OutputFormat::extension, "or")));
 }
 
 std::string outputHelp() {
@@ -212,8 +236,9 @@ std::string atHelp() {
 std::string framesHelp() {
   return fmt::format(
       "Render frames A … B−1 only (A:B; A: to the end), each the same as in the whole render, for {} output "
-      "(join MP4 segments with concat)",
-      rowsWhere(&OutputFormat::splits, &OutputFormat::name, "and"));
+      "(join {} segments with concat)",
+      rowsWhere(&OutputFormat::splits, &OutputFormat::name, "and"),
+      rowsWhere(&OutputFormat::joinedByConcat, &OutputFormat::name, "and"));
 }
 
 std::string fpsHelp() {
@@ -243,10 +268,24 @@ std::string crfHelp() {
   return help;
 }
 
+std::string frameSizeHelp() {
+  const auto halvesChroma = [](const OutputFormat& f) { return !f.halvedChroma.empty(); };
+  const auto anySize = [&](const OutputFormat& f) { return !halvesChroma(f); };
+  const auto first = std::find_if(kOutputFormats.begin(), kOutputFormats.end(), halvesChroma);
+  if (first == kOutputFormats.end()) return "Every format takes any size.";
+  return fmt::format("Odd sizes are refused for {} ({} needs even sizes); {} take any size.",
+                     rowsWhere(halvesChroma, &OutputFormat::name, "and"), first->halvedChroma,
+                     rowsWhere(anySize, &OutputFormat::name, "and"));
+}
+
+std::string concatOutputHelp() {
+  return fmt::format("The joined video ({})", rowsWhere(&OutputFormat::joinedByConcat, &OutputFormat::extension, "or"));
+}
+
 std::string outputFormatsMarkdown() {
   std::string table =
       "| `-o` | what | `--background transparent` | `--crf` (default) | `--frames` | fps cap | `--at T` | "
-      "`--hud` |\n"
+      "odd sizes |\n"
       "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
   const auto yesNo = [](bool yes) { return yes ? "yes" : "no"; };
   for (const OutputFormat& f : kOutputFormats) {
@@ -254,7 +293,8 @@ std::string outputFormatsMarkdown() {
         "| `{}` | {} | {}: {} | {} | {} | {} | {} | {} |\n", f.example, f.contents, yesNo(f.keepsAlpha), f.alphaNote,
         f.crf ? fmt::format("{} … {} ({})", f.crf->lowest, f.crf->highest, f.crf->byDefault) : "no", yesNo(f.splits),
         f.fpsCap ? fmt::format("at most {} ({} unless `--fps` says)", f.fpsCap->most, f.fpsCap->byDefault) : "no cap",
-        f.oneFrameAt ? "required" : "no", yesNo(f.takesHud));
+        f.oneFrameAt ? "required" : "no",
+        f.halvedChroma.empty() ? std::string("yes") : fmt::format("no ({})", f.halvedChroma));
   }
   return table;
 }

@@ -54,12 +54,16 @@ struct OutputFormat {
   std::optional<CrfRange> crf = std::nullopt;  // nothing: no quality setting (--crf refused)
   // A range of the frames can be rendered alone (--frames, a split render) and joined again.
   bool splits = false;
+  // Its segments are joined by `particles concat` (render/mp4_concat.hpp), without re-encoding.
+  bool joinedByConcat = false;
+  // Its pixels keep chroma at half the width and height, so a frame's sides must be even: the pixel
+  // format, and the one with alpha where alpha is kept, for the refusal. Empty: any size.
+  std::string_view halvedChroma = {};
+  std::string_view halvedChromaAlpha = {};
   std::optional<FpsCap> fpsCap = std::nullopt;  // nothing: any rate the command line takes
   // One frame at a time given by --at (which is then required); every other format is a run of
   // frames, and refuses --at.
   bool oneFrameAt = false;
-  // --hud's panel can be drawn over the frames.
-  bool takesHud = true;
   // Nothing for the one frame at --at: renderSimulation draws it and writes it with writePng.
   OpenFrameWriter open = nullptr;
 };
@@ -83,12 +87,17 @@ struct FormatOptions {
 };
 
 // Refuses the options `format` does not take, naming the option and the output `path` and saying
-// which formats do: std::invalid_argument.
+// which formats do, and --hud's opaque panel over a transparent background: std::invalid_argument.
 void checkFormatOptions(const OutputFormat& format, const std::filesystem::path& path, const FormatOptions& options);
 // The frames' alpha: refused where the format cannot keep it (std::invalid_argument).
 void checkAlpha(const OutputFormat& format, const std::filesystem::path& path, bool alpha);
 // The frame rate against the format's cap (std::invalid_argument).
 void checkFps(const OutputFormat& format, int fps);
+// A frame size the format can store: even sides where its chroma is halved (std::invalid_argument,
+// suggesting the next even size).
+void checkFrameSize(const OutputFormat& format, int width, int height, bool alpha);
+// The joined video of `particles concat`: a path of a format joinedByConcat (std::invalid_argument).
+void checkConcatOutput(const std::filesystem::path& path);
 // A crf asked for, against the format's range; std::invalid_argument for one out of range or
 // given to a format without one.
 void checkCrf(const OutputFormat& format, std::optional<int> crf);
@@ -104,6 +113,10 @@ std::string framesHelp();
 std::string fpsHelp();
 std::string backgroundHelp();
 std::string crfHelp();
+// render's help on frame sizes: which formats refuse odd sides, and why.
+std::string frameSizeHelp();
+// concat's help on -o: "The joined video (.mp4)".
+std::string concatOutputHelp();
 // README.md's table of formats ("Videos for the web"), one line per row.
 std::string outputFormatsMarkdown();
 

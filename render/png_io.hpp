@@ -16,8 +16,8 @@
 namespace particles::render {
 
 struct PngOptions {
-  // zlib level 0 (store) to 9 (smallest). 6 is zlib's own default. Measured on a 1280×720 cloth
-  // frame: level 6 writes 51 kB in 19 ms, level 9 49 kB in 58 ms, level 1 65 kB in 20 ms.
+  // zlib level 0 (store) to 9 (smallest). 6 is zlib's own default: on a cloth frame as fast as
+  // level 1 with smaller files, and 9 is three times slower for a few per cent (bench/README.md, "Measurements behind choices in the source").
   int compressionLevel = 6;
   // Keep the image's alpha (straight, as PNG defines it): RGBA instead of RGB.
   bool alpha = false;

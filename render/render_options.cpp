@@ -1,8 +1,11 @@
 #include "render/render_options.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace particles::render {
 
@@ -37,17 +40,25 @@ std::string_view rasterNameOf(Raster raster) {
 
 void validate(const RenderOptions& o) {
   if (o.width < 1 || o.height < 1 || o.width > kMaxImageSide || o.height > kMaxImageSide) {
-    throw std::invalid_argument("image size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                                " is out of range (1 to 16384 pixels per side)");
+    throw std::invalid_argument(fmt::format("image size {}x{} is out of range (1 to {} pixels per side)", o.width,
+                                            o.height, kMaxImageSide));
   }
   if (std::find(kSampleCounts.begin(), kSampleCounts.end(), o.msaa) == kSampleCounts.end()) {
-    throw std::invalid_argument("msaa " + std::to_string(o.msaa) + " is not one of 1 (off), 2, 4, 8, 16");
+    throw std::invalid_argument(fmt::format("msaa {} is not one of {}", o.msaa, sampleCountsText()));
   }
   if (!(o.particleRadius.value > 0.0)) throw std::invalid_argument("particle radius must be positive");
   if (!(o.springWidthPx > 0.0) || !(o.rodWidthPx > 0.0) || !(o.guideWidthPx > 0.0) || !(o.outlineWidthPx > 0.0)) {
     throw std::invalid_argument("line widths must be positive");
   }
   if (!(o.strainForFullColor > 0.0)) throw std::invalid_argument("strainForFullColor must be positive");
+}
+
+std::string sampleCountsText() {
+  std::vector<std::string> counts;
+  for (int n : kSampleCounts) counts.push_back(n == 1 ? "1 (off)" : std::to_string(n));
+  const std::string last = counts.back();
+  counts.pop_back();
+  return fmt::format("{} or {}", fmt::join(counts, ", "), last);
 }
 
 }  // namespace particles::render

@@ -6,8 +6,10 @@
 #include <array>
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 
+#include "core/drawing.hpp"
 #include "core/state.hpp"
 #include "render/theme.hpp"
 
@@ -26,23 +28,23 @@ struct Length {
   Unit unit;
 };
 
-// The largest frame side in pixels: OSMesa's largest buffer (OSMESA_MAX_WIDTH/HEIGHT) in Mesa 22,
-// which EGL's framebuffer there takes too (16384 × 16 and 16 × 16384 drawn).
-// Images read back (golden frames) are held to the same bound.
-inline constexpr int kMaxImageSide = 16384;
+// The largest frame side in pixels: particles::kMaxImageSide (core/drawing.hpp), one bound for
+// the renderer, the images read back (golden frames) and the scenario loader.
+using particles::kMaxImageSide;
 
 // The anti-aliasing sample counts there is a pattern for (RenderOptions::msaa, samplePattern in
 // render/shader_program.hpp).
 inline constexpr std::array<int, 5> kSampleCounts = {1, 2, 4, 8, 16};
+// "1 (off), 2, 4, 8 or 16": kSampleCounts, for help texts and messages.
+std::string sampleCountsText();
 
 // How shapes reach the pixels (render/renderer.hpp): triangles, one GL primitive per piece of a
 // shape; tiles, shapes binned into screen tiles on the CPU and one full-screen pass
 // (render/tile_bins.hpp); automatic, tiles from kTilesFromShapes shapes in a frame.
 enum class Raster { automatic, triangles, tiles };
 // The shape count from which automatic draws with tiles: about where the two cost the same for
-// the cloth at 1280×720 on llvmpipe (between 80 × 80 particles, 19,041 shapes: triangles 10.5 ms,
-// tiles 11.4 ms, and 100 × 100, 29,801 shapes: 16.8 against 12.7 ms; bench/README.md, "Large
-// scenes"). Below it the triangle path, which the goldens were drawn with, is faster.
+// the cloth at 1280×720 on llvmpipe, between the 80 × 80 and the 100 × 100 cloth (bench/README.md, "Measurements behind choices in the source").
+// Below it the triangle path, which the goldens were drawn with, is faster.
 inline constexpr size_t kTilesFromShapes = 20000;
 
 struct RenderOptions {

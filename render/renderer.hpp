@@ -8,9 +8,9 @@
 // positions (the standard 2/4/8/16 patterns, samplePattern) and the covered share is blended over
 // what is already drawn as the fragment's alpha. For one edge over a background this gives the
 // same pixel as a multisampled framebuffer's resolve. We do not use llvmpipe's multisampled
-// framebuffer: its resolve alone costs ~6 ms of CPU per 1280×720 frame (glBlitFramebuffer or a
-// texelFetch shader alike, measured on Mesa 22.3), which ran end-to-end video at 0.6 of the
-// encoder's speed; the shader's cost grows only with the pixels shapes touch. msaa = 1 tests the
+// framebuffer: its resolve alone (glBlitFramebuffer or a texelFetch shader alike, on Mesa 22.3)
+// slowed end-to-end video well below the encoder's speed (bench/README.md, "Measurements behind choices in the source");
+// the shader's cost grows only with the pixels shapes touch. msaa = 1 tests the
 // pixel centre only: hard edges.
 //
 // Every shape is built on the CPU as triangles in pixel coordinates (lines as quads of a given

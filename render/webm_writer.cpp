@@ -16,7 +16,7 @@ constexpr int kVp9Threads = 4;
 constexpr int kVp9CpuUsed = 4;
 
 void validate(const FrameWriterOptions& o) {
-  validateYuvVideo(o, o.alpha ? "WebM (VP9, yuva420p)" : "WebM (VP9, yuv420p)");
+  validateYuvVideo(outputFormat(OutputKind::webm), o);
   crfOf(outputFormat(OutputKind::webm), o.video.crf);
 }
 

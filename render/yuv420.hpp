@@ -12,8 +12,8 @@
 // shapes (with the renderer's straight colour, black for the transparent background).
 //
 // Written here rather than through libswscale: with the flags that keep chroma exact
-// (ACCURATE_RND | FULL_CHR_H_INP) swscale takes its unvectorised path, 1.4 ms per 1280×720 frame
-// on this project's 2-core machine; this loop takes 0.35 ms with AVX2 (bench/README.md, "End to end").
+// (ACCURATE_RND | FULL_CHR_H_INP) swscale takes its unvectorised path, about four times slower than
+// this loop with AVX2 (bench/README.md, "End to end").
 // Results equal the formulas above rounded to nearest within 1/64 of a level (Q16 fixed point).
 
 #include <cstdint>

@@ -1,9 +1,12 @@
 #include "render/yuv_video_writer.hpp"
 
+#include <fmt/format.h>
+
 #include <stdexcept>
 #include <string>
 
 #include "render/frame_pipeline.hpp"
+#include "render/output_formats.hpp"
 #include "render/video_encoder.hpp"
 #include "render/yuv420.hpp"
 
@@ -40,18 +43,14 @@ struct YuvVideoWriter::Encoder {
   }
 };
 
-void validateYuvVideo(const FrameWriterOptions& o, const std::string& format) {
-  if (o.width < 2 || o.height < 2 || (o.width & 1) || (o.height & 1)) {
-    const std::string even = std::to_string(o.width + (o.width & 1)) + "x" + std::to_string(o.height + (o.height & 1));
-    throw std::invalid_argument(format + " needs an even width and height; " + std::to_string(o.width) + "x" +
-                                std::to_string(o.height) + " is not (try " + even + ", or write PNG frames)");
-  }
-  if (o.video.fps < 1 || o.video.fps > 1000) {
-    throw std::invalid_argument("fps " + std::to_string(o.video.fps) + " is out of range (1 to 1000)");
+void validateYuvVideo(const OutputFormat& format, const FrameWriterOptions& o) {
+  checkFrameSize(format, o.width, o.height, o.alpha);
+  if (o.video.fps < kMinFps || o.video.fps > kMaxFps) {
+    throw std::invalid_argument(fmt::format("fps {} is out of range ({} to {})", o.video.fps, kMinFps, kMaxFps));
   }
   if (!(o.video.keyintSeconds > 0.0 && o.video.keyintSeconds <= kMaxKeyintSeconds)) {  // NaN fails too
-    throw std::invalid_argument("keyframe interval " + std::to_string(o.video.keyintSeconds) +
-                                " s is out of range (above 0, at most 3600)");
+    throw std::invalid_argument(fmt::format("keyframe interval {} s is out of range (above 0, at most {})",
+                                            std::to_string(o.video.keyintSeconds), kMaxKeyintSeconds));
   }
 }
 

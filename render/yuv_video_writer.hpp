@@ -44,9 +44,8 @@ class YuvVideoWriter : public SingleFileWriter {
   FrameWriterOptions options_;
 };
 
-// Throws std::invalid_argument unless the size is even and at least 2 × 2 (naming the nearest even
-// size), fps is 1 … 1000 and the keyframe interval in range. `format` names the video in the
-// message ("MP4 (H.264, yuv420p)").
-void validateYuvVideo(const FrameWriterOptions& options, const std::string& format);
+// Throws std::invalid_argument unless the format's row takes the size (checkFrameSize: even sides,
+// at least 2 × 2), fps is kMinFps … kMaxFps and the keyframe interval in range.
+void validateYuvVideo(const OutputFormat& format, const FrameWriterOptions& options);
 
 }  // namespace particles::render

@@ -88,7 +88,9 @@ TEST_CASE("the option checks refuse what a format's row does not take, naming th
     CHECK_FALSE(refuses(format, {.fps = 24, .at = at}, ""));
     CHECK(refuses(format, {.transparentBackground = true, .at = at}, "--background") != format.keepsAlpha);
     CHECK(refuses(format, {.at = at, .frames = true}, "--frames") != format.splits);
-    CHECK(refuses(format, {.hud = true, .at = at}, "--hud") != format.takesHud);
+    // --hud goes on every format, but never over a transparent background (its panel is opaque).
+    CHECK_FALSE(refuses(format, {.hud = true, .at = at}, ""));
+    if (format.keepsAlpha) CHECK(refuses(format, {.transparentBackground = true, .hud = true, .at = at}, "--hud"));
     CHECK(refuses(format, {.crf = 0, .at = at}, "--crf") != format.crf.has_value());
     if (format.crf) {
       CHECK_FALSE(refuses(format, {.crf = format.crf->highest, .at = at}, ""));
@@ -145,4 +147,53 @@ TEST_CASE("README.md holds the table of output formats as the rows print it") {
   const std::string readme{std::istreambuf_iterator<char>(in), {}};
   // On failure: paste this table into README.md's "Videos for the web".
   CHECK_MESSAGE(readme.find(outputFormatsMarkdown()) != std::string::npos, "\n" << outputFormatsMarkdown());
+}
+
+TEST_CASE("a format whose chroma is halved refuses odd sides, naming the next even size, and the others take any") {
+  for (const OutputFormat& format : outputFormats()) {
+    CAPTURE(format.name);
+    CHECK_NOTHROW(checkFrameSize(format, 4, 6, false));
+    for (const auto& [width, height] : {std::pair{3, 6}, std::pair{4, 5}, std::pair{1, 1}, std::pair{0, 4}}) {
+      CAPTURE(width);
+      CAPTURE(height);
+      if (format.halvedChroma.empty()) {
+        CHECK_NOTHROW(checkFrameSize(format, width, height, format.keepsAlpha));
+        continue;
+      }
+      try {
+        checkFrameSize(format, width, height, false);
+        FAIL_CHECK("accepted");
+      } catch (const std::invalid_argument& e) {
+        const std::string even = std::to_string(width + width % 2) + "x" + std::to_string(height + height % 2);
+        CHECK(std::string(e.what()) == std::string(format.name) + " (" + std::string(format.codec) + ", " +
+                                           std::string(format.halvedChroma) + ") needs an even width and height; " +
+                                           std::to_string(width) + "x" + std::to_string(height) + " is not (try " +
+                                           even + ", or write PNG frames)");
+      }
+    }
+  }
+  // With alpha kept, the message names the pixel format that holds it.
+  try {
+    checkFrameSize(outputFormat(OutputKind::webm), 3, 3, true);
+    FAIL_CHECK("accepted");
+  } catch (const std::invalid_argument& e) {
+    CHECK(std::string(e.what()).starts_with("WebM (VP9, yuva420p) needs an even width and height; 3x3 is not"));
+  }
+  CHECK(frameSizeHelp() ==
+        "Odd sizes are refused for MP4 and WebM (yuv420p needs even sizes); GIF, PNG sequence and PNG take any size.");
+}
+
+TEST_CASE("concat joins the formats whose row says so, whatever the extension's case") {
+  CHECK_NOTHROW(checkConcatOutput("joined.mp4"));
+  CHECK_NOTHROW(checkConcatOutput("JOINED.MP4"));
+  for (const char* path : {"joined.webm", "joined.gif", "frames/", "joined.png", "joined"}) {
+    CAPTURE(path);
+    try {
+      checkConcatOutput(path);
+      FAIL_CHECK("accepted");
+    } catch (const std::invalid_argument& e) {
+      CHECK(std::string(e.what()) == "-o " + std::string(path) + ": the joined video must be a .mp4 file");
+    }
+  }
+  CHECK(concatOutputHelp() == "The joined video (.mp4)");
 }

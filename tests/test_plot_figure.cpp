@@ -225,7 +225,17 @@ TEST_CASE("plot: marked series on log and linear axes at the ends of the doubles
           CAPTURE(ys.front());
           CAPTURE(int(xScale));
           CAPTURE(int(yScale));
-          CHECK_NOTHROW(renderFigure(f, ImageFormat::Svg));
+          // One marker per point that its axes can show (a log axis only positive values), all in
+          // the series' one filled path, one sub-path each.
+          std::size_t plottable = 0;
+          for (std::size_t i = 0; i < n; ++i) {
+            plottable += (xScale == AxisScale::Linear || xs[i] > 0) && (yScale == AxisScale::Linear || ys[i] > 0);
+          }
+          std::vector<XmlElement> svg;
+          REQUIRE_NOTHROW(svg = svgOf(f));
+          int markers = 0;
+          for (const XmlElement& dots : pathsIn(svg, "fill", 0)) markers += pathShape(dots).subpaths;
+          CHECK(markers == int(plottable));
         }
       }
     }

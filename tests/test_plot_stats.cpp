@@ -10,6 +10,7 @@
 
 #include "plot/errors.hpp"
 #include "plot/figure.hpp"
+#include "plot/palette.hpp"
 #include "plot/stability_figure.hpp"
 #include "plot/stats_figure.hpp"
 #include "plot_support.hpp"
@@ -410,6 +411,27 @@ TEST_CASE("plot stability figure: limits and references at the ends of the doubl
       CAPTURE(int(format));
       CHECK_NOTHROW(renderFigure(figure, format));
     }
+    // Every mark is drawn: for each of the two groups (largest stable dt, without shaking) a dot in
+    // the legend and one per integrator, each its own filled path; the reference's mark (a diamond
+    // for a point, a range with end caps for an interval) in the legend and in euler's row.
+    const auto svg = parseXml(renderFigure(figure, ImageFormat::Svg));
+    for (std::size_t group = 0; group < 2; ++group) {
+      CAPTURE(group);
+      CHECK(std::count_if(svg.begin(), svg.end(), [&](const XmlElement& e) {
+              return e.name == "path" && sameColour(styleProperty(e, "fill"), seriesColour(group));
+            }) == 1 + long(rows.size()));
+    }
+    // A diamond is 14 px across both ways, a range's end caps 12 px high (plot/dot_chart.cpp).
+    const bool point = a == b;
+    CHECK(std::count_if(svg.begin(), svg.end(), [&](const XmlElement& e) {
+            if (e.name != "path" || !sameColour(styleProperty(e, "stroke"), kInk)) return false;
+            const auto shape = pathShape(e);
+            const PathBounds box = pathBounds(e);
+            const double width = box.x1 - box.x0, height = box.y1 - box.y0;
+            return point ? shape.subpaths == 1 && shape.vertices == 4 && std::abs(width - 14) < 0.5 &&
+                               std::abs(height - 14) < 0.5
+                         : shape.subpaths == 3 && shape.vertices == 6 && std::abs(height - 12) < 0.5;
+          }) == 2);
   }
 }
 

@@ -19,7 +19,7 @@ namespace {
 void addConcatOptions(CLI::App& command, ConcatOptions& o) {
   command.add_option("segments", o.segments, "The segments, in order (MP4 files of the same size, rate and settings)")
       ->required();
-  command.add_option("-o,--output", o.output, "The joined video (.mp4)")->required();
+  command.add_option("-o,--output", o.output, render::concatOutputHelp())->required();
   command.add_flag("-q,--quiet", o.quiet, "Print nothing on success");
   command.footer(
       "Exit codes: 0 joined, 2 bad input (a segment unreadable, truncated or damaged: every packet is\n"
@@ -33,8 +33,10 @@ void addConcatOptions(CLI::App& command, ConcatOptions& o) {
 }
 
 int concatCommand(const ConcatOptions& o) {
-  if (std::filesystem::path(o.output).extension() != ".mp4") {
-    throw InputError(fmt::format("-o {}: the joined video must be a .mp4 file", o.output));
+  try {
+    render::checkConcatOutput(o.output);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
   }
   render::setLibavVerbose(false);  // the muxer's notes at "info" are not ours to print
   std::vector<std::filesystem::path> segments(o.segments.begin(), o.segments.end());

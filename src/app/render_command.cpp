@@ -39,15 +39,6 @@ constexpr double kMinKeyintSeconds = 1e-3;
 // The largest --png-level: zlib's best compression (render/png_io.hpp).
 constexpr int kMaxPngLevel = 9;
 
-// "1 (off), 2, 4, 8 or 16": the sample counts --msaa takes.
-std::string sampleCountsText() {
-  std::vector<std::string> counts;
-  for (int n : render::kSampleCounts) counts.push_back(n == 1 ? "1 (off)" : std::to_string(n));
-  const std::string last = counts.back();
-  counts.pop_back();
-  return fmt::format("{} or {}", fmt::join(counts, ", "), last);
-}
-
 std::optional<render::Length> parseRadius(const std::string& text) {
   // "4px" (pixels, also a bare number) or "0.02m" (world units).
   try {
@@ -148,9 +139,9 @@ std::pair<long, long> parseFrameRange(const std::string& text, long total) {
 
 // --fps, --keyint and --at as numbers, before the output says what they mean for it.
 void checkNumbers(const RenderCommandOptions& options) {
-  if (options.fps && !(*options.fps >= 1 && *options.fps <= 1000)) {  // NaN fails both
-    throw InputError(
-        fmt::format("--fps: expected a whole number of frames per second from 1 to 1000, not {}", *options.fps));
+  if (options.fps && !(*options.fps >= render::kMinFps && *options.fps <= render::kMaxFps)) {  // NaN fails both
+    throw InputError(fmt::format("--fps: expected a whole number of frames per second from {} to {}, not {}",
+                                 render::kMinFps, render::kMaxFps, *options.fps));
   }
   if (!(options.keyint >= kMinKeyintSeconds && options.keyint <= render::kMaxKeyintSeconds)) {  // NaN fails both
     throw InputError(fmt::format("--keyint: expected seconds from {} to {} between keyframes, not {}",
@@ -182,7 +173,7 @@ int framesPerSecondOf(const scenario::Scenario& s, const RenderCommandOptions& o
 }
 
 // The options whose meaning depends on the output's format (alpha, --crf, the frame rate's cap,
-// --at, --frames), by its row; and --hud's opaque panel, never over a transparent background.
+// --at, --frames, --hud over a transparent background), by its row.
 void checkFormatOptions(const RenderCommandOptions& options, const render::RenderOptions& look,
                         const render::OutputFormat& format, int fps) {
   refusedOptionsAreInputErrors([&] {
@@ -194,9 +185,6 @@ void checkFormatOptions(const RenderCommandOptions& options, const render::Rende
                                 .at = options.at,
                                 .frames = !options.frames.empty()});
   });
-  if (look.transparentBackground && options.hud) {
-    throw InputError("--hud draws an opaque panel over the frame: not with --background transparent");
-  }
 }
 
 // --at inside the simulation (whether the format takes it is checkFormatOptions's).
@@ -336,7 +324,7 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
   renderCmd->add_option("--frames", render.frames, render::framesHelp());
   renderCmd->add_option("--size", render.size, "Frame size WxH in px (default: the scenario's render.size)");
   renderCmd->add_option("--fps", render.fps, render::fpsHelp());
-  renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: " + sampleCountsText())
+  renderCmd->add_option("--msaa", render.msaa, "Anti-aliasing samples per pixel: " + render::sampleCountsText())
       ->check(CLI::IsMember(render::kSampleCounts))
       ->capture_default_str();
   renderCmd
@@ -358,7 +346,12 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
                    "faster")
       ->check(CLI::Range(kMinKeyintSeconds, render::kMaxKeyintSeconds))
       ->capture_default_str();
-  renderCmd->add_option("--preset", render.preset, "x264 preset (MP4): ultrafast … veryslow")->capture_default_str();
+  // The presets' range as x264 lists it, fastest to veryslow (kX264Presets: not placebo, the last).
+  renderCmd
+      ->add_option("--preset", render.preset,
+                   fmt::format("x264 preset (MP4): {} … {}", render::kX264Presets.front(),
+                               render::kX264Presets[render::kX264Presets.size() - 2]))
+      ->capture_default_str();
   renderCmd->add_option("--png-level", render.pngLevel, fmt::format("PNG compression level 0 … {}", kMaxPngLevel))
       ->capture_default_str();
   renderCmd->add_flag("--verbose", render.verbose, "Name the GL backend and renderer; show libav/x264's own log");
@@ -379,9 +372,10 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
       ->needs(renderTrace);
   const render::FpsCap& gifCap = *render::outputFormat(render::OutputKind::gif).fpsCap;
   renderCmd->footer(fmt::format(
-      "Frame i shows t = i / fps; a video has round(duration · fps) frames. Odd sizes are refused for MP4\n"
-      "and WebM (yuv420p needs even sizes); GIF and PNG take any size. A GIF has one palette made for the\n"
-      "whole video, at most {} fps ({} unless --fps says), delays rounded to whole centiseconds.\n"
+      "Frame i shows t = i / fps; a video has round(duration · fps) frames.\n"
+      "{}\n"
+      "A GIF has one palette made for the whole video, at most {} fps ({} unless --fps says), delays\n"
+      "rounded to whole centiseconds.\n"
       "Which formats take --background transparent, --frames, --crf and --at: their help above.\n"
       "Outputs appear only when complete.\n"
       "Frames are drawn by Mesa's llvmpipe on the CPU, the same bytes through EGL or OSMesa;\n"
@@ -395,7 +389,7 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
       "  particles render scenarios/cloth.yaml -o cloth.gif --size 480x270   # 30 fps, a palette for the video\n"
       "  particles render scenarios/cloth.yaml -o cloth.webm --background transparent   # VP9 with alpha\n"
       "  PARTICLES_GL=osmesa particles render scenarios/cloth.yaml -o cloth.mp4   # where EGL will not start\n",
-      gifCap.most, gifCap.byDefault));
+      render::frameSizeHelp(), gifCap.most, gifCap.byDefault));
   addJobOptions(*renderCmd, render.job);
 }
 

@@ -13,6 +13,14 @@
 
 namespace particles {
 
+// The largest frame side in pixels a drawing is rendered at: OSMesa's largest buffer
+// (OSMESA_MAX_WIDTH/HEIGHT) in Mesa 22, which EGL's framebuffer there takes too (16384 × 16 and
+// 16 × 16384 drawn). Here, below both, so that the renderer (render::RenderOptions, images read
+// back) and the scenario loader (render.size, a golden manifest's size) hold to one bound.
+inline constexpr int kMaxImageSide = 16384;
+// The most frames a second of simulated time is drawn in: a scenario's render.fps, render's --fps.
+inline constexpr int kMaxFps = 1000;
+
 struct Drawing {
   struct Spring {   // a spring, coloured by strain
     Vec2 a, b;      // world positions of the ends (anchors on bodies included)

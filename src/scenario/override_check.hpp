@@ -1,9 +1,8 @@
 #pragma once
 // One scenario checked against many --set overrides: a sweep's values (docs/sweeps.md, "Checked
-// before any job runs"). Loading a scenario whole for each value cost 2 ms (a 55 × 55 grid) to
-// 0.41 s (the same cloth written out, 3,025 particles and 5,940 springs, mostly yaml-cpp's parsing)
-// per value; checked here, 1,000 values plan in 0.3 s and 1 s (bench/README.md, "Planning a
-// sweep"). The file is parsed and loaded once; an override then costs what reading the one part of
+// before any job runs"). Loading a scenario whole for each value cost up to a large scene's whole
+// parse per value, mostly yaml-cpp's (bench/README.md, "Planning a sweep", has the numbers). The
+// file is parsed and loaded once; an override then costs what reading the one part of
 // the file it changes costs (part_reader.hpp): a force's `ks`, a grid's spring stiffness or mass, a
 // particle's mass or velocity, a setting of the simulation or render section. An override that
 // changes what other parts read (a grid's size or name, a particle's position, a reference, an

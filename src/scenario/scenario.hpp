@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/drawing.hpp"
 #include "core/integrators.hpp"
 #include "core/system.hpp"
 #include "input/text_file.hpp"
@@ -22,8 +23,7 @@ namespace particles::scenario {
 // Limits the loader enforces beyond each key's own range (docs/scenarios.md, `particles schema`).
 inline constexpr long kMaxSteps = 1'000'000'000;  // a run longer than this is a typo, not a plan
 inline constexpr long long kMaxGridSide = 10'000;
-inline constexpr long long kMaxImageSide = 16'384;  // px, the renderer's largest frame side
-inline constexpr double kMinFps = 1e-3, kMaxFps = 1000.0;
+inline constexpr double kMinFps = 1e-3, kMaxFps = particles::kMaxFps;  // render.fps
 
 // How large a scene may be, counted from the file before anything is built (so a few hundred bytes
 // that name a grid two hundred times, or repeat an entry through YAML aliases, cost nothing before
