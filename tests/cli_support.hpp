@@ -217,4 +217,12 @@ inline double longestKeyframeGap(const std::vector<double>& keyframes, double du
   return longest;
 }
 
+// The files a command left in the scratch folder besides its scenario (s.yaml), sorted.
+inline std::vector<std::string> outputs(const Scratch& s) {
+  auto files = s.files();
+  files.erase(std::remove(files.begin(), files.end(), "s.yaml"), files.end());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
 }  // namespace particles::test

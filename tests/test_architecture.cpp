@@ -17,7 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kSource = PARTICLES_SOURCE_DIR;
+const fs::path kCheckout = PARTICLES_SOURCE_DIR;
 
 // Each room, its folder, and the rooms it may include besides itself.
 struct Room {
@@ -28,16 +28,16 @@ struct Room {
 
 const std::vector<Room>& rooms() {
   static const std::vector<Room> all = {
-      {"core", kSource / "src/core", {}},
-      {"output", kSource / "src/output", {}},
-      {"input", kSource / "src/input", {}},
-      {"scenario", kSource / "src/scenario", {"core", "input"}},
-      {"render", kSource / "render", {"core", "output"}},
-      {"plot", kSource / "plot", {"output", "input"}},
-      {"golden", kSource / "src/golden", {"core", "scenario", "render", "output", "input"}},
-      {"app", kSource / "src/app", {"core", "scenario", "render", "plot", "output", "input", "golden"}},
+      {"core", kCheckout / "src/core", {}},
+      {"output", kCheckout / "src/output", {}},
+      {"input", kCheckout / "src/input", {}},
+      {"scenario", kCheckout / "src/scenario", {"core", "input"}},
+      {"render", kCheckout / "render", {"core", "output"}},
+      {"plot", kCheckout / "plot", {"output", "input"}},
+      {"golden", kCheckout / "src/golden", {"core", "scenario", "render", "output", "input"}},
+      {"app", kCheckout / "src/app", {"core", "scenario", "render", "plot", "output", "input", "golden"}},
       // What only the tests use (particles_test_support): no room above may include it.
-      {"support", kSource / "tests/support", {"core", "render", "output"}},
+      {"support", kCheckout / "tests/support", {"core", "render", "output"}},
   };
   return all;
 }
@@ -97,7 +97,7 @@ TEST_CASE("the core uses no files, YAML, GL, images or video") {
   const std::vector<std::string> forbidden = {"fstream", "cstdio", "filesystem", "yaml-cpp", "GL/", "EGL/", "png",
                                               "libav", "libsw", "cairo", "nlohmann", "unistd"};
   int checked = 0;
-  for (const Include& inc : includesUnder(kSource / "src/core")) {
+  for (const Include& inc : includesUnder(kCheckout / "src/core")) {
     if (!inc.angled) continue;
     ++checked;
     for (const std::string& word : forbidden) {
@@ -113,7 +113,7 @@ TEST_CASE("the core uses no files, YAML, GL, images or video") {
 // splits it: the pieces match no test case, run none and pass. Nine tests once passed that way.
 TEST_CASE("every test case's name can be run by CTest: none holds a semicolon") {
   const std::regex testCase(R"re(TEST_CASE\("([^"]*)")re");
-  for (const auto& entry : fs::directory_iterator(kSource / "tests")) {
+  for (const auto& entry : fs::directory_iterator(kCheckout / "tests")) {
     if (entry.path().extension() != ".cpp") continue;
     std::ifstream in(entry.path());
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -18,17 +18,12 @@
 using namespace particles::test;
 namespace fs = std::filesystem;
 
+using particles::test::outputs;
+
 namespace {
 
 const std::string& kSwing = kSwingScenario;
 
-// The only files left in the scratch directory besides the scenario.
-std::vector<std::string> outputs(const Scratch& s) {
-  auto files = s.files();
-  files.erase(std::remove(files.begin(), files.end(), "s.yaml"), files.end());
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 }  // namespace
 

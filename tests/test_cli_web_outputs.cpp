@@ -17,15 +17,10 @@
 using namespace particles::test;
 namespace fs = std::filesystem;
 
+using particles::test::outputs;
+
 namespace {
 
-// The files in the scratch directory besides the scenario.
-std::vector<std::string> outputs(const Scratch& s) {
-  auto files = s.files();
-  files.erase(std::remove(files.begin(), files.end(), "s.yaml"), files.end());
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 // ffprobe's `entry` (e.g. "packet=duration") of the video stream, one value per line.
 std::vector<std::string> probeEntries(const fs::path& video, const std::string& entry, const std::string& extra = "") {

@@ -12,10 +12,12 @@
 
 #include "render/image_compare.hpp"
 #include "render/png_io.hpp"
+#include "cli_support.hpp"
 #include "render_support.hpp"
 
 namespace fs = std::filesystem;
 using particles::render::Image;
+using particles::test::slurp;
 
 namespace {
 
@@ -23,13 +25,6 @@ struct Run {
   int code = -1;
   std::string out, err;
 };
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // Runs `particles ARGS` in `dir`; stdout and stderr go to files outside it, so that the test can
 // check that the command leaves nothing but its outputs behind.

@@ -21,14 +21,16 @@
 #include "sanitizer.hpp"
 #include "scenario/runner.hpp"
 #include "scenario/scenario.hpp"
+#include "source_tree.hpp"
 
 using namespace particles;
 using namespace particles::scenario;
 using particles::test::kUnderSanitizer;
 
+using particles::test::kScenarios;
+
 namespace {
 
-const std::filesystem::path kScenarios = std::filesystem::path(PARTICLES_SOURCE_DIR) / "scenarios";
 
 // Each compared against one thread. 3 leaves a thread with more chunks than the others; 8 is more
 // threads than the 100² cloth has chunks (3 per pass), so some of them join a job late and find
@@ -177,7 +179,7 @@ void checkCloth(int side, Integrator integrator, int steps, std::vector<Override
 // (2·side·(side − 1) rows, closing loops, so the constraint solver takes Jacobi CG), the top row
 // fixed, under gravity; the bottom row starts 1 cm to the side so that the rods pull from the
 // first step.
-System rodNet(int side) {
+System rodGrid(int side) {
   SystemBuilder b;
   for (int r = 0; r < side; ++r) {
     for (int c = 0; c < side; ++c) {
@@ -200,7 +202,7 @@ System rodNet(int side) {
 }
 
 std::vector<Snapshot> stepNet(int side, Integrator integrator, int threads, int steps) {
-  System system = rodNet(side);
+  System system = rodGrid(side);
   system.setThreads(threads);
   Solver solver(integrator);
   std::vector<Snapshot> out;
@@ -290,7 +292,7 @@ TEST_CASE("determinism: a net of 19,800 rods, 1–8 threads") {
     const std::vector<Snapshot> expected = stepNet(side, integrator, 1, steps);
     REQUIRE(expected.back().state.allFinite());
     if (integrator == Integrator::Rk4) CHECK(expected.back().constraints.iterations > 1);
-    const System model = rodNet(side);
+    const System model = rodGrid(side);
     for (int threads : kThreadCounts)
       checkSameBits(model.model(), expected, stepNet(side, integrator, threads, steps), threads);
   }

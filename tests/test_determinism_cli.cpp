@@ -55,16 +55,16 @@ void checkRunOutputs(const std::string& args, size_t rows) {
   }
 }
 
-const std::string kScenarios = std::string(PARTICLES_SOURCE_DIR) + "/scenarios/";
+const std::string kScenarioFolder = std::string(PARTICLES_SOURCE_DIR) + "/scenarios/";
 
 }  // namespace
 
 TEST_CASE("determinism: particles run writes the same trace on 1, 2 and 3 threads") {
   // The demo cloth through the mouse's drag (from 1.5 s): 625 particles, 60 ticks a second.
-  checkRunOutputs("'" + kScenarios + "cloth.yaml' --duration 2", 625 * 120);
+  checkRunOutputs("'" + kScenarioFolder + "cloth.yaml' --duration 2", 625 * 120);
   // The 100² cloth (3 chunks per pass), the mouse pulling from the start: RK4 and backward Euler
   // (5 s of CPU under ASan, where test_determinism.cpp steps it anyway).
-  const std::string big = "'" + kScenarios + "cloth.yaml' --set 'grids.0.size=[100, 100]' --set mouse.0.from=0";
+  const std::string big = "'" + kScenarioFolder + "cloth.yaml' --set 'grids.0.size=[100, 100]' --set mouse.0.from=0";
   checkRunOutputs(big + " --duration 0.05", 10000 * 3);
   if (!particles::test::kUnderSanitizer) {
     checkRunOutputs(big + " --duration 0.05 --integrator backward_euler --dt 0.01", 10000 * 3);
@@ -75,7 +75,7 @@ TEST_CASE("determinism: particles render draws the same frames on 1 and 3 thread
   // The 100² cloth (3 chunks per pass), a third of a second at 60 fps. LP_NUM_THREADS unset, so
   // that --threads sets llvmpipe's (an LP_NUM_THREADS the user set would win).
   Scratch s;
-  const std::string cloth = "'" + kScenarios + "cloth.yaml' --set 'grids.0.size=[100, 100]' --set mouse.0.from=0";
+  const std::string cloth = "'" + kScenarioFolder + "cloth.yaml' --set 'grids.0.size=[100, 100]' --set mouse.0.from=0";
   const std::string common = " --duration 0.3 --size 320x240 --quiet";
   for (const std::string threads : {"1", "3"}) {
     const Result png = s.run("render " + cloth + " -o frames" + threads + "/ --threads " + threads + common,

@@ -19,7 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kSource = PARTICLES_SOURCE_DIR;
+const fs::path kCheckout = PARTICLES_SOURCE_DIR;
 
 GoldenManifest load(const std::string& yaml) {
   return loadGoldenManifestText(yaml, "golden.yaml", "dir");
@@ -372,7 +372,7 @@ TEST_CASE("golden manifest: a file, its folder, and the schema's good and bad ex
 
   // tests/schema/golden: the files the schema takes load, those it refuses do not (schema:scenarios
   // checks the schema's side with python3-jsonschema).
-  const fs::path examples = kSource / "tests/schema/golden";
+  const fs::path examples = kCheckout / "tests/schema/golden";
   int good = 0, bad = 0;
   for (const auto& e : fs::directory_iterator(examples)) {
     if (e.path().extension() != ".yaml") continue;

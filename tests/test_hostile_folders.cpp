@@ -15,6 +15,9 @@
 #include "cli_support.hpp"
 #include "output/write_sandbox.hpp"
 #include "skip.hpp"
+#include "source_tree.hpp"
+
+using particles::test::kSource;
 
 namespace {
 
@@ -22,7 +25,6 @@ using particles::test::Scratch;
 using particles::test::slurp;
 namespace fs = std::filesystem;
 
-const std::string kSource = PARTICLES_SOURCE_DIR;
 
 // A scratch folder with a copy of scenarios/springs.yaml and a decoy folder with two files in it.
 struct Hostile : Scratch {

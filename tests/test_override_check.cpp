@@ -14,12 +14,14 @@
 
 #include "scenario/override_check.hpp"
 #include "scenario/scenario.hpp"
+#include "source_tree.hpp"
 
 using namespace particles::scenario;
 
+using particles::test::kSource;
+
 namespace {
 
-const std::string kSource = PARTICLES_SOURCE_DIR;
 
 std::string scenarioText(const std::string& name) {
   std::ifstream in(kSource + "/scenarios/" + name);

@@ -14,16 +14,16 @@ using namespace particles::test;
 
 namespace {
 
-const std::string kHeader = "t,kinetic,potential,total,constraint_error,penetration\n";
+const std::string kHeaderLine = "t,kinetic,potential,total,constraint_error,penetration\n";
 
 }  // namespace
 
 TEST_CASE("plot cli: subnormal, huge and single-valued columns give a figure, exit 0, in every format") {
   Scratch s;
-  s.write("denormal.csv", kHeader + "0,5e-324,0,0,0,0\n0.1,-5e-324,0,0,0,0\n");  // the issue's rows
-  s.write("huge.csv", kHeader + "0,1e308,1,1,0,0\n0.1,-1e308,1,1,0,0\n");
-  s.write("single.csv", kHeader + "0,3,3,3,3,3\n0.1,3,3,3,3,3\n");
-  s.write("tiny_log.csv", kHeader + "0,1,1,1,5e-324,1e-323\n0.1,1,1,1,1e-320,5e-324\n");
+  s.write("denormal.csv", kHeaderLine + "0,5e-324,0,0,0,0\n0.1,-5e-324,0,0,0,0\n");  // the issue's rows
+  s.write("huge.csv", kHeaderLine + "0,1e308,1,1,0,0\n0.1,-1e308,1,1,0,0\n");
+  s.write("single.csv", kHeaderLine + "0,3,3,3,3,3\n0.1,3,3,3,3,3\n");
+  s.write("tiny_log.csv", kHeaderLine + "0,1,1,1,5e-324,1e-323\n0.1,1,1,1,1e-320,5e-324\n");
   for (const char* input : {"denormal", "huge", "single", "tiny_log"}) {
     for (const char* ext : {"svg", "png", "pdf"}) {
       const std::string out = fmt::format("{}.{}", input, ext);
@@ -38,10 +38,10 @@ TEST_CASE("plot cli: subnormal, huge and single-valued columns give a figure, ex
 
 TEST_CASE("plot cli: infinities and numbers past the doubles are bad input naming the file and line") {
   Scratch s;
-  s.write("inf.csv", kHeader + "0,1,1,1,0,0\n0.1,inf,0,0,0,0\n");
-  s.write("minus_inf.csv", kHeader + "0,1,1,1,0,-Infinity\n");
-  s.write("overflow.csv", kHeader + "0,1,1e309,1,0,0\n");
-  s.write("nan.csv", kHeader + "0,1,1,NaN,0,0\n");
+  s.write("inf.csv", kHeaderLine + "0,1,1,1,0,0\n0.1,inf,0,0,0,0\n");
+  s.write("minus_inf.csv", kHeaderLine + "0,1,1,1,0,-Infinity\n");
+  s.write("overflow.csv", kHeaderLine + "0,1,1e309,1,0,0\n");
+  s.write("nan.csv", kHeaderLine + "0,1,1,NaN,0,0\n");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"inf", "error: inf.csv:3:5: column 'kinetic': 'inf' is not a finite number\n"},
       {"minus_inf", "error: minus_inf.csv:2:11: column 'penetration': '-Infinity' is not a finite number\n"},
@@ -61,7 +61,7 @@ TEST_CASE("plot cli: infinities and numbers past the doubles are bad input namin
 // under the sanitizers, which slow everything.
 TEST_CASE("plot cli: 300,000 rows alternating ±1 become a PNG, SVG and PDF within 2 s of CPU each") {
   Scratch s;
-  std::string csv = kHeader;
+  std::string csv = kHeaderLine;
   for (int i = 0; i < 300'000; ++i) csv += fmt::format("{},{},0,{},0,0\n", 0.001 * i, i % 2 ? 1 : -1, i % 2 ? 1 : -1);
   s.write("long.csv", csv);
   for (const char* out : {"long.png", "long.svg", "long.pdf"}) {

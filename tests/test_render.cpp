@@ -282,7 +282,7 @@ RenderOptions pixelCameraOptions(int samples = 4) {
 // Every pixel must be the background blended towards `fg` by the share of the pixel's samples
 // that `inside` accepts (sample points in pixels, x right, y down): what a multisampled
 // framebuffer resolves to. Returns the summed coverage (pixels).
-double checkCoverage(const Image& image, Rgb bg, Rgb fg, int samples, const std::function<bool(Vec2)>& inside) {
+double checkCoverage(const Image& image, render::Rgb bg, render::Rgb fg, int samples, const std::function<bool(Vec2)>& inside) {
   const std::vector<Vec2>& pattern = samplePattern(samples);
   REQUIRE(int(pattern.size()) == samples);
   double total = 0;

@@ -13,13 +13,15 @@
 #include "core/system.hpp"
 #include "input/text_file.hpp"
 #include "scenario/scenario.hpp"
+#include "source_tree.hpp"
 
 using namespace particles;
 using namespace particles::scenario;
 
+using particles::test::kScenarios;
+
 namespace {
 
-const std::filesystem::path kScenarios = std::filesystem::path(PARTICLES_SOURCE_DIR) / "scenarios";
 
 struct Refusal {
   int line = -1;

@@ -11,13 +11,15 @@
 
 #include "scenario/runner.hpp"
 #include "scenario/scenario.hpp"
+#include "source_tree.hpp"
 
 using namespace particles;
 using namespace particles::scenario;
 
+using particles::test::kScenarios;
+
 namespace {
 
-const std::filesystem::path kScenarios = std::filesystem::path(PARTICLES_SOURCE_DIR) / "scenarios";
 
 struct Bounds {
   double constraintError;  // m

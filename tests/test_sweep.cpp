@@ -16,6 +16,9 @@
 #include "app/available_cores.hpp"
 #include "cli_support.hpp"
 #include "support/video_probe.hpp"
+#include "source_tree.hpp"
+
+using particles::test::kSource;
 
 namespace {
 
@@ -24,7 +27,6 @@ using particles::test::Scratch;
 using particles::test::slurp;
 namespace fs = std::filesystem;
 
-const std::string kSource = PARTICLES_SOURCE_DIR;
 
 // Splits a CSV line without quoted commas (the tests' own tables have none outside `command`).
 std::vector<std::string> fields(const std::string& line) {

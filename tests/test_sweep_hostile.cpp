@@ -16,6 +16,9 @@
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
 #include "cli_support.hpp"
+#include "source_tree.hpp"
+
+using particles::test::kSource;
 
 namespace {
 
@@ -25,7 +28,6 @@ using particles::test::slurp;
 namespace fs = std::filesystem;
 using Usage = Scratch::Usage;
 
-const std::string kSource = PARTICLES_SOURCE_DIR;
 
 // Every file under `dir` whose name contains PWNED: what an executed value would have made.
 std::vector<std::string> pwned(const fs::path& dir) {

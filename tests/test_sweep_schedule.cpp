@@ -10,6 +10,9 @@
 #include "app/job_cost.hpp"
 #include "app/sweep_schedule.hpp"
 #include "scenario/scenario.hpp"
+#include "source_tree.hpp"
+
+using particles::test::kSource;
 
 namespace {
 
@@ -24,7 +27,6 @@ using particles::scenario::loadScenarioFile;
 using particles::scenario::loadScenarioText;
 using particles::scenario::Override;
 
-const std::string kSource = PARTICLES_SOURCE_DIR;
 
 std::vector<JobEstimate> estimatesOf(const std::vector<double>& costs) {
   std::vector<JobEstimate> out;
