@@ -12,12 +12,12 @@
 #include <set>
 
 #include "app/cli_support.hpp"
-#include "app/csv_table.hpp"
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
 #include "input/text_file.hpp"
 #include "output/confined_folder.hpp"
+#include "output/csv_writer.hpp"
 #include "output/distinct_files.hpp"
 #include "output/output_file.hpp"
 #include "plot/figure.hpp"
@@ -143,7 +143,7 @@ int gatherCommand(const GatherOptions& o) {
     head.insert(head.end(), {"segment", "status", "exit", "seconds"});
     head.insert(head.end(), keys.begin(), keys.end());
     head.push_back("message");
-    csv.write(csvRow(head));
+    csv.write(output::csvRow(head));
     for (const GatheredRow& row : rows) {
       std::vector<std::string> fields(row.job.begin(), row.job.begin() + long(segmentCol) + 1);
       if (!row.record) {
@@ -161,7 +161,7 @@ int gatherCommand(const GatherOptions& o) {
         for (const auto& [k, v] : rec.headline) fields[first + keyAt.find(k)->second] = fmt::format("{}", v);
         fields.push_back(rec.message);
       }
-      csv.write(csvRow(fields));
+      csv.write(output::csvRow(fields));
     }
     csv.commit();
   }
