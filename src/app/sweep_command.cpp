@@ -304,6 +304,36 @@ void requireInputsKept(const SweepOptions& o, const scenario::SweepSpec& spec, c
   output::requireDistinctFiles(sweepOutputs(out, o.emit), inputs);
 }
 
+// --emit: the job lists for GNU parallel or Slurm, and how to run them; nothing runs here.
+int emitJobLists(const SweepPlan& plan, const SweepOptions& o) {
+  const std::string how = o.emit == "parallel" ? emitParallel(plan) : emitSlurm(plan);
+  if (!o.quiet) {
+    fmt::print("{}: {} → {}/jobs.csv\nrun them with:\n  {}\nthen: particles gather {}\n", o.spec,
+               plural(plan.jobs.size(), "job", "jobs"), plan.outDir.string(), how, shellQuote(plan.outDir.string()));
+  }
+  return kOk;
+}
+
+// After the jobs ran: their results gathered, the summary, the failures listed (exit 1).
+int gatherResults(const SweepPlan& plan, const SweepOptions& o, const RunTally& tally, double seconds) {
+  GatherOptions gather;
+  gather.outDir = plan.outDir.string();
+  gather.quiet = true;
+  gather.maxInputMiB = o.maxInputMiB;
+  gatherCommand(gather);
+  if (!o.quiet) {
+    fmt::print("{}: {} in {:.1f} s: {} ran ({} ok, {} failed), {} done before → {}\n", o.spec,
+               plural(plan.jobs.size(), "job", "jobs"), seconds, tally.ran, tally.ok, tally.failures.size(),
+               tally.skipped, (plan.outDir / "results.csv").string());
+  }
+  if (!tally.failures.empty()) {
+    fmt::print(stderr, "{} failed:\n", plural(tally.failures.size(), "job", "jobs"));
+    for (const std::string& f : tally.failures) fmt::print(stderr, "  {}\n", f);
+    return kSimulationFailed;
+  }
+  return kOk;
+}
+
 int sweepCommand(const SweepOptions& o) {
   const scenario::SweepSpec spec = scenario::loadSweepFile(o.spec, o.maxInputMiB);
   const std::string program =
@@ -316,14 +346,7 @@ int sweepCommand(const SweepOptions& o) {
   const std::string threadsGiven = o.emit.empty() ? explicitThreads(spec) : std::string();
   writeJobTable(plan);
 
-  if (!o.emit.empty()) {
-    const std::string how = o.emit == "parallel" ? emitParallel(plan) : emitSlurm(plan);
-    if (!o.quiet) {
-      fmt::print("{}: {} → {}/jobs.csv\nrun them with:\n  {}\nthen: particles gather {}\n", o.spec,
-                 plural(plan.jobs.size(), "job", "jobs"), plan.outDir.string(), how, shellQuote(plan.outDir.string()));
-    }
-    return kOk;
-  }
+  if (!o.emit.empty()) return emitJobLists(plan, o);
 
   const int cores = availableCores();
   const Workers workers{.parallel = o.jobs > 0 ? o.jobs : cores, .cores = threadsGiven.empty() ? cores : 0};
@@ -351,23 +374,7 @@ int sweepCommand(const SweepOptions& o) {
     return 128 + stopSignal();
   }
 
-  GatherOptions gather;
-  gather.outDir = plan.outDir.string();
-  gather.quiet = true;
-  gather.maxInputMiB = o.maxInputMiB;
-  gatherCommand(gather);
-
-  if (!o.quiet) {
-    fmt::print("{}: {} in {:.1f} s: {} ran ({} ok, {} failed), {} done before → {}\n", o.spec,
-               plural(plan.jobs.size(), "job", "jobs"), seconds, tally.ran, tally.ok, tally.failures.size(),
-               tally.skipped, (plan.outDir / "results.csv").string());
-  }
-  if (!tally.failures.empty()) {
-    fmt::print(stderr, "{} failed:\n", plural(tally.failures.size(), "job", "jobs"));
-    for (const std::string& f : tally.failures) fmt::print(stderr, "  {}\n", f);
-    return kSimulationFailed;
-  }
-  return kOk;
+  return gatherResults(plan, o, tally, seconds);
 }
 
 }  // namespace
