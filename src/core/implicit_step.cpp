@@ -482,7 +482,8 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
   // A = M − η D − η² K over the free coordinates; a pinned one's row and column are the identity.
   // The Jacobians' pattern only changes when a contact or a mouse spring starts or ends, so A's
   // pattern is built once and its values are filled into it while the Jacobians' (row, column)
-  // sequence is the one it was built from (a full setFromTriplets costs several times more).
+  // sequence is the one it was built from (a full setFromTriplets sorts and merges every triplet
+  // again).
   if (stages.patternChanged()) stages.buildPattern();
   stages.fillMatrix(eta);
   stages.fillRightHandSide(y, eta, target);

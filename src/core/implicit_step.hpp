@@ -57,9 +57,9 @@ double autoDirectIterations(long freeCoordinates);
 constexpr int kAutoWindow = 10;
 // The direct path's iterations on an earlier step's factors stop at this relative error in the
 // energy norm (core/projected_pcg.hpp), two digits below CG's; A's own factors answer exactly, in
-// one solve. Measured over the 10⁴× stiff cloth's 10 s at one backward Euler step per frame
-// (BM_SceneRun, nothing else running): 1e-6 cost 272 µs a step, 1e-8 309 µs, 1e-10 336 µs (more
-// iterations on stale factors, more refactorisations).
+// one solve. A tighter one costs more iterations on stale factors and more refactorisations: the
+// 10⁴× stiff cloth's step at 1e-6, 1e-8 and 1e-10 is timed in bench/README.md, "Implicit
+// integration".
 constexpr double kDirectTolerance = 1e-8;
 // CG's relative residual (each step starts from the last one's Δv).
 constexpr double kCgTolerance = 1e-6;
@@ -125,7 +125,6 @@ struct ImplicitScratch {
   ImplicitStepStats stats;
 };
 
-// The step's target: η and, for BDF2, x̄ − x₀ and v̄ − v₀ (null: zero, backward Euler).
 // The step's target: η and, for BDF2, x̄ − x_b and v̄ − v_b, where (x_b, v_b) is the state y the
 // step is linearised at (null: zero, backward Euler, linearised at the step's start). BDF2
 // linearises at a predicted end (see integrators/bdf2.hpp) and gives the state its rigid bodies'

@@ -1,7 +1,7 @@
 #pragma once
 // The integrators (docs/physics.md §3) and their registry. One step advances the flat state y from
 // t to t + h; every integrator reaches the system only through derivEval (and, for the implicit
-// implicit ones, the force Jacobians). Each is a file pair under integrators/ with its formula at
+// ones, the force Jacobians). Each is a file pair under integrators/ with its formula at
 // the top: the report's three explicit methods over a derivative f(y, t) (explicit_euler,
 // midpoint, rk4), and the ones that treat positions and velocities apart (symplectic_euler,
 // verlet, and the implicit backward_euler and bdf2 over core/implicit_step.hpp).

@@ -29,8 +29,8 @@ SimulationError::SimulationError(const std::string& reason, long step, double ti
 
 void Solver::doStep(System& system, double dt) {
   // The guard's copy and checks are whole-state passes like the integrators' own updates, so they
-  // run on the same threads (on one, they were an eighth of a symplectic Euler step of the 316²
-  // cloth). The finiteness check's chunk verdicts are 0/1 counts: their sum is exact in any order.
+  // run on the same threads (their share of the thinnest step, symplectic Euler's: bench/README.md,
+  // "The core on threads").
   WorkerPool* pool = system.pool();
   const Eigen::VectorXd& y = system.state();
   previous_.resize(y.size());
@@ -50,14 +50,12 @@ void Solver::doStep(System& system, double dt) {
   const double t1 = runStart_ + double(runSteps_ + 1) * dt;
 
   std::string reason;
-  const double nonFiniteChunks =
-      sumChunks(pool, size_t(y.size()), kVectorChunk, guardPartials_, [&](size_t begin, size_t end) {
-        // 0·x is 0 for a finite x and NaN for ±∞ or NaN, so the sum is NaN exactly when one is
-        // not finite: one vectorised pass (Eigen's allFinite forms x − x twice).
-        const double probe = (y.segment(Eigen::Index(begin), Eigen::Index(end - begin)).array() * 0.0).sum();
-        return std::isnan(probe) ? 1.0 : 0.0;
-      });
-  if (nonFiniteChunks != 0.0) {
+  // 0·x is 0 for a finite x and NaN for ±∞ or NaN: one multiply and compare per entry, which
+  // vectorises (Eigen's allFinite forms x − x twice).
+  const double* values = y.data();
+  const bool nonFinite = anyOf(pool, size_t(y.size()), kVectorChunk, guardChunks_,
+                               [values](size_t i) { return std::isnan(values[i] * 0.0); });
+  if (nonFinite) {
     reason = "the state became non-finite (NaN or infinity)";
   } else {
     const double kinetic = system.kineticEnergy(system.state());

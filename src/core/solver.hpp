@@ -60,7 +60,7 @@ class Solver {
   ExplosionGuard guard_;
   IntegratorScratch scratch_;
   Eigen::VectorXd previous_;
-  std::vector<double> guardPartials_;  // sumChunks scratch
+  std::vector<char> guardChunks_;  // anyOf's verdict per chunk
   long steps_ = 0;
   // The current run of equal steps: t = runStart_ + runSteps_ · runDt_.
   double runStart_ = 0.0, runDt_ = 0.0;
