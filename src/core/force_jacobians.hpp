@@ -68,6 +68,21 @@ struct JacobianPair {
         d{dBlock(0, 0), dBlock(0, 1), dBlock(1, 1)} {}
 };
 
+// One of the four 2 × 2 blocks that a pair reaches in K (and D, and the implicit step's
+// A = M − η D − η² K): its (a, a) and (b, b) blocks add the pair's block, (a, b) and (b, a)
+// subtract it, as ForceJacobians::expanded writes them out.
+struct BlockRef {
+  enum class Role : unsigned char { aa, bb, ab, ba };
+  static constexpr Role kRoles[4] = {Role::aa, Role::bb, Role::ab, Role::ba};
+
+  int pair;  // index into ForceJacobians::pairs
+  Role role;
+
+  int rowPoint(const JacobianPair& p) const { return role == Role::aa || role == Role::ab ? p.a : p.b; }
+  int colPoint(const JacobianPair& p) const { return role == Role::aa || role == Role::ba ? p.a : p.b; }
+  double sign() const { return role == Role::aa || role == Role::bb ? 1.0 : -1.0; }
+};
+
 struct ForceJacobians {
   using Triplets = std::vector<JacobianEntry, DefaultInitAllocator<JacobianEntry>>;
   using Pairs = std::vector<JacobianPair, DefaultInitAllocator<JacobianPair>>;

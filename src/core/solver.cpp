@@ -27,6 +27,17 @@ SimulationError::SimulationError(const std::string& reason, long step, double ti
     : std::runtime_error(explosionMessage(reason, step, time, integrator, dt)),
       reason_(reason), step_(step), time_(time), integrator_(integrator), dt_(dt) {}
 
+const ImplicitStepStats& Solver::lastImplicitStep() const {
+  static const ImplicitStepStats kNone;
+  const ImplicitStep* implicit = state_->implicitStep();
+  return implicit ? implicit->stats() : kNone;
+}
+
+long Solver::factorizations() const {
+  const ImplicitStep* implicit = state_->implicitStep();
+  return implicit ? implicit->factorizations() : 0;
+}
+
 void Solver::doStep(System& system, double dt) {
   // The guard's copy and checks are whole-state passes like the integrators' own updates, so they
   // run on the same threads (their share of the thinnest step, symplectic Euler's: bench/README.md,
@@ -41,10 +52,10 @@ void Solver::doStep(System& system, double dt) {
     runDt_ = dt;
     runSteps_ = 0;
   }
-  integrate(integrator_, system, system.state(), t0, dt, scratch_);
+  state_->step(system, system.state(), t0, dt);
   if (projectsConstraints(integrator_) && !system.constraints().empty()) {
     system.projectOntoConstraints(system.state());
-    scratch_.stateProjected(system.state());
+    state_->stateProjected(system.state());
   }
   const long step = steps_ + 1;
   const double t1 = runStart_ + double(runSteps_ + 1) * dt;
@@ -67,7 +78,7 @@ void Solver::doStep(System& system, double dt) {
   }
   if (!reason.empty()) {
     system.state() = previous_;
-    scratch_.verletValid = false;
+    state_->stepUndone();
     throw SimulationError(reason, step, t1, integrator_, dt);
   }
   system.setTime(t1);
