@@ -55,9 +55,9 @@ struct IntegratorScratch {
 // One integrator's own state, made by its registry row and held by the Solver for as long as it
 // steps with that integrator: its scratch, and what it carries from one step to the next (Verlet's
 // last evaluation, the implicit step's pattern, factors and last Δv, BDF2's previous state). Each
-// stateful integrator checks that the step it is asked for continues the last one (same h, t the
-// last step's end, the same state) and starts afresh when not, so a new dt, a state or time set
-// from outside, or a reload needs no call here.
+// checks what it carries against the step it is asked for (Verlet: the state and time; BDF2: h,
+// t and the state's size; the implicit step: A's pattern) and starts afresh where that no longer
+// applies, so a new dt, or a state or time set from outside, needs no call here.
 class IntegratorState {
  public:
   virtual ~IntegratorState() = default;
