@@ -214,11 +214,12 @@ void BM_CgPreconditioner(benchmark::State& state, const char* scene, int n, CgPr
   const bool stiff = std::string(scene) != "cloth.yaml";
   Stepper(s.system, stiff ? Integrator::BackwardEuler : Integrator::Rk4, stiff ? kFrame : 0.01).advanceTo(1.0);
   s.system.setImplicitSolver(ImplicitSolver::cg);
-  IntegratorScratch w;
+  BackwardEulerState w;
   Eigen::VectorXd y = s.system.state();
-  integrateBackwardEuler(s.system, y, s.system.time(), kFrame, w);
-  const Eigen::SparseMatrix<double>& a = w.implicit.matrix;
-  const Eigen::VectorXd& b = w.implicit.rhs;
+  w.step(s.system, y, s.system.time(), kFrame);
+  const ImplicitStep::LinearSystem step = w.implicitStep()->lastSystem();
+  const Eigen::SparseMatrix<double>& a = step.matrix;
+  const Eigen::VectorXd& b = step.rhs;
   long iterations = 0;
   for (auto _ : state) {
     if (which == CgPreconditioner::jacobi) {

@@ -156,6 +156,46 @@ TEST_CASE("issue 26 row 14: gather's outputs are never its job table, a record o
          });
 }
 
+// What golden and sweep write, by their rows of the command table (src/app/command_table.cpp): a
+// golden report folder is replaced whole, so nothing it reads may lie in it; a sweep never writes
+// over its sweep file or a scenario. The default folders and what a manifest or sweep file names are
+// checked, by the same rule, once the file is read.
+std::string inFolder(const std::string& folder, const std::string& input) {
+  return "error: -o '" + folder + "' is a folder replaced whole, and " + input +
+         "' is in it; an output never replaces an input\n";
+}
+
+TEST_CASE("issue 40: golden's report folder never holds what it reads, a sweep never writes over its inputs") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  s.write("m.yaml", "references: report/refs\nstates:\n  - {scenario: s.yaml, times: [0.1]}\n");
+  fs::create_directories(s.dir / "shards/rep");
+  fs::create_directories(s.dir / "out");
+  fs::create_directories(s.dir / "sweep-jobs");
+  const std::string sweep = "scenarios: [s.yaml]\ncommand: run\nparameters:\n  - {key: dt, values: [0.01]}\n";
+  s.write("out/jobs.csv", sweep);
+  s.write("sweep-jobs/jobs.csv", sweep);
+  s.write("out/results.csv", kSwingScenario);
+  s.write("onto-results.yaml",
+          "scenarios: [out/results.csv]\ncommand: run\nparameters:\n  - {key: dt, values: [0.01]}\n");
+  checkRefused(s,
+               {
+                   {"golden check m.yaml -o . -q", inFolder(".", "the manifest 'm.yaml")},
+                   // The references' folder the manifest names, not there yet.
+                   {"golden check m.yaml -o report -q", inFolder("report", "the references './report/refs")},
+                   {"golden report shards/rep -o shards -q", inFolder("shards", "the report folder 'shards/rep")},
+                   {"golden report shards/rep -o shards/rep -q",
+                    sameFile("-o 'shards/rep", "the report folder 'shards/rep", "an input")},
+                   {"sweep out/jobs.csv -o out --quiet",
+                    sameFile("the job table 'out/jobs.csv", "the sweep file 'out/jobs.csv", "an input")},
+                   // The default folder, sweep-NAME, named after the sweep file: jobs.
+                   {"sweep sweep-jobs/jobs.csv --quiet",
+                    sameFile("the job table 'sweep-jobs/jobs.csv", "the sweep file 'sweep-jobs/jobs.csv", "an input")},
+                   {"sweep onto-results.yaml -o out --emit parallel --quiet",
+                    sameFile("the results 'out/results.csv", "the scenario 'out/results.csv", "an input")},
+               });
+}
+
 TEST_CASE("issue 26: a figure's extension, a --record folder and --diff's format are refused before any work") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);

@@ -239,6 +239,30 @@ double largestEigenvalue(const Eigen::MatrixXd& m) {
 
 }  // namespace
 
+TEST_CASE("a Jacobian pair's four blocks by BlockRef: (a, a) and (b, b) add its block, (a, b) and (b, a) subtract it") {
+  // Two pairs over five points, their blocks placed through BlockRef, against expanded()'s
+  // triplets of the same pairs.
+  ForceJacobians jac;
+  jac.pairs.emplace_back(3, 1, Eigen::Matrix2d{{-2.0, 0.5}, {0.5, -3.0}}, Eigen::Matrix2d{{-0.25, 0.0}, {0.0, -0.5}});
+  jac.pairs.emplace_back(0, 4, Eigen::Matrix2d{{-7.0, -1.5}, {-1.5, -11.0}}, Eigen::Matrix2d::Zero());
+  const Eigen::Index n = 10;
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+  for (int q = 0; q < int(jac.pairs.size()); ++q) {
+    const JacobianPair& pair = jac.pairs[size_t(q)];
+    const Eigen::Matrix2d block{{pair.k[0], pair.k[1]}, {pair.k[1], pair.k[2]}};
+    for (BlockRef::Role role : BlockRef::kRoles) {
+      const BlockRef ref{q, role};
+      k.block(2 * ref.rowPoint(pair), 2 * ref.colPoint(pair), 2, 2) += ref.sign() * block;
+    }
+  }
+  CHECK(k == denseOf(jac.expanded().dfdx, n));
+  const JacobianPair& first = jac.pairs[0];
+  CHECK(BlockRef{0, BlockRef::Role::ab}.rowPoint(first) == 3);
+  CHECK(BlockRef{0, BlockRef::Role::ab}.colPoint(first) == 1);
+  CHECK(BlockRef{0, BlockRef::Role::ba}.rowPoint(first) == 1);
+  CHECK(BlockRef{0, BlockRef::Role::ba}.colPoint(first) == 3);
+}
+
 TEST_CASE("force Jacobians for backward Euler match finite differences") {
   SUBCASE("a stretched damped spring, drag and an active mouse") {
     SystemBuilder b;

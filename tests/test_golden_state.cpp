@@ -57,7 +57,7 @@ TEST_CASE("golden state file: a file that is not one is refused with its line") 
   CHECK(message("t,name,x,y,vx,vy,angle,omega\n1,a,1,2,3\n").find("ref.csv:2: 5 fields") == 0);
   CHECK(message("t,name,x,y,vx,vy,angle,omega\n1,a,1,2,3,4,5,6\n1,b,1,2,x3,4,5,6\n") ==
         "ref.csv:3: vx: 'x3' is not a number");
-  CHECK(message("t,name,x,y,vx,vy,angle,omega\n1,\"a,1,2,3,4,5,6\n") == "ref.csv:2: a quoted field does not end");
+  CHECK(message("t,name,x,y,vx,vy,angle,omega\n1,\"a,1,2,3,4,5,6\n") == "ref.csv:2: a quoted field is not closed");
   CHECK(message("t,name,x,y,vx,vy,angle,omega\r\n1,a,1,2,3,4,5,6\r\n") == "accepted");
   constexpr char withNul[] = "t,name,x,y,vx,vy,angle,omega\n1,a\0,1,2,3,4,5,6\n";
   CHECK(message(std::string(withNul, sizeof withNul - 1)) ==

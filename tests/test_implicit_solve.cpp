@@ -49,13 +49,13 @@ struct OneStep {
 // the direct path factors A itself); CG to 1e-14.
 OneStep stepWith(System& system, ImplicitSolver solver) {
   OneStep out{system.state(), {}, {}};
-  IntegratorScratch w;
+  BackwardEulerState w({.cgTolerance = 1e-14});
   const ImplicitSolver before = system.implicitSolver();
   system.setImplicitSolver(solver);
-  integrateBackwardEuler(system, out.y, system.time(), 1.0 / 60.0, w, {.cgTolerance = 1e-14});
+  w.step(system, out.y, system.time(), 1.0 / 60.0);
   system.setImplicitSolver(before);
-  out.dv = w.implicit.dv;
-  out.stats = w.implicit.stats;
+  out.dv = w.implicitStep()->lastSystem().dv;
+  out.stats = w.implicitStep()->stats();
   return out;
 }
 
@@ -108,7 +108,7 @@ TEST_CASE("the direct solve reuses its factors while they serve, and stays with 
   scenario::Scenario exact = loadProjectScenario("cloth_stiff.yaml");
   reused.system.setImplicitSolver(ImplicitSolver::direct);
   Solver solver(Integrator::BackwardEuler);
-  IntegratorScratch w;
+  BackwardEulerState w({.cgTolerance = 1e-14});
   exact.system.setImplicitSolver(ImplicitSolver::cg);
   const long steps = 120;
   long refactored = 0, iterations = 0;
@@ -117,7 +117,7 @@ TEST_CASE("the direct solve reuses its factors while they serve, and stays with 
     refactored += solver.lastImplicitStep().factorized ? 1 : 0;
     iterations += solver.lastImplicitStep().iterations;
     Eigen::VectorXd y = exact.system.state();
-    integrateBackwardEuler(exact.system, y, exact.system.time(), 1.0 / 60.0, w, {.cgTolerance = 1e-14});
+    w.step(exact.system, y, exact.system.time(), 1.0 / 60.0);
     exact.system.state() = y;
     exact.system.projectOntoConstraints(exact.system.state());
     exact.system.setTime(double(i + 1) / 60.0);

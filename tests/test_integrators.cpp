@@ -76,6 +76,53 @@ TEST_CASE("integrators are chosen by name") {
   CHECK(projectsConstraints(Integrator::Verlet));
 }
 
+TEST_CASE("each registry row makes its integrator's own state, which steps as the solver does") {
+  for (Integrator integrator : allIntegrators()) {
+    CAPTURE(integratorName(integrator));
+    const std::unique_ptr<IntegratorState> state = makeIntegratorState(integrator);
+    REQUIRE(state != nullptr);
+    CHECK((state->implicitStep() != nullptr) == isImplicit(integrator));
+    // Three steps of the state on its own give the solver's bits (an oscillator without
+    // constraints: the solver adds no projection).
+    System bySolver = harmonicOscillator(4.0, 0.5), byState = harmonicOscillator(4.0, 0.5);
+    Solver solver(integrator);
+    for (int i = 0; i < 3; ++i) {
+      solver.doStep(bySolver, 0.01);
+      state->step(byState, byState.state(), byState.time(), 0.01);
+      byState.setTime(bySolver.time());
+    }
+    CHECK(byState.state() == bySolver.state());
+  }
+  // Two states of one integrator share nothing: a step of one leaves the other's history alone.
+  const std::unique_ptr<IntegratorState> first = makeIntegratorState(Integrator::Bdf2);
+  const std::unique_ptr<IntegratorState> second = makeIntegratorState(Integrator::Bdf2);
+  System a = harmonicOscillator(4.0, 0.5), b = harmonicOscillator(4.0, 0.5);
+  first->step(a, a.state(), 0.0, 0.01);
+  first->step(a, a.state(), 0.01, 0.01);
+  second->step(b, b.state(), 0.0, 0.01);  // a first step: backward Euler's, as first's was
+  System c = harmonicOscillator(4.0, 0.5);
+  BackwardEulerState backwardEuler;
+  backwardEuler.step(c, c.state(), 0.0, 0.01);
+  CHECK(b.state() == c.state());
+}
+
+TEST_CASE("BDF2's history: kept while the steps continue, dropped at a new h, a time jump or a new state size") {
+  Bdf2State state;
+  System sys = harmonicOscillator(4.0, 0.5);
+  const double h = 0.01;
+  CHECK_FALSE(state.continues(sys.state(), 0.0, h));  // nothing yet: the first step is backward Euler's
+  state.step(sys, sys.state(), 0.0, h);
+  CHECK(state.continues(sys.state(), h, h));
+  CHECK(state.continues(sys.state(), h * (1.0 + 1e-12), h));  // the Solver's t, rounded
+  CHECK_FALSE(state.continues(sys.state(), h, h / 2));        // a new h
+  CHECK_FALSE(state.continues(sys.state(), 5.0, h));          // a jump in time
+  CHECK_FALSE(state.continues(sys.state(), 0.0, h));          // a rewind
+  const Eigen::VectorXd longer = Eigen::VectorXd::Zero(sys.state().size() + 4);
+  CHECK_FALSE(state.continues(longer, h, h));  // another scene's state
+  state.step(sys, sys.state(), h, h);
+  CHECK(state.continues(sys.state(), 2 * h, h));
+}
+
 TEST_CASE("convergence order on an undamped harmonic oscillator") {
   // Halving h divides the global error by 2^order. Step sizes are chosen per method so that the
   // error is in the asymptotic regime (ωh ≤ 0.1) and well above round-off (RK4's smallest error
@@ -476,12 +523,12 @@ TEST_CASE("backward Euler's constrained Δv solves the KKT system of the step, b
   const Eigen::VectorXd y0 = sys.state();
 
   Eigen::VectorXd yCg = y0;
-  IntegratorScratch cg;
+  BackwardEulerState cg({.cgTolerance = 1e-14});
   sys.setImplicitSolver(ImplicitSolver::cg);
-  integrateBackwardEuler(sys, yCg, sys.time(), 0.05, cg, {.cgTolerance = 1e-14});
-  CHECK(cg.implicit.stats.solver == ImplicitSolver::cg);
+  cg.step(sys, yCg, sys.time(), 0.05);
+  CHECK(cg.implicitStep()->stats().solver == ImplicitSolver::cg);
 
-  const ImplicitScratch& w = cg.implicit;
+  const ImplicitStep::LinearSystem w = cg.implicitStep()->lastSystem();
   const Eigen::Index n = w.rhs.size(), m = Eigen::Index(w.constraintRows.size());
   REQUIRE(m == 2);
   Eigen::MatrixXd j = Eigen::MatrixXd::Zero(m, n);
@@ -500,14 +547,15 @@ TEST_CASE("backward Euler's constrained Δv solves the KKT system of the step, b
   CHECK(dense.tail(m).norm() > 1e-6);  // the constraints did push
 
   Eigen::VectorXd yDirect = y0;
-  IntegratorScratch direct;
+  BackwardEulerState direct;
   sys.setImplicitSolver(ImplicitSolver::direct);
-  integrateBackwardEuler(sys, yDirect, sys.time(), 0.05, direct);
-  CHECK(direct.implicit.stats.solver == ImplicitSolver::direct);
-  CHECK(direct.implicit.stats.eliminated == 1);  // the rail's y
-  CHECK(direct.implicit.stats.schurRows == 1);   // the rod
-  CHECK(direct.implicit.stats.factorized);
-  CHECK((direct.implicit.dv - dense.head(n)).norm() < 1e-9 * dense.head(n).norm());
+  direct.step(sys, yDirect, sys.time(), 0.05);
+  const ImplicitStepStats& stats = direct.implicitStep()->stats();
+  CHECK(stats.solver == ImplicitSolver::direct);
+  CHECK(stats.eliminated == 1);  // the rail's y
+  CHECK(stats.schurRows == 1);   // the rod
+  CHECK(stats.factorized);
+  CHECK((direct.implicitStep()->lastSystem().dv - dense.head(n)).norm() < 1e-9 * dense.head(n).norm());
   CHECK((yDirect - yCg).norm() < 1e-9 * yCg.norm());
 }
 
@@ -543,23 +591,32 @@ TEST_CASE("Verlet evaluates once per step after the first, and afresh when the s
     dydt.tail(2) = -4.0 * y.head(2);  // dv/dt = −4 x
   };
   const StateLayout layout{1, 0};
-  IntegratorScratch w;
+  VerletState w;
   Eigen::VectorXd y(4);
   y << 1.0, 0.0, 0.0, 1.0;
-  integrateVerlet(f, layout, y, 0.0, 0.1, w);
+  w.stepWith(f, layout, y, 0.0, 0.1);
   CHECK(evals == 2);
-  for (int i = 1; i <= 10; ++i) integrateVerlet(f, layout, y, 0.1 * i, 0.1, w);
+  for (int i = 1; i <= 10; ++i) w.stepWith(f, layout, y, 0.1 * i, 0.1);
   CHECK(evals == 12);
   y[0] += 1e-3;  // moved from outside: the cached a₀ no longer belongs to y
-  integrateVerlet(f, layout, y, 1.1, 0.1, w);
+  w.stepWith(f, layout, y, 1.1, 0.1);
   CHECK(evals == 14);
-  integrateVerlet(f, layout, y, 5.0, 0.1, w);  // a jump in time
+  w.stepWith(f, layout, y, 5.0, 0.1);  // a jump in time
   CHECK(evals == 16);
+  w.stepWith(f, layout, y, 5.1, 0.1);
+  CHECK(evals == 17);
+  y[1] += 1e-9;  // a projection after the step moved y a little, and said so: a₀ is kept
+  w.stateProjected(y);
+  w.stepWith(f, layout, y, 5.2, 0.1);
+  CHECK(evals == 18);
+  w.stepUndone();  // the solver put back the state before the step: a₀ is forgotten
+  w.stepWith(f, layout, y, 5.3, 0.1);
+  CHECK(evals == 20);
   // One step by hand: x₁ = x₀ + h v₀ + h²/2 a₀, v₁ = v₀ + h/2 (a₀ + a(x₁)).
-  IntegratorScratch fresh;
+  VerletState fresh;
   Eigen::VectorXd z(4);
   z << 1.0, 0.0, 0.0, 1.0;
-  integrateVerlet(f, layout, z, 0.0, 0.1, fresh);
+  fresh.stepWith(f, layout, z, 0.0, 0.1);
   const double x1 = 1.0 - 0.5 * 0.01 * 4.0;
   CHECK(z[0] == doctest::Approx(x1).epsilon(1e-15));
   CHECK(z[1] == doctest::Approx(0.1).epsilon(1e-15));

@@ -28,8 +28,7 @@ class Cli {
   // code; errors are printed and mapped by runReportingErrors. `args` is argv without argv[0], as the
   // job record names the command (`particles job` leaves out the --threads it adds: job_command.hpp).
   int dispatch(const std::vector<std::string>& args);
-  // The parsed command's files, --record aside. gather has none here: its inputs are the records
-  // its job table lists, which it checks once it has read the table.
+  // The parsed command's files, --record aside: those its command line names (command.hpp).
   CommandFiles commandFiles() const;
   // The parsed command's --record, or empty.
   std::string recordFile() const;

@@ -37,8 +37,9 @@ struct CommandDescriptor {
   // Returns the exit code of an outcome that is not an error (kOk on success) and throws for an
   // error, which runReportingErrors prints and maps to its code (exit_codes.hpp).
   int (*run)(const Options& options);
-  // The files the command line names; nullptr for a command that names none (gather checks its
-  // inputs once it has read its job table).
+  // The files the command line names; nullptr for a command that names none. Files named in a file
+  // the command reads (gather's records, the scenarios of a sweep or a golden manifest) are checked
+  // by the command once it has read that file, against the same outputs.
   CommandFiles (*files)(const Options& options) = nullptr;
   // A command that reads a scenario: its options, whose scenario the messages of a failed
   // simulation name and whose --max-input its job record is read within. Null for the others.

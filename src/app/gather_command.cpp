@@ -12,12 +12,12 @@
 #include <set>
 
 #include "app/cli_support.hpp"
-#include "app/csv_table.hpp"
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
 #include "input/text_file.hpp"
 #include "output/confined_folder.hpp"
+#include "output/csv_writer.hpp"
 #include "output/distinct_files.hpp"
 #include "output/output_file.hpp"
 #include "plot/figure.hpp"
@@ -86,177 +86,234 @@ void addGatherOptions(CLI::App& command, GatherOptions& o) {
       "  particles gather cloth-sweep --plot cloth-sweep.png\n");
 }
 
-}  // namespace
+// The CSV, and the figure unless --plot none: their defaults lie in the sweep's folder.
+std::filesystem::path resultsPath(const GatherOptions& o) {
+  return o.output.empty() ? std::filesystem::path(o.outDir) / "results.csv" : std::filesystem::path(o.output);
+}
+std::filesystem::path figurePath(const GatherOptions& o) {
+  if (o.plot == "none") return {};
+  return o.plot.empty() ? std::filesystem::path(o.outDir) / "results.svg" : std::filesystem::path(o.plot);
+}
 
-int gatherCommand(const GatherOptions& o) {
-  if (!o.plot.empty() && o.plot != "none") requireFigurePath("--plot", o.plot);
-  const std::filesystem::path dir = o.outDir;
-  const JobTable table = readJobTable(dir, o.maxInputMiB);
-  const std::vector<std::string>& parameters = table.parameters;
-  const size_t stageCol = JobTable::kStage, scenarioCol = JobTable::kScenario, segmentCol = table.segmentColumn();
+// The files the command line names: the outputs, and the job table they may not be. The records
+// the table lists are checked against the outputs once it is read (requireRecordsDistinct).
+CommandFiles gatherFiles(const GatherOptions& o) {
+  return {{{"-o", resultsPath(o)}, {"--plot", figurePath(o)}},
+          {{"the job table", std::filesystem::path(o.outDir) / "jobs.csv"}}};
+}
 
-  // The outputs are never the table or a record (output/distinct_files.hpp): checked before
-  // anything is read further or written.
-  const std::filesystem::path csvPath = o.output.empty() ? dir / "results.csv" : std::filesystem::path(o.output);
-  const std::filesystem::path plotPath = o.plot == "none" ? std::filesystem::path()
-                                         : o.plot.empty() ? dir / "results.svg"
-                                                          : std::filesystem::path(o.plot);
-  {
-    std::vector<output::NamedFile> inputs = {{"the job table", dir / "jobs.csv"}};
-    for (const auto& job : table.rows) inputs.push_back({"the record", dir / job[table.dirColumn()] / "record.txt"});
-    output::requireDistinctFiles({{"-o", csvPath}, {"--plot", plotPath}}, inputs);
-  }
+std::filesystem::path recordPath(const std::filesystem::path& dir, const JobTable& table,
+                                 const std::vector<std::string>& job) {
+  return dir / job[table.dirColumn()] / "record.txt";
+}
 
+// The outputs are never a record (output/distinct_files.hpp): checked before anything is read
+// further or written.
+void requireRecordsDistinct(const JobTable& table, const GatherOptions& o) {
+  std::vector<output::NamedFile> records;
+  for (const auto& job : table.rows) records.push_back({"the record", recordPath(o.outDir, table, job)});
+  output::requireDistinctFiles(gatherFiles(o).outputs, records);
+}
+
+// The jobs' records, as far as they can be read, and the headline keys they report.
+struct Gathered {
   std::vector<GatheredRow> rows;
   std::vector<std::string> keys;                     // headline keys in order of first appearance
   std::map<std::string, size_t, std::less<>> keyAt;  // … and where, so that many keys stay linear
   size_t unreadable = 0;
+};
+
+Gathered readRecords(const JobTable& table, const GatherOptions& o) {
+  Gathered gathered;
   for (const auto& job : table.rows) {
     GatheredRow row{job, std::nullopt, {}};
-    const std::filesystem::path file = dir / job[table.dirColumn()] / "record.txt";
+    const std::filesystem::path file = recordPath(o.outDir, table, job);
     try {
       row.record = readJobRecord(file, o.maxInputMiB);
     } catch (const input::ReadError& e) {
       row.unreadable = fmt::format("{}: {}", file.string(), e.what());
-      ++unreadable;
+      ++gathered.unreadable;
       if (!o.quiet) fmt::print(stderr, "warning: {}\n", row.unreadable);
     }
     if (row.record) {
       for (const auto& [k, v] : row.record->headline) {
-        if (keyAt.emplace(k, keys.size()).second) keys.push_back(k);
+        if (gathered.keyAt.emplace(k, gathered.keys.size()).second) gathered.keys.push_back(k);
       }
     }
-    rows.push_back(std::move(row));
+    gathered.rows.push_back(std::move(row));
   }
+  return gathered;
+}
 
-  // results.csv
+struct Tally {
   size_t ok = 0, failed = 0, notRun = 0;
-  {
-    // The default results.csv is the sweep folder's own file, written beneath it (issue 39); a
-    // file that -o names is the user's choice.
-    std::optional<output::ConfinedFolder> sweepFolder;
-    if (o.output.empty()) sweepFolder.emplace(dir);
-    output::OutputFile csv =
-        sweepFolder ? output::OutputFile(*sweepFolder, "results.csv") : output::OutputFile(csvPath);
-    std::vector<std::string> head = {"index", "stage", "scenario"};
-    head.insert(head.end(), parameters.begin(), parameters.end());
-    head.insert(head.end(), {"segment", "status", "exit", "seconds"});
-    head.insert(head.end(), keys.begin(), keys.end());
-    head.push_back("message");
-    csv.write(csvRow(head));
-    for (const GatheredRow& row : rows) {
-      std::vector<std::string> fields(row.job.begin(), row.job.begin() + long(segmentCol) + 1);
-      if (!row.record) {
-        ++notRun;
-        fields.insert(fields.end(), {row.unreadable.empty() ? "not run" : "unreadable", "", ""});
-        fields.resize(fields.size() + keys.size());
-        fields.push_back(row.unreadable);
-      } else {
-        const JobRecord& rec = *row.record;
-        (rec.exitCode == 0 ? ok : failed)++;
-        fields.insert(fields.end(), {rec.exitCode == 0 ? "ok" : "failed", std::to_string(rec.exitCode),
-                                     fmt::format("{:.3f}", rec.seconds)});
-        const size_t first = fields.size();
-        fields.resize(first + keys.size());
-        for (const auto& [k, v] : rec.headline) fields[first + keyAt.find(k)->second] = fmt::format("{}", v);
-        fields.push_back(rec.message);
-      }
-      csv.write(csvRow(fields));
-    }
-    csv.commit();
-  }
+};
 
-  // The figure: the final stage's rows that succeeded, against the one parameter that varies.
-  std::vector<const GatheredRow*> results;
-  for (const GatheredRow& row : rows) {
-    if (row.job[stageCol] != "segment" && row.record && row.record->exitCode == 0) results.push_back(&row);
+// A job's row of results.csv: its jobs.csv row up to the segment, its outcome, its headline numbers
+// in the columns of `gathered.keys`, its message.
+std::vector<std::string> resultsRow(const GatheredRow& row, const Gathered& gathered, size_t segmentColumn,
+                                    Tally& tally) {
+  std::vector<std::string> fields(row.job.begin(), row.job.begin() + long(segmentColumn) + 1);
+  if (!row.record) {
+    ++tally.notRun;
+    fields.insert(fields.end(), {row.unreadable.empty() ? "not run" : "unreadable", "", ""});
+    fields.resize(fields.size() + gathered.keys.size());
+    fields.push_back(row.unreadable);
+    return fields;
   }
+  const JobRecord& rec = *row.record;
+  (rec.exitCode == 0 ? tally.ok : tally.failed)++;
+  fields.insert(fields.end(), {rec.exitCode == 0 ? "ok" : "failed", std::to_string(rec.exitCode),
+                               fmt::format("{:.3f}", rec.seconds)});
+  const size_t first = fields.size();
+  fields.resize(first + gathered.keys.size());
+  for (const auto& [k, v] : rec.headline) fields[first + gathered.keyAt.find(k)->second] = fmt::format("{}", v);
+  fields.push_back(rec.message);
+  return fields;
+}
+
+// results.csv: a row per job.
+Tally writeResultsTable(const Gathered& gathered, const JobTable& table, const GatherOptions& o) {
+  // The default results.csv is the sweep folder's own file, written beneath it (issue 39); a
+  // file that -o names is the user's choice.
+  std::optional<output::ConfinedFolder> sweepFolder;
+  if (o.output.empty()) sweepFolder.emplace(o.outDir);
+  output::OutputFile csv =
+      sweepFolder ? output::OutputFile(*sweepFolder, "results.csv") : output::OutputFile(resultsPath(o));
+  std::vector<std::string> head = {"index", "stage", "scenario"};
+  head.insert(head.end(), table.parameters.begin(), table.parameters.end());
+  head.insert(head.end(), {"segment", "status", "exit", "seconds"});
+  head.insert(head.end(), gathered.keys.begin(), gathered.keys.end());
+  head.push_back("message");
+  csv.write(output::csvRow(head));
+  Tally tally;
+  for (const GatheredRow& row : gathered.rows) {
+    csv.write(output::csvRow(resultsRow(row, gathered, table.segmentColumn(), tally)));
+  }
+  csv.commit();
+  return tally;
+}
+
+// The figure's lines: per panel (a quantity, the key up to its first '.'), a series per integrator
+// and scenario, each a point per job, in the order of first appearance.
+struct FigureSeries {
+  std::vector<std::string> panels;
+  std::map<std::string, std::map<std::string, plot::Series>> series;  // panel → series name → series
+  std::map<std::string, std::vector<std::string>> order;              // panel → series names
+  std::vector<double> xs;
+};
+
+FigureSeries figureSeries(const std::vector<const GatheredRow*>& results, size_t xColumn) {
+  std::set<std::string> scenarios;
+  for (const GatheredRow* row : results) scenarios.insert(row->job[JobTable::kScenario]);
+  FigureSeries f;
+  for (const GatheredRow* row : results) {
+    const double x = *numberOf(row->job[xColumn]);
+    f.xs.push_back(x);
+    for (const auto& [key, value] : row->record->headline) {
+      if (!inFigure(key)) continue;
+      const size_t dot = key.find('.');
+      const std::string panel = key.substr(0, dot);
+      std::string name = dot == std::string::npos ? std::string() : key.substr(dot + 1);
+      const std::string& scenario = row->job[JobTable::kScenario];
+      if (scenarios.size() > 1) name = name.empty() ? scenario : scenario + ": " + name;
+      if (std::find(f.panels.begin(), f.panels.end(), panel) == f.panels.end()) f.panels.push_back(panel);
+      auto& s = f.series[panel][name];
+      if (s.x.empty()) {
+        s.name = name;
+        s.markers = true;
+        f.order[panel].push_back(name);
+      }
+      s.x.push_back(x);
+      s.y.push_back(value);
+    }
+  }
+  return f;
+}
+
+// One panel of the figure, each line's points in order of x, so that it goes left to right
+// whatever the job order.
+plot::Panel figurePanel(const std::string& name, const FigureSeries& f) {
+  plot::Panel panel;
+  panel.yLabel = axisLabel(name);
+  std::vector<double> ys;
+  for (const std::string& s : f.order.at(name)) {
+    const plot::Series& line = f.series.at(name).at(s);
+    std::vector<size_t> order(line.x.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return line.x[a] < line.x[b]; });
+    plot::Series sorted{line.name, {}, {}, true};
+    for (size_t i : order) {
+      sorted.x.push_back(line.x[i]);
+      sorted.y.push_back(line.y[i]);
+    }
+    ys.insert(ys.end(), sorted.y.begin(), sorted.y.end());
+    panel.series.push_back(std::move(sorted));
+  }
+  panel.yScale = scaleFor(ys);
+  return panel;
+}
+
+// The parameters that take more than one value among `results`.
+std::vector<size_t> varyingParameters(const std::vector<const GatheredRow*>& results, const JobTable& table) {
   std::vector<size_t> varying;
-  for (size_t p = 0; p < parameters.size(); ++p) {
+  for (size_t p = 0; p < table.parameters.size(); ++p) {
     std::set<std::string> seen;
-    for (const GatheredRow* row : results) seen.insert(row->job[scenarioCol + 1 + p]);
+    for (const GatheredRow* row : results) seen.insert(row->job[table.parameterColumn(p)]);
     if (seen.size() > 1) varying.push_back(p);
   }
-  std::string figureNote;
-  std::filesystem::path figurePath;
-  if (o.plot == "none") {
-    figureNote = "no figure (--plot none)";
-  } else if (varying.size() != 1) {
-    figureNote = varying.empty() ? "no figure: no parameter varies"
-                                 : fmt::format("no figure: {} parameters vary (a figure needs one)", varying.size());
-  } else {
-    const size_t xCol = scenarioCol + 1 + varying.front();
-    bool numeric = true;
-    for (const GatheredRow* row : results) numeric = numeric && numberOf(row->job[xCol]).has_value();
-    if (!numeric) {
-      figureNote = fmt::format("no figure: {} is not a number", parameters[varying.front()]);
-    } else {
-      std::set<std::string> scenarios;
-      for (const GatheredRow* row : results) scenarios.insert(row->job[scenarioCol]);
-      // Panels: one per quantity (the key up to its first '.'), series per integrator and scenario.
-      std::vector<std::string> panelNames;
-      std::map<std::string, std::map<std::string, plot::Series>> series;  // panel → series name → series
-      std::map<std::string, std::vector<std::string>> seriesOrder;
-      std::vector<double> xs;
-      for (const GatheredRow* row : results) {
-        const double x = *numberOf(row->job[xCol]);
-        xs.push_back(x);
-        for (const auto& [key, value] : row->record->headline) {
-          if (!inFigure(key)) continue;
-          const size_t dot = key.find('.');
-          const std::string panel = key.substr(0, dot);
-          std::string name = dot == std::string::npos ? std::string() : key.substr(dot + 1);
-          if (scenarios.size() > 1) name = name.empty() ? row->job[scenarioCol] : row->job[scenarioCol] + ": " + name;
-          if (std::find(panelNames.begin(), panelNames.end(), panel) == panelNames.end()) panelNames.push_back(panel);
-          auto& s = series[panel][name];
-          if (s.x.empty()) {
-            s.name = name;
-            s.markers = true;
-            seriesOrder[panel].push_back(name);
-          }
-          s.x.push_back(x);
-          s.y.push_back(value);
-        }
-      }
-      if (panelNames.size() > 4) panelNames.resize(4);
-      plot::LineChart chart;
-      chart.xLabel = parameters[varying.front()];
-      chart.xScale = scaleFor(xs);
-      for (const std::string& name : panelNames) {
-        plot::Panel panel;
-        panel.yLabel = axisLabel(name);
-        std::vector<double> ys;
-        for (const std::string& s : seriesOrder[name]) {
-          plot::Series line = series[name][s];
-          // Points in order of x, so the line goes left to right whatever the job order.
-          std::vector<size_t> order(line.x.size());
-          for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-          std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return line.x[a] < line.x[b]; });
-          plot::Series sorted{line.name, {}, {}, true};
-          for (size_t i : order) {
-            sorted.x.push_back(line.x[i]);
-            sorted.y.push_back(line.y[i]);
-          }
-          ys.insert(ys.end(), sorted.y.begin(), sorted.y.end());
-          panel.series.push_back(std::move(sorted));
-        }
-        panel.yScale = scaleFor(ys);
-        chart.panels.push_back(std::move(panel));
-      }
-      plot::Figure figure;
-      figure.title = fmt::format("{} against {}", std::filesystem::absolute(dir).lexically_normal().filename().string(),
-                                 parameters[varying.front()]);
-      figure.heightPx = int(std::max<size_t>(1, chart.panels.size())) * 300 + 140;
-      figure.chart = std::move(chart);
-      figurePath = plotPath;
-      plot::writeFigure(figure, figurePath);
-    }
+  return varying;
+}
+
+// The figure: the final stage's rows that succeeded, against the one parameter that varies, at
+// most four panels. Returns the line gather prints about it: where it is, or why there is none.
+std::string writeResultsFigure(const Gathered& gathered, const JobTable& table, const GatherOptions& o) {
+  if (o.plot == "none") return "no figure (--plot none)";
+  std::vector<const GatheredRow*> results;
+  for (const GatheredRow& row : gathered.rows) {
+    if (row.job[JobTable::kStage] != "segment" && row.record && row.record->exitCode == 0) results.push_back(&row);
   }
+  const std::vector<size_t> varying = varyingParameters(results, table);
+  if (varying.size() != 1) {
+    return varying.empty() ? "no figure: no parameter varies"
+                           : fmt::format("no figure: {} parameters vary (a figure needs one)", varying.size());
+  }
+  const std::string& parameter = table.parameters[varying.front()];
+  const size_t xColumn = table.parameterColumn(varying.front());
+  for (const GatheredRow* row : results) {
+    if (!numberOf(row->job[xColumn])) return fmt::format("no figure: {} is not a number", parameter);
+  }
+  FigureSeries series = figureSeries(results, xColumn);
+  if (series.panels.size() > 4) series.panels.resize(4);
+  plot::LineChart chart;
+  chart.xLabel = parameter;
+  chart.xScale = scaleFor(series.xs);
+  for (const std::string& name : series.panels) chart.panels.push_back(figurePanel(name, series));
+  plot::Figure figure;
+  figure.title = fmt::format("{} against {}",
+                             std::filesystem::absolute(o.outDir).lexically_normal().filename().string(), parameter);
+  figure.heightPx = int(std::max<size_t>(1, chart.panels.size())) * 300 + 140;
+  figure.chart = std::move(chart);
+  const std::filesystem::path path = figurePath(o);
+  plot::writeFigure(figure, path);
+  return "figure: " + path.string();
+}
+
+}  // namespace
+
+int gatherCommand(const GatherOptions& o) {
+  if (!o.plot.empty() && o.plot != "none") requireFigurePath("--plot", o.plot);
+  const JobTable table = readJobTable(o.outDir, o.maxInputMiB);
+  requireRecordsDistinct(table, o);
+  const Gathered gathered = readRecords(table, o);
+  const Tally tally = writeResultsTable(gathered, table, o);
+  const std::string figure = writeResultsFigure(gathered, table, o);
   if (!o.quiet) {
-    fmt::print("{}: {} jobs: {} ok, {} failed, {} not run{} → {}\n", o.outDir, rows.size(), ok, failed,
-               notRun - unreadable, unreadable ? fmt::format(", {} with unreadable records", unreadable) : "",
-               csvPath.string());
-    fmt::print("{}\n", figurePath.empty() ? figureNote : "figure: " + figurePath.string());
+    fmt::print("{}: {} jobs: {} ok, {} failed, {} not run{} → {}\n", o.outDir, gathered.rows.size(), tally.ok,
+               tally.failed, tally.notRun - gathered.unreadable,
+               gathered.unreadable ? fmt::format(", {} with unreadable records", gathered.unreadable) : "",
+               resultsPath(o).string());
+    fmt::print("{}\n", figure);
   }
   return kOk;
 }
@@ -266,6 +323,7 @@ const CommandDescriptor<GatherOptions> kGatherCommand = {
     .summary = "Collect a sweep's results: one CSV row per job, and a figure",
     .addOptions = addGatherOptions,
     .run = gatherCommand,
+    .files = gatherFiles,
 };
 
 }  // namespace particles::app

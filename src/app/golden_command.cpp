@@ -17,6 +17,7 @@
 #include "golden/references.hpp"
 #include "golden/results.hpp"
 #include "output/confined_folder.hpp"
+#include "output/distinct_files.hpp"
 #include "output/output_error.hpp"
 #include "output/printable_text.hpp"
 #include "output/staging_directory.hpp"
@@ -185,33 +186,40 @@ std::vector<std::string> earlierReport(const fs::path& folder, std::uintmax_t ma
 
 // The report folder: made new, or replacing a folder that is entirely an earlier report (its
 // results.json reads back as one, and it holds only what that report lists); anything else is
-// refused, not overwritten. It may not hold what the command reads. Returns the earlier report's
-// files and folders, the only things `publish` removes.
-std::vector<std::string> checkReportFolder(const fs::path& folder, const std::vector<fs::path>& inputs,
-                                           std::uintmax_t maxInputMiB) {
+// refused, not overwritten. That it holds nothing the command reads is the rule of its files
+// (goldenFiles, and reportFolderHoldsNoInput for what the manifest names). Returns the earlier
+// report's files and folders, the only things `publish` removes.
+std::vector<std::string> checkReportFolder(const fs::path& folder, std::uintmax_t maxInputMiB) {
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(folder, ec);
-  std::vector<std::string> earlier;
+  if (st.type() == fs::file_type::not_found) return {};
   const std::string shown = output::printableText(folder.string());
-  if (st.type() != fs::file_type::not_found) {
-    if (st.type() == fs::file_type::symlink) {
-      throw InputError(fmt::format("-o {}: a symbolic link; give the folder itself (it is replaced whole)", shown));
-    }
-    if (st.type() != fs::file_type::directory) {
-      throw InputError(fmt::format("-o {}: not a folder; the report is a folder", shown));
-    }
-    if (!fs::is_empty(folder, ec)) earlier = earlierReport(folder, maxInputMiB);
+  if (st.type() == fs::file_type::symlink) {
+    throw InputError(fmt::format("-o {}: a symbolic link; give the folder itself (it is replaced whole)", shown));
   }
-  const fs::path out = fs::weakly_canonical(fs::absolute(folder), ec);
-  for (const fs::path& input : inputs) {
-    const fs::path in = fs::weakly_canonical(fs::absolute(input), ec);
-    const fs::path rel = in.lexically_relative(out);
-    if (in == out || (!rel.empty() && *rel.begin() != "..")) {
-      throw InputError(fmt::format("-o {}: it holds {}, which the check reads; the report folder is replaced whole",
-                                   shown, output::printableText(input.string())));
-    }
+  if (st.type() != fs::file_type::directory) {
+    throw InputError(fmt::format("-o {}: not a folder; the report is a folder", shown));
   }
-  return earlier;
+  if (fs::is_empty(folder, ec)) return {};
+  return earlierReport(folder, maxInputMiB);
+}
+
+// The report folder as one of the command's files: an output replaced whole, so that no input may
+// lie beneath it (output/distinct_files.hpp).
+output::NamedFile reportFolder(const std::string& folder) {
+  return {"-o", folder, true};
+}
+
+// What the manifest names that `golden check` reads besides the manifest itself (which the
+// command line names: goldenFiles): the references' folder and the scenarios. None may lie in
+// the report folder, which is replaced whole.
+void reportFolderHoldsNoInput(const std::string& folder, const scenario::GoldenManifest& manifest) {
+  std::vector<output::NamedFile> inputs = {
+      {"the references", manifest.references.empty() ? fs::path(".") : manifest.references}};
+  for (const auto* entries : {&manifest.frames, &manifest.states}) {
+    for (const scenario::GoldenEntry& e : *entries) inputs.push_back({"the scenario", e.scenario});
+  }
+  output::requireDistinctFiles({reportFolder(folder)}, inputs);
 }
 
 // The folder the report folder goes in, made when it is not there (a build tree's golden/).
@@ -292,12 +300,9 @@ int goldenCheck(const GoldenCheckOptions& o) {
   c.overrides.threshold = o.threshold;
   c.overrides.maxShare = o.maxShare;
   const fs::path folder = o.output;
-  std::vector<fs::path> inputs = {o.run.manifest, manifest.references};
-  for (const auto* entries : {&manifest.frames, &manifest.states}) {
-    for (const scenario::GoldenEntry& e : *entries) inputs.push_back(e.scenario);
-  }
   golden::requireReferencesInPlace(manifest, false);
-  std::vector<std::string> earlier = checkReportFolder(folder, inputs, o.run.maxInputMiB);
+  std::vector<std::string> earlier = checkReportFolder(folder, o.run.maxInputMiB);
+  reportFolderHoldsNoInput(o.output, manifest);
   makeParent(folder);
   output::StagingDirectory staged(folder);
   const auto start = std::chrono::steady_clock::now();
@@ -370,7 +375,7 @@ int goldenUpdate(const GoldenUpdateOptions& o) {
 int goldenReport(const GoldenReportOptions& o) {
   const fs::path folder = o.output;
   std::vector<fs::path> inputs(o.folders.begin(), o.folders.end());
-  std::vector<std::string> earlier = checkReportFolder(folder, inputs, o.maxInputMiB);
+  std::vector<std::string> earlier = checkReportFolder(folder, o.maxInputMiB);
   makeParent(folder);
   output::StagingDirectory staged(folder);
   golden::GoldenResults merged;
@@ -392,6 +397,23 @@ int goldenCommand(const GoldenOptions& o) {
   return goldenReport(o.report);
 }
 
+// The files the command line names: the report folder (replaced whole) and what the command reads
+// from it. What the manifest names is checked once it is read (reportFolderHoldsNoInput); `update`
+// writes into the references' folder the manifest names, checked there (golden/references.hpp).
+CommandFiles goldenFiles(const GoldenOptions& o) {
+  if (o.checkCommand && o.checkCommand->parsed()) {
+    return {{reportFolder(o.check.output)}, {{"the manifest", o.check.run.manifest}}};
+  }
+  if (o.updateCommand && o.updateCommand->parsed()) {
+    CommandFiles files{{}, {{"the manifest", o.update.run.manifest}}};
+    for (const std::string& folder : o.update.from) files.inputs.push_back({"--from", folder});
+    return files;
+  }
+  CommandFiles files{{reportFolder(o.report.output)}, {}};
+  for (const std::string& folder : o.report.folders) files.inputs.push_back({"the report folder", folder});
+  return files;
+}
+
 }  // namespace
 
 const CommandDescriptor<GoldenOptions> kGoldenCommand = {
@@ -399,6 +421,7 @@ const CommandDescriptor<GoldenOptions> kGoldenCommand = {
     .summary = "Golden tests of a manifest's frames and states: check, update references, merge reports",
     .addOptions = addGoldenOptions,
     .run = goldenCommand,
+    .files = goldenFiles,
 };
 
 }  // namespace particles::app

@@ -7,9 +7,9 @@
 #include <charconv>
 #include <set>
 
-#include "app/csv_table.hpp"
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
+#include "input/csv_reader.hpp"
 #include "input/text_file.hpp"
 
 namespace particles::app {
@@ -29,7 +29,12 @@ JobTable parseJobTable(std::string_view text, const std::string& file) {
   JobTable table;
   table.file = file;
   std::vector<int> lines;
-  auto rows = parseCsv(text, file, &lines);
+  std::vector<std::vector<std::string>> rows;
+  try {
+    rows = input::parseCsv(text, &lines);
+  } catch (const input::CsvError& e) {
+    throw InputError(fmt::format("{}:{}: {}", file, e.line(), e.what()));
+  }
   if (rows.empty()) throw InputError(fmt::format("{}: empty; expected a sweep's job table", file));
   const std::vector<std::string>& header = rows.front();
   const auto expected = "index, stage, scenario, the parameters, segment, dir, command";

@@ -43,8 +43,10 @@ std::string describe(const RunAssessment& a) {
     case RunVerdict::Stable: return "stable";
     case RunVerdict::Shaking: return fmt::format("shaking index {:.2f}", a.shakingIndex);
     case RunVerdict::Exploded: return fmt::format("exploded after {} steps", a.steps);
-    case RunVerdict::Runaway: return fmt::format("energy {:.2g}×S above its bound after {} steps", a.maxEnergyExcess, a.steps);
-    case RunVerdict::Overstretched: return fmt::format("a spring at {:.2f}× its rest length after {} steps", a.maxStretch, a.steps);
+    case RunVerdict::Runaway:
+      return fmt::format("energy {:.2g}×S above its bound after {} steps", a.maxEnergyExcess, a.steps);
+    case RunVerdict::Overstretched:
+      return fmt::format("a spring at {:.2f}× its rest length after {} steps", a.maxStretch, a.steps);
   }
   return "";
 }
@@ -55,7 +57,8 @@ std::map<std::string, plot::Reference> parseReferences(const std::vector<std::st
   std::map<std::string, plot::Reference> out;
   for (const std::string& text : texts) {
     const auto fail = [&](const std::string& why) {
-      throw InputError(fmt::format("--reference '{}': {} (expected NAME=DT or NAME=LO:HI, e.g. rk4=0.3:0.4)", text, why));
+      throw InputError(
+          fmt::format("--reference '{}': {} (expected NAME=DT or NAME=LO:HI, e.g. rk4=0.3:0.4)", text, why));
     };
     const std::size_t eq = text.find('=');
     if (eq == std::string::npos || eq == 0) fail("no integrator name");
@@ -97,8 +100,8 @@ std::vector<std::string> criteriaCaption(const scenario::Scenario& s, const Stab
                   "under {} of their RMS. Limits bisected to {:.1f} %; dt tried from {:.3g} s to {:.3g} s.",
                   options.shakeThreshold, 100 * study.relativePrecision, study.minDt, study.maxDt)};
   if (!options.references.empty()) {
-    caption.push_back(fmt::format("{}: a diamond (a value) or a bar (the limit lies between its ends).",
-                                  options.referenceName));
+    caption.push_back(
+        fmt::format("{}: a diamond (a value) or a bar (the limit lies between its ends).", options.referenceName));
   }
   return caption;
 }
@@ -108,33 +111,25 @@ std::string dtText(double dt, bool atMax) {
   return dt > 0.0 ? fmt::format("{:.2g} s", dt) : std::string("none ≥ min");
 }
 
-int stabilityCommand(const StabilityOptionsCli& options) {
-  const CommonOptions& common = options.common;
-  if (!options.plot.empty()) requireFigurePath("--plot", options.plot);
-  const scenario::Scenario s = loadScenario(common);
-  const std::vector<Integrator> integrators = parseIntegrators(options.integrators);
-  const auto references = parseReferences(options.references, integrators);
-  if (!references.empty() && options.plot.empty()) throw InputError("--reference is shown on --plot: give --plot too");
+// The criteria and the range of dt from the command line; throws InputError for values outside
+// their ranges. Returns the smallest dt tried.
+double checkedMinDt(const StabilityOptionsCli& options, const scenario::Scenario& s) {
   const double minDt = options.minDt > 0 ? options.minDt : s.simulation.dt / kMinDtDivisor;
   // Written as "not inside" so that NaN, which fails every comparison, is refused too.
   const bool inside = options.energyTolerance > 0 && std::isfinite(options.energyTolerance) &&
-                      options.stretchFactor > 1 && std::isfinite(options.stretchFactor) &&
-                      options.shakeThreshold > 0 && options.shakeThreshold <= 1 && options.minDt >= 0 &&
-                      std::isfinite(minDt) && options.maxDt > minDt && std::isfinite(options.maxDt);
+                      options.stretchFactor > 1 && std::isfinite(options.stretchFactor) && options.shakeThreshold > 0 &&
+                      options.shakeThreshold <= 1 && options.minDt >= 0 && std::isfinite(minDt) &&
+                      options.maxDt > minDt && std::isfinite(options.maxDt);
   if (!inside) {
     throw InputError(
         "need --energy-tolerance > 0, --stretch-factor > 1, 0 < --shake-threshold ≤ 1 and 0 < --min-dt < "
         "--max-dt");
   }
+  return minDt;
+}
 
-  // Each trial run builds a fresh system from the same text and overrides.
-  const std::string text = scenario::readScenarioText(common.scenario, common.maxInputMiB);
-  const auto overrides = overridesOf(common);
-  const scenario::SceneLimits limits = sceneLimitsOf(common);
-  const SystemFactory make = [&] {
-    return scenario::loadScenarioText(text, common.scenario, overrides, limits).system;
-  };
-
+// The study's settings: the criteria, the range of dt, the reference run, the threads.
+StabilityOptions studyOptions(const StabilityOptionsCli& options, const scenario::Scenario& s, double minDt) {
   StabilityOptions study;
   study.criteria.energyTolerance = options.energyTolerance;
   study.stretchFactor = options.stretchFactor;
@@ -146,71 +141,117 @@ int stabilityCommand(const StabilityOptionsCli& options) {
   study.maxDt = options.maxDt;
   study.costDtCap = 1.0 / s.render.fps;
   // --threads (or PARTICLES_THREADS, or the CPUs this process may use): the study's trial runs share them.
-  study.threads = threadCountOf(common.threads);
+  study.threads = threadCountOf(options.common.threads);
+  return study;
+}
+
+// What each trial run builds a fresh system from: the scenario's text, read once, and its overrides.
+struct TrialScenario {
+  std::string file, text;
+  std::vector<scenario::Override> overrides;
+  scenario::SceneLimits limits;
+};
+
+TrialScenario trialScenario(const CommonOptions& common) {
+  return {common.scenario, scenario::readScenarioText(common.scenario, common.maxInputMiB), overridesOf(common),
+          sceneLimitsOf(common)};
+}
+
+// Runs the study; an explosion, or a reference run that is itself unstable, is a failed simulation.
+StabilityStudy runStudy(const TrialScenario& trial, double duration, const std::vector<Integrator>& integrators,
+                        const StabilityOptions& study) {
+  const SystemFactory make = [&] {
+    return scenario::loadScenarioText(trial.text, trial.file, trial.overrides, trial.limits).system;
+  };
+  try {
+    return findStabilityLimits(make, duration, integrators, study);
+  } catch (const std::runtime_error& e) {
+    throw SimulationFailure(e.what());
+  }
+}
+
+// The figure's rows, with each limit reported as the job's headline numbers (a limit found at
+// --max-dt is a lower bound; the headline gives the value found).
+std::vector<plot::StabilityRow> stabilityRows(const std::vector<StabilityResult>& results) {
+  std::vector<plot::StabilityRow> rows;
+  for (const StabilityResult& r : results) {
+    reportHeadline(fmt::format("max_stable_dt.{}", integratorName(r.integrator)), r.maxStableDt);
+    reportHeadline(fmt::format("max_smooth_dt.{}", integratorName(r.integrator)), r.maxSmoothDt);
+    rows.push_back({std::string(integratorName(r.integrator)), r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
+                    r.evalsPerSimSecond, r.speedVsEuler, r.stableAtMaxDt, r.smoothAtMaxDt});
+  }
+  return rows;
+}
+
+// The table on stdout: a line per integrator.
+void printLimits(const std::vector<StabilityResult>& results) {
+  fmt::print("{:<16} {:>10} {:>15} {:>22} {:>20} {:>15} {:>22}\n", "integrator", "evals/step", "max stable dt",
+             "max dt without shaking", "evals per sim second", "speed vs euler", "wall s per sim second");
+  for (const StabilityResult& r : results) {
+    fmt::print("{:<16} {:>10} {:>15} {:>22} {:>20.4g} {:>15} {:>22}\n", integratorName(r.integrator), r.evalsPerStep,
+               dtText(r.maxStableDt, r.stableAtMaxDt), dtText(r.maxSmoothDt, r.smoothAtMaxDt), r.evalsPerSimSecond,
+               r.speedVsEuler > 0 ? fmt::format("{:.2f}×", r.speedVsEuler) : std::string("–"),
+               r.wallPerSimSecond > 0 ? fmt::format("{:.3g}", r.wallPerSimSecond) : std::string("–"));
+  }
+}
+
+// Below the table: the reference run, and why the next larger step of each integrator failed.
+void printWhyNextFailed(const StabilityStudy& found, const StabilityOptions& study, double fps) {
+  fmt::print("\nreference: rk4 at dt = {:.3g} s, longest spring {:.3g}× its rest length → bound {:.3g}×\n",
+             found.referenceDt, found.reference.maxStretch, found.maxStretch);
+  fmt::print("why the next larger steps failed:\n");
+  bool anyAtMax = false;
+  for (const StabilityResult& r : found.results) {
+    anyAtMax = anyAtMax || r.stableAtMaxDt;
+    fmt::print("  {:<16} unstable: {}; not smooth: {}  ({} runs)\n", integratorName(r.integrator),
+               r.stableAtMaxDt ? fmt::format("none up to --max-dt {:.3g} s", study.maxDt) : describe(r.firstUnstable),
+               r.smoothAtMaxDt ? fmt::format("none up to --max-dt {:.3g} s", study.maxDt) : describe(r.firstShaking),
+               r.runs);
+  }
+  if (anyAtMax) {
+    fmt::print(
+        "≥: no limit below --max-dt. An implicit integrator damps a step that is too long instead of blowing\n"
+        "up, so its step is bounded by accuracy, not stability: for an animation take at most one step per\n"
+        "frame (1/fps = {:.3g} s here), which is the step its costs per simulated second are given at.\n",
+        1.0 / fps);
+  }
+}
+
+// --csv: a row per integrator.
+void writeStabilityCsv(const std::string& path, const std::vector<StabilityResult>& results) {
+  output::OutputFile csv(path);
+  csv.write(
+      "integrator,evals_per_step,max_stable_dt,max_smooth_dt,cost_dt,evals_per_sim_second,speed_vs_euler,"
+      "wall_seconds_per_sim_second\n");
+  for (const StabilityResult& r : results) {
+    csv.write(fmt::format("{},{},{},{},{},{},{},{}\n", integratorName(r.integrator), r.evalsPerStep, r.maxStableDt,
+                          r.maxSmoothDt, r.costDt, r.evalsPerSimSecond, r.speedVsEuler, r.wallPerSimSecond));
+  }
+  csv.commit();
+}
+
+int stabilityCommand(const StabilityOptionsCli& options) {
+  const CommonOptions& common = options.common;
+  if (!options.plot.empty()) requireFigurePath("--plot", options.plot);
+  const scenario::Scenario s = loadScenario(common);
+  const std::vector<Integrator> integrators = parseIntegrators(options.integrators);
+  const auto references = parseReferences(options.references, integrators);
+  if (!references.empty() && options.plot.empty()) throw InputError("--reference is shown on --plot: give --plot too");
+  const StabilityOptions study = studyOptions(options, s, checkedMinDt(options, s));
+  const TrialScenario trial = trialScenario(common);
 
   if (!common.quiet) {
     fmt::print(
         stderr, "{}: searching the largest stable dt of {} over {} s with {} (this runs the scenario many times)\n",
         common.scenario, plural(integrators.size(), "integrator", "integrators"), s.simulation.duration, contents(s));
   }
-  StabilityStudy found;
-  try {
-    found = findStabilityLimits(make, s.simulation.duration, integrators, study);
-  } catch (const std::runtime_error& e) {  // an explosion, or a reference run that is itself unstable
-    throw SimulationFailure(e.what());
-  }
-  const std::vector<StabilityResult>& results = found.results;
-
-  std::vector<plot::StabilityRow> rows;
-  for (const StabilityResult& r : results) {
-    // A limit found at --max-dt is a lower bound; the headline gives the value found.
-    reportHeadline(fmt::format("max_stable_dt.{}", integratorName(r.integrator)), r.maxStableDt);
-    reportHeadline(fmt::format("max_smooth_dt.{}", integratorName(r.integrator)), r.maxSmoothDt);
-    rows.push_back({std::string(integratorName(r.integrator)), r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
-                    r.evalsPerSimSecond, r.speedVsEuler, r.stableAtMaxDt, r.smoothAtMaxDt});
-  }
-
+  const StabilityStudy found = runStudy(trial, s.simulation.duration, integrators, study);
+  const std::vector<plot::StabilityRow> rows = stabilityRows(found.results);
   if (!common.quiet) {
-    fmt::print("{:<16} {:>10} {:>15} {:>22} {:>20} {:>15} {:>22}\n", "integrator", "evals/step", "max stable dt",
-               "max dt without shaking", "evals per sim second", "speed vs euler", "wall s per sim second");
-    for (const StabilityResult& r : results) {
-      fmt::print("{:<16} {:>10} {:>15} {:>22} {:>20.4g} {:>15} {:>22}\n", integratorName(r.integrator), r.evalsPerStep,
-                 dtText(r.maxStableDt, r.stableAtMaxDt), dtText(r.maxSmoothDt, r.smoothAtMaxDt), r.evalsPerSimSecond,
-                 r.speedVsEuler > 0 ? fmt::format("{:.2f}×", r.speedVsEuler) : std::string("–"),
-                 r.wallPerSimSecond > 0 ? fmt::format("{:.3g}", r.wallPerSimSecond) : std::string("–"));
-    }
-    fmt::print("\nreference: rk4 at dt = {:.3g} s, longest spring {:.3g}× its rest length → bound {:.3g}×\n",
-               found.referenceDt, found.reference.maxStretch, found.maxStretch);
-    fmt::print("why the next larger steps failed:\n");
-    bool anyAtMax = false;
-    for (const StabilityResult& r : results) {
-      anyAtMax = anyAtMax || r.stableAtMaxDt;
-      fmt::print("  {:<16} unstable: {}; not smooth: {}  ({} runs)\n", integratorName(r.integrator),
-                 r.stableAtMaxDt ? fmt::format("none up to --max-dt {:.3g} s", study.maxDt) : describe(r.firstUnstable),
-                 r.smoothAtMaxDt ? fmt::format("none up to --max-dt {:.3g} s", study.maxDt) : describe(r.firstShaking),
-                 r.runs);
-    }
-    if (anyAtMax) {
-      fmt::print(
-          "≥: no limit below --max-dt. An implicit integrator damps a step that is too long instead of blowing\n"
-          "up, so its step is bounded by accuracy, not stability: for an animation take at most one step per\n"
-          "frame (1/fps = {:.3g} s here), which is the step its costs per simulated second are given at.\n",
-          1.0 / s.render.fps);
-    }
+    printLimits(found.results);
+    printWhyNextFailed(found, study, s.render.fps);
   }
-
-  if (!options.csv.empty()) {
-    output::OutputFile csv(options.csv);
-    csv.write(
-        "integrator,evals_per_step,max_stable_dt,max_smooth_dt,cost_dt,evals_per_sim_second,speed_vs_euler,"
-        "wall_seconds_per_sim_second\n");
-    for (size_t k = 0; k < rows.size(); ++k) {
-      const auto& r = rows[k];
-      csv.write(fmt::format("{},{},{},{},{},{},{},{}\n", r.integrator, r.evalsPerStep, r.maxStableDt, r.maxSmoothDt,
-                            results[k].costDt, r.evalsPerSimSecond, r.speedVsEuler, results[k].wallPerSimSecond));
-    }
-    csv.commit();
-  }
+  if (!options.csv.empty()) writeStabilityCsv(options.csv, found.results);
   if (!options.plot.empty()) {
     plot::StabilityFigureNotes notes;
     notes.scenario = s.name;

@@ -29,6 +29,7 @@
 #include "app/sweep_schedule.hpp"
 #include "app/thread_count.hpp"
 #include "input/text_file.hpp"
+#include "output/distinct_files.hpp"
 #include "output/output_error.hpp"
 #include "scenario/sweep_spec.hpp"
 
@@ -275,25 +276,77 @@ void addSweepOptions(CLI::App& command, SweepOptions& o) {
       "  particles gather out\n");
 }
 
+// What the sweep itself writes in its folder `out` (each job checks its own files when it runs): the
+// folder, the job table, the results and their figure, and the lists --emit writes.
+std::vector<output::NamedFile> sweepOutputs(const std::filesystem::path& out, const std::string& emit) {
+  std::vector<output::NamedFile> files = {{"the output folder", out},
+                                          {"the job table", out / "jobs.csv"},
+                                          {"the results", out / "results.csv"},
+                                          {"the figure", out / "results.svg"}};
+  const std::vector<std::string> lists = emit == "parallel" ? std::vector<std::string>{"jobs.txt", "concat.txt"}
+                                         : emit == "slurm"
+                                             ? std::vector<std::string>{"sweep.sbatch", "concat.sbatch", "submit.sh"}
+                                             : std::vector<std::string>{};
+  for (const std::string& list : lists) files.push_back({"the job list", out / list});
+  return files;
+}
+
+// The files the command line names: the sweep file, and what the sweep writes when -o names its
+// folder (the default folder is named after the sweep, checked once the file is read).
+CommandFiles sweepFiles(const SweepOptions& o) {
+  return {o.out.empty() ? std::vector<output::NamedFile>{} : sweepOutputs(o.out, o.emit), {{"the sweep file", o.spec}}};
+}
+
+// Nothing the sweep writes in its folder is the sweep file or one of its scenarios.
+void requireInputsKept(const SweepOptions& o, const scenario::SweepSpec& spec, const std::filesystem::path& out) {
+  std::vector<output::NamedFile> inputs = {{"the sweep file", o.spec}};
+  for (const auto& s : spec.scenarios) inputs.push_back({"the scenario", s.path});
+  output::requireDistinctFiles(sweepOutputs(out, o.emit), inputs);
+}
+
+// --emit: the job lists for GNU parallel or Slurm, and how to run them; nothing runs here.
+int emitJobLists(const SweepPlan& plan, const SweepOptions& o) {
+  const std::string how = o.emit == "parallel" ? emitParallel(plan) : emitSlurm(plan);
+  if (!o.quiet) {
+    fmt::print("{}: {} → {}/jobs.csv\nrun them with:\n  {}\nthen: particles gather {}\n", o.spec,
+               plural(plan.jobs.size(), "job", "jobs"), plan.outDir.string(), how, shellQuote(plan.outDir.string()));
+  }
+  return kOk;
+}
+
+// After the jobs ran: their results gathered, the summary, the failures listed (exit 1).
+int gatherResults(const SweepPlan& plan, const SweepOptions& o, const RunTally& tally, double seconds) {
+  GatherOptions gather;
+  gather.outDir = plan.outDir.string();
+  gather.quiet = true;
+  gather.maxInputMiB = o.maxInputMiB;
+  gatherCommand(gather);
+  if (!o.quiet) {
+    fmt::print("{}: {} in {:.1f} s: {} ran ({} ok, {} failed), {} done before → {}\n", o.spec,
+               plural(plan.jobs.size(), "job", "jobs"), seconds, tally.ran, tally.ok, tally.failures.size(),
+               tally.skipped, (plan.outDir / "results.csv").string());
+  }
+  if (!tally.failures.empty()) {
+    fmt::print(stderr, "{} failed:\n", plural(tally.failures.size(), "job", "jobs"));
+    for (const std::string& f : tally.failures) fmt::print(stderr, "  {}\n", f);
+    return kSimulationFailed;
+  }
+  return kOk;
+}
+
 int sweepCommand(const SweepOptions& o) {
   const scenario::SweepSpec spec = scenario::loadSweepFile(o.spec, o.maxInputMiB);
   const std::string program =
       o.program.empty() ? thisProgram() : std::filesystem::absolute(o.program).lexically_normal().string();
   const std::filesystem::path out =
       o.out.empty() ? std::filesystem::path("sweep-" + spec.name) : std::filesystem::path(o.out);
+  requireInputsKept(o, spec, out);
   const SweepPlan plan = planSweep(spec, out, program, o.maxInputMiB, !o.quiet);
   if (!o.emit.empty()) checkListPaths(plan);
   const std::string threadsGiven = o.emit.empty() ? explicitThreads(spec) : std::string();
   writeJobTable(plan);
 
-  if (!o.emit.empty()) {
-    const std::string how = o.emit == "parallel" ? emitParallel(plan) : emitSlurm(plan);
-    if (!o.quiet) {
-      fmt::print("{}: {} → {}/jobs.csv\nrun them with:\n  {}\nthen: particles gather {}\n", o.spec,
-                 plural(plan.jobs.size(), "job", "jobs"), plan.outDir.string(), how, shellQuote(plan.outDir.string()));
-    }
-    return kOk;
-  }
+  if (!o.emit.empty()) return emitJobLists(plan, o);
 
   const int cores = availableCores();
   const Workers workers{.parallel = o.jobs > 0 ? o.jobs : cores, .cores = threadsGiven.empty() ? cores : 0};
@@ -321,23 +374,7 @@ int sweepCommand(const SweepOptions& o) {
     return 128 + stopSignal();
   }
 
-  GatherOptions gather;
-  gather.outDir = plan.outDir.string();
-  gather.quiet = true;
-  gather.maxInputMiB = o.maxInputMiB;
-  gatherCommand(gather);
-
-  if (!o.quiet) {
-    fmt::print("{}: {} in {:.1f} s: {} ran ({} ok, {} failed), {} done before → {}\n", o.spec,
-               plural(plan.jobs.size(), "job", "jobs"), seconds, tally.ran, tally.ok, tally.failures.size(),
-               tally.skipped, (plan.outDir / "results.csv").string());
-  }
-  if (!tally.failures.empty()) {
-    fmt::print(stderr, "{} failed:\n", plural(tally.failures.size(), "job", "jobs"));
-    for (const std::string& f : tally.failures) fmt::print(stderr, "  {}\n", f);
-    return kSimulationFailed;
-  }
-  return kOk;
+  return gatherResults(plan, o, tally, seconds);
 }
 
 }  // namespace
@@ -347,6 +384,7 @@ const CommandDescriptor<SweepOptions> kSweepCommand = {
     .summary = "Run one command over scenarios × parameters (here, or as job lists for GNU parallel and Slurm)",
     .addOptions = addSweepOptions,
     .run = sweepCommand,
+    .files = sweepFiles,
 };
 
 }  // namespace particles::app

@@ -11,12 +11,12 @@
 
 #include "app/cli.hpp"
 #include "app/cli_support.hpp"
-#include "app/csv_table.hpp"
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
 #include "app/job_table.hpp"
 #include "app/thread_count.hpp"
 #include "output/confined_folder.hpp"
+#include "output/csv_writer.hpp"
 #include "output/output_error.hpp"
 #include "output/output_file.hpp"
 #include "render/frame_writer.hpp"
@@ -415,12 +415,12 @@ void writeJobTable(const SweepPlan& plan) {
   const output::ConfinedFolder folder(plan.outDir, output::ConfinedFolder::Create::yes);
   for (const SweepJob& job : plan.jobs) folder.openFolder(job.dir, output::ConfinedFolder::Create::yes);
   output::OutputFile csv(folder, "jobs.csv");
-  csv.write(csvRow(jobTableHeader(plan.columns)));
+  csv.write(output::csvRow(jobTableHeader(plan.columns)));
   for (const SweepJob& job : plan.jobs) {
     std::vector<std::string> row = {std::to_string(job.index), job.stage, job.scenario};
     row.insert(row.end(), job.values.begin(), job.values.end());
     row.insert(row.end(), {job.segment, job.dir.string(), plan.commandLine(job)});
-    csv.write(csvRow(row));
+    csv.write(output::csvRow(row));
   }
   csv.commit();
 }

@@ -14,9 +14,8 @@
 // The ordering is approximate minimum degree (Eigen's AMD) on the particles' graph; the ordering,
 // the elimination tree and L's column counts depend only on the pattern (analyze), the numbers
 // are refactored (factorize) as often as the owner wants.
-// On the 25² cloth's A (1,250 coordinates, 6,415 blocks in L) a factorisation takes 0.14 ms
-// against SimplicialLDLT's 0.52 ms with the same ordering and fill; on the 100² cloth's 13 ms
-// against 43 ms.
+// The blocks against Eigen's SimplicialLDLT with the same ordering and fill, measured on the 25²
+// and 100² cloths' A: bench/README.md, "Implicit integration" (timings go stale in comments).
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

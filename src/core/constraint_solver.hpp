@@ -9,9 +9,9 @@
 //    of rods), an incomplete Cholesky factor (Eigen::IncompleteCholesky, no fill-in
 //    beyond J W Jᵀ's own pattern). The exact factor has no fill-in either there, so one CG step
 //    solves the system: a 10,000-rod chain that diagonal preconditioning needs 9,999 iterations
-//    for (O(R²)) takes one, about 80× faster (timings in bench/README.md);
+//    for (O(R²)) takes one (timings in bench/README.md, "One constraint solve");
 //  - otherwise the diagonal (Jacobi): with loops (nets) incomplete Cholesky needed more
-//    iterations and about 5× the time (measured, bench/README.md); with no row joining two moving
+//    iterations and more time (bench/README.md, "One constraint solve"); with no row joining two moving
 //    particles (rails, beads) J W Jᵀ is (nearly) diagonal and Jacobi's setup is cheaper.
 // Incomplete Cholesky runs in Eigen's ConjugateGradient (its triangular solves are sequential);
 // Jacobi in our own loop, the same algorithm as Eigen's, whose products and dot products run on

@@ -23,7 +23,7 @@ namespace particles {
 // One entry of K or D: ∂f_row/∂(x or v)_col. Eigen::Triplet's shape (row(), col(), value(), so
 // setFromTriplets takes it), with a trivial default constructor: the springs size their range of
 // entries and then fill it on the threads, and a vector of Eigen::Triplet would first write zeros
-// over all of them (5 % of a backward Euler step on the 25² cloth).
+// over all of them (its share of a backward Euler step: bench/README.md, "Implicit integration").
 struct JacobianEntry {
   int rowIndex, colIndex;
   double entryValue;
@@ -66,6 +66,21 @@ struct JacobianPair {
         b(bPoint),
         k{kBlock(0, 0), kBlock(0, 1), kBlock(1, 1)},
         d{dBlock(0, 0), dBlock(0, 1), dBlock(1, 1)} {}
+};
+
+// One of the four 2 × 2 blocks that a pair reaches in K (and D, and the implicit step's
+// A = M − η D − η² K): its (a, a) and (b, b) blocks add the pair's block, (a, b) and (b, a)
+// subtract it, as ForceJacobians::expanded writes them out.
+struct BlockRef {
+  enum class Role : unsigned char { aa, bb, ab, ba };
+  static constexpr Role kRoles[4] = {Role::aa, Role::bb, Role::ab, Role::ba};
+
+  int pair;  // index into ForceJacobians::pairs
+  Role role;
+
+  int rowPoint(const JacobianPair& p) const { return role == Role::aa || role == Role::ab ? p.a : p.b; }
+  int colPoint(const JacobianPair& p) const { return role == Role::aa || role == Role::ba ? p.a : p.b; }
+  double sign() const { return role == Role::aa || role == Role::bb ? 1.0 : -1.0; }
 };
 
 struct ForceJacobians {

@@ -7,11 +7,69 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/force_jacobians.hpp"
 #include "core/group_by_bucket.hpp"
 #include "core/parallel_sparse.hpp"
+#include "core/preconditioners/jacobi_preconditioner.hpp"
+#include "core/projected_pcg.hpp"
 #include "core/system.hpp"
 
 namespace particles {
+
+// The implicit step's matrix pattern: the Jacobians' (row, column) keys and the pinned
+// coordinates it was built from, and which triplets' values go where in the compressed matrix,
+// read so that threads fill whole values and rows, each summing in the triplets' order (the order
+// a serial scatter adds in).
+struct AssemblyPattern {
+  bool valid = false;
+  std::vector<int> dfdvKeys, dfdxKeys, pairKeys;
+  std::vector<char> pinned;
+  // Per value slot, the entries that land there (k < |D|: D's k-th, else K's (k − |D|)-th) from
+  // slotStart[slot], and the coordinate whose diagonal it is (−1: none); per row of K, its
+  // entries' indices from kRowStart[row]. pinnedColumnEntries: the entries (same numbering) in a
+  // free row and an eliminated column, whose A value times the known Δv leaves the right-hand side.
+  std::vector<int> slotStart, slotEntries, slotDiagonal, kRowStart, kRowEntries, pinnedColumnEntries;
+  // The Jacobian pairs (ForceJacobians::pairs) by 2 × 2 blocks of A (BlockRef). Each block of A
+  // they reach has its four slots (xx, yx, xy, yy; −1: a pinned coordinate's) and its references
+  // pairBlockRefs[begin … end), in the pairs' order. Per point, its pairs' ends 2q (as a) or
+  // 2q + 1 (as b) from pairPointStart[point], for K's products in b; pinnedPairEntries: the block
+  // entries (r, c) in a free row and an eliminated column.
+  struct PairBlock {
+    int slot[4];
+    int begin, end;
+  };
+  struct PinnedPairEntry {
+    BlockRef ref;
+    int r, c;
+  };
+  std::vector<PairBlock> pairBlocks;
+  std::vector<BlockRef> pairBlockRefs;
+  std::vector<int> pairPointStart, pairPointRefs;
+  std::vector<PinnedPairEntry> pinnedPairEntries;
+};
+
+// What the stages fill, and what the step keeps from one step to the next.
+struct ImplicitStep::Scratch {
+  ForceJacobians jacobians;
+  std::vector<ConstraintRow> constraintRows;
+  ConstraintRowsJ rows;
+  AssemblyPattern pattern;
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<char> pinned, found, railed;
+  std::vector<int> allRows, generalRows, railRows;  // constraint rows by how the solve takes them
+  Eigen::SparseMatrix<double> matrix;
+  Eigen::VectorXd k1, rhs, dv, known;  // k1: dy/dt at the start; known: eliminated coordinates' Δv
+  std::vector<double> pairA, pairKu;  // per Jacobian pair: −η d − η² k (xx, xy, yy), k (x̄ − x_b + η (v_a − v_b))
+  JacobiPreconditioner jacobi;
+  LdltPreconditioner ldlt;
+  bool ldltValid = false;               // factors (of an earlier or this step's A) of the current pattern
+  bool autoDirect = false;              // auto has moved to the direct solve
+  std::vector<int> cgIterationsWindow;  // auto: the last kAutoWindow CG steps' iterations
+  double reuseDebt = 0.0;               // multiply-adds the stale factors' extra iterations have cost
+  long factorizations = 0;
+  ProjectedPcgScratch pcg;
+  ImplicitStepStats stats;
+};
 
 namespace {
 
@@ -53,10 +111,10 @@ void gatherRows(const std::vector<ConstraintRow>& from, const std::vector<int>& 
   }
 }
 
-// One implicit step's stages, in the order implicitStep runs them, over the scratch they fill.
+// One implicit step's stages, in the order ImplicitStep::step runs them, over the scratch they fill.
 class StepStages {
  public:
-  StepStages(const Model& model, WorkerPool* pool, ImplicitScratch& w)
+  StepStages(const Model& model, WorkerPool* pool, ImplicitStep::Scratch& w)
       : model_(model), pool_(pool), w_(w), n_(2 * Eigen::Index(model.layout.numPoints())) {}
 
   // Sorts the constraint rows: dropped (nothing free), eliminable (an axis-aligned rail on a
@@ -67,7 +125,14 @@ class StepStages {
   void eliminateRails(const Eigen::VectorXd& y);
   // A's pattern: rebuilt when the Jacobians' (row, column) sequence or the pinned set changed.
   bool patternChanged();
-  void buildPattern();
+  void buildPattern() {
+    buildMatrixPattern();
+    mapTripletSlots();
+    mapPairBlocks();
+    mapPairEnds();
+    w_.pattern.valid = true;
+    w_.ldltValid = false;
+  }
   // A = M − η D − η² K's values and b (see the header), in the pattern.
   void fillMatrix(double eta);
   void fillRightHandSide(const Eigen::VectorXd& y, double eta, const ImplicitTarget& target);
@@ -78,12 +143,19 @@ class StepStages {
  private:
   bool pinned(Eigen::Index i) const { return w_.pinned[size_t(i)] != 0; }
   bool fixedDof(Eigen::Index i) const { return model_.invMass[i / 2] == 0.0; }
-  // Pair q's block `role` (AssemblyPattern): its row and column points.
-  std::pair<int, int> blockPoints(int q, int role) const {
-    const JacobianPair& pair = w_.jacobians.pairs[size_t(q)];
-    const int rowPoint = role == 0 || role == 2 ? pair.a : pair.b;
-    const int colPoint = role == 0 || role == 3 ? pair.a : pair.b;
-    return {rowPoint, colPoint};
+  // buildPattern's parts, in its order. A's pattern from the diagonal, the pairs' blocks and the
+  // triplets (less what pinned coordinates leave out), and the keys it is checked against.
+  void buildMatrixPattern();
+  // Each triplet's value slot, and the reverse maps: per slot, per row of K.
+  void mapTripletSlots();
+  // The pairs' blocks of A, each with its slots and its references.
+  void mapPairBlocks();
+  // Per point, the pair ends it is.
+  void mapPairEnds();
+  // A block's row and column points.
+  std::pair<int, int> blockPoints(BlockRef ref) const {
+    const JacobianPair& pair = w_.jacobians.pairs[size_t(ref.pair)];
+    return {ref.rowPoint(pair), ref.colPoint(pair)};
   }
   // Where entry (row, col) sits in A's value array (columns are sorted: compressed storage).
   int slotOf(Eigen::Index row, Eigen::Index col) const {
@@ -92,9 +164,9 @@ class StepStages {
     const int* end = inner + w_.matrix.outerIndexPtr()[col + 1];
     return int(std::lower_bound(begin, end, int(row)) - inner);
   }
-  // Reference 4q + role's four slots (xx, yx, xy, yy; −1: pinned out).
-  void slotsOfBlock(int ref, int* slot) const {
-    const auto [rowPoint, colPoint] = blockPoints(ref / 4, ref % 4);
+  // A block's four slots (xx, yx, xy, yy; −1: pinned out).
+  void slotsOfBlock(BlockRef ref, int* slot) const {
+    const auto [rowPoint, colPoint] = blockPoints(ref);
     for (int c = 0; c < 2; ++c) {
       for (int r = 0; r < 2; ++r) {
         const int row = 2 * rowPoint + r, col = 2 * colPoint + c;
@@ -112,7 +184,7 @@ class StepStages {
 
   const Model& model_;
   WorkerPool* pool_;
-  ImplicitScratch& w_;
+  ImplicitStep::Scratch& w_;
   const Eigen::Index n_;
 };
 
@@ -172,12 +244,10 @@ bool StepStages::patternChanged() {
          !samePattern(jac.dfdv, pattern.dfdvKeys) || !samePattern(jac.dfdx, pattern.dfdxKeys) || !samePairs();
 }
 
-void StepStages::buildPattern() {
+void StepStages::buildMatrixPattern() {
   const ForceJacobians& jac = w_.jacobians;
   const ForceJacobians::Pairs& pairs = jac.pairs;
   AssemblyPattern& pattern = w_.pattern;
-  // The pattern: the diagonal, the pairs' blocks and the triplets, less what pinned coordinates
-  // leave out; the keys it is checked against next step.
   w_.triplets.clear();
   w_.triplets.reserve(size_t(n_) + jac.dfdv.size() + jac.dfdx.size() + 16 * pairs.size());
   for (Eigen::Index i = 0; i < n_; ++i) w_.triplets.emplace_back(i, i, 1.0);
@@ -185,8 +255,8 @@ void StepStages::buildPattern() {
   for (int q = 0; q < int(pairs.size()); ++q) {
     pattern.pairKeys.push_back(pairs[size_t(q)].a);
     pattern.pairKeys.push_back(pairs[size_t(q)].b);
-    for (int role = 0; role < 4; ++role) {
-      const auto [rowPoint, colPoint] = blockPoints(q, role);
+    for (BlockRef::Role role : BlockRef::kRoles) {
+      const auto [rowPoint, colPoint] = blockPoints({q, role});
       for (int c = 0; c < 2; ++c) {
         for (int r = 0; r < 2; ++r) {
           const int row = 2 * rowPoint + r, col = 2 * colPoint + c;
@@ -209,7 +279,11 @@ void StepStages::buildPattern() {
   w_.matrix.resize(n_, n_);
   w_.matrix.setFromTriplets(w_.triplets.begin(), w_.triplets.end());
   w_.matrix.makeCompressed();
+}
 
+void StepStages::mapTripletSlots() {
+  const ForceJacobians& jac = w_.jacobians;
+  AssemblyPattern& pattern = w_.pattern;
   // Each triplet's slot (−1: a pinned coordinate's, left out), and those in a free row and an
   // eliminated column.
   std::vector<int> slotOfEntry;
@@ -236,28 +310,42 @@ void StepStages::buildPattern() {
   rowOfEntry.reserve(jac.dfdx.size());
   for (const auto& e : jac.dfdx) rowOfEntry.push_back(int(e.row()));
   groupByBucket(size_t(n_), rowOfEntry, pattern.kRowStart, pattern.kRowEntries);
+}
 
-  // The pairs' blocks of A, each found by its first slot that is not pinned out.
-  std::vector<int> leadSlotOfRef(4 * pairs.size(), -1), blockStart;
+void StepStages::mapPairBlocks() {
+  const ForceJacobians::Pairs& pairs = w_.jacobians.pairs;
+  AssemblyPattern& pattern = w_.pattern;
+  // Every pair's four blocks in the pairs' order, each found by its first slot that is not pinned
+  // out, then grouped by that slot: the references of one block of A, in the pairs' order.
+  std::vector<BlockRef> refs;
+  refs.reserve(4 * pairs.size());
+  std::vector<int> leadSlotOfRef(4 * pairs.size(), -1), blockStart, grouped;
   pattern.pinnedPairEntries.clear();
-  for (int ref = 0; ref < int(leadSlotOfRef.size()); ++ref) {
-    int slot[4];
-    slotsOfBlock(ref, slot);
-    for (int s : slot) {
-      if (s >= 0) {
-        leadSlotOfRef[size_t(ref)] = s;
-        break;
+  for (int q = 0; q < int(pairs.size()); ++q) {
+    for (BlockRef::Role role : BlockRef::kRoles) {
+      const BlockRef ref{q, role};
+      int slot[4];
+      slotsOfBlock(ref, slot);
+      for (int s : slot) {
+        if (s >= 0) {
+          leadSlotOfRef[refs.size()] = s;
+          break;
+        }
       }
-    }
-    const auto [rowPoint, colPoint] = blockPoints(ref / 4, ref % 4);
-    for (int c = 0; c < 2; ++c) {
-      for (int r = 0; r < 2; ++r) {
-        const int row = 2 * rowPoint + r, col = 2 * colPoint + c;
-        if (!pinned(row) && pinned(col) && !fixedDof(col)) pattern.pinnedPairEntries.push_back({ref, r, c});
+      refs.push_back(ref);
+      const auto [rowPoint, colPoint] = blockPoints(ref);
+      for (int c = 0; c < 2; ++c) {
+        for (int r = 0; r < 2; ++r) {
+          const int row = 2 * rowPoint + r, col = 2 * colPoint + c;
+          if (!pinned(row) && pinned(col) && !fixedDof(col)) pattern.pinnedPairEntries.push_back({ref, r, c});
+        }
       }
     }
   }
-  groupByBucket(slots, leadSlotOfRef, blockStart, pattern.pairBlockRefs);
+  const size_t slots = size_t(w_.matrix.nonZeros());
+  groupByBucket(slots, leadSlotOfRef, blockStart, grouped);
+  pattern.pairBlockRefs.clear();
+  for (int k : grouped) pattern.pairBlockRefs.push_back(refs[size_t(k)]);
   pattern.pairBlocks.clear();
   for (size_t slot = 0; slot < slots; ++slot) {
     if (blockStart[slot + 1] == blockStart[slot]) continue;
@@ -267,14 +355,16 @@ void StepStages::buildPattern() {
     block.end = blockStart[slot + 1];
     pattern.pairBlocks.push_back(block);
   }
-  std::vector<int> pointOfRef(2 * pairs.size());
+}
+
+void StepStages::mapPairEnds() {
+  const ForceJacobians::Pairs& pairs = w_.jacobians.pairs;
+  std::vector<int> pointOfEnd(2 * pairs.size());
   for (size_t q = 0; q < pairs.size(); ++q) {
-    pointOfRef[2 * q] = pairs[q].a;
-    pointOfRef[2 * q + 1] = pairs[q].b;
+    pointOfEnd[2 * q] = pairs[q].a;
+    pointOfEnd[2 * q + 1] = pairs[q].b;
   }
-  groupByBucket(size_t(n_ / 2), pointOfRef, pattern.pairPointStart, pattern.pairPointRefs);
-  pattern.valid = true;
-  w_.ldltValid = false;
+  groupByBucket(size_t(n_ / 2), pointOfEnd, w_.pattern.pairPointStart, w_.pattern.pairPointRefs);
 }
 
 void StepStages::fillMatrix(double eta) {
@@ -306,9 +396,9 @@ void StepStages::fillMatrix(double eta) {
       const AssemblyPattern::PairBlock& block = pattern.pairBlocks[b];
       double sum[3] = {0.0, 0.0, 0.0};
       for (int k = block.begin; k < block.end; ++k) {
-        const int ref = pattern.pairBlockRefs[size_t(k)];
-        const double* m = &pairA[3 * size_t(ref / 4)];
-        const double sign = ref % 4 < 2 ? 1.0 : -1.0;
+        const BlockRef ref = pattern.pairBlockRefs[size_t(k)];
+        const double* m = &pairA[3 * size_t(ref.pair)];
+        const double sign = ref.sign();
         for (int j = 0; j < 3; ++j) sum[j] += sign * m[j];
       }
       const double entry[4] = {sum[0], sum[1], sum[1], sum[2]};  // xx, yx, xy, yy
@@ -371,9 +461,9 @@ void StepStages::fillRightHandSide(const Eigen::VectorXd& y, double eta, const I
     w_.rhs[e.row()] -= entryValue(entry, eta) * w_.known[e.col()];
   }
   for (const auto& [ref, r, c] : pattern.pinnedPairEntries) {
-    const auto [rowPoint, colPoint] = blockPoints(ref / 4, ref % 4);
-    const double* m = &w_.pairA[3 * size_t(ref / 4)];
-    const double entry = (ref % 4 < 2 ? 1.0 : -1.0) * m[r + c];  // xx, xy = yx, yy
+    const auto [rowPoint, colPoint] = blockPoints(ref);
+    const double* m = &w_.pairA[3 * size_t(ref.pair)];
+    const double entry = ref.sign() * m[r + c];  // xx, xy = yx, yy
     w_.rhs[2 * rowPoint + r] -= entry * w_.known[2 * colPoint + c];
   }
 }
@@ -443,8 +533,25 @@ double autoDirectIterations(long freeCoordinates) {
   return 14.0 * std::pow(double(std::max(freeCoordinates, 1L)) / 1250.0, 0.3);
 }
 
-void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const ImplicitTarget& target,
-                  ImplicitScratch& w, double cgTolerance) {
+ImplicitStep::ImplicitStep() : w_(std::make_unique<Scratch>()) {}
+ImplicitStep::~ImplicitStep() = default;
+ImplicitStep::ImplicitStep(ImplicitStep&&) noexcept = default;
+ImplicitStep& ImplicitStep::operator=(ImplicitStep&&) noexcept = default;
+
+const ImplicitStepStats& ImplicitStep::stats() const {
+  return w_->stats;
+}
+long ImplicitStep::factorizations() const {
+  return w_->factorizations;
+}
+
+ImplicitStep::LinearSystem ImplicitStep::lastSystem() const {
+  return {w_->matrix, w_->rhs, w_->dv, w_->constraintRows};
+}
+
+void ImplicitStep::step(System& system, Eigen::VectorXd& y, double t, double h, const ImplicitTarget& target,
+                        double cgTolerance) {
+  Scratch& w = *w_;
   const Model& model = system.model();
   const StateLayout& layout = model.layout;
   const Eigen::Index n = 2 * Eigen::Index(layout.numPoints());
@@ -482,7 +589,8 @@ void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const 
   // A = M − η D − η² K over the free coordinates; a pinned one's row and column are the identity.
   // The Jacobians' pattern only changes when a contact or a mouse spring starts or ends, so A's
   // pattern is built once and its values are filled into it while the Jacobians' (row, column)
-  // sequence is the one it was built from (a full setFromTriplets costs several times more).
+  // sequence is the one it was built from (a full setFromTriplets sorts and merges every triplet
+  // again).
   if (stages.patternChanged()) stages.buildPattern();
   stages.fillMatrix(eta);
   stages.fillRightHandSide(y, eta, target);

@@ -29,15 +29,12 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-#include <array>
+#include <memory>
 #include <vector>
 
 #include "core/constraint.hpp"
-#include "core/force_jacobians.hpp"
 #include "core/implicit_solver.hpp"
-#include "core/preconditioners/jacobi_preconditioner.hpp"
 #include "core/preconditioners/ldlt_preconditioner.hpp"
-#include "core/projected_pcg.hpp"
 
 namespace particles {
 
@@ -57,42 +54,14 @@ double autoDirectIterations(long freeCoordinates);
 constexpr int kAutoWindow = 10;
 // The direct path's iterations on an earlier step's factors stop at this relative error in the
 // energy norm (core/projected_pcg.hpp), two digits below CG's; A's own factors answer exactly, in
-// one solve. Measured over the 10⁴× stiff cloth's 10 s at one backward Euler step per frame
-// (BM_SceneRun, nothing else running): 1e-6 cost 272 µs a step, 1e-8 309 µs, 1e-10 336 µs (more
-// iterations on stale factors, more refactorisations).
+// one solve. A tighter one costs more iterations on stale factors and more refactorisations: the
+// 10⁴× stiff cloth's step at 1e-6, 1e-8 and 1e-10 is timed in bench/README.md, "Implicit
+// integration".
 constexpr double kDirectTolerance = 1e-8;
 // CG's relative residual (each step starts from the last one's Δv).
 constexpr double kCgTolerance = 1e-6;
 // Iterations the direct path gives stale factors before it refactors within the step.
 constexpr int kMaxReuseIterations = 20;
-
-// The implicit step's matrix pattern: the Jacobians' (row, column) keys and the pinned
-// coordinates it was built from, and which triplets' values go where in the compressed matrix,
-// read so that threads fill whole values and rows, each summing in the triplets' order (the order
-// a serial scatter adds in).
-struct AssemblyPattern {
-  bool valid = false;
-  std::vector<int> dfdvKeys, dfdxKeys, pairKeys;
-  std::vector<char> pinned;
-  // Per value slot, the entries that land there (k < |D|: D's k-th, else K's (k − |D|)-th) from
-  // slotStart[slot], and the coordinate whose diagonal it is (−1: none); per row of K, its
-  // entries' indices from kRowStart[row]. pinnedColumnEntries: the entries (same numbering) in a
-  // free row and an eliminated column, whose A value times the known Δv leaves the right-hand side.
-  std::vector<int> slotStart, slotEntries, slotDiagonal, kRowStart, kRowEntries, pinnedColumnEntries;
-  // The Jacobian pairs (ForceJacobians::pairs) by 2 × 2 blocks of A: pair q's block `role` (0: (a, a),
-  // 1: (b, b), 2: (a, b), 3: (b, a); the last two subtract) is reference 4q + role. Each block of
-  // A they reach has its four slots (xx, yx, xy, yy; −1: a pinned coordinate's) and its references
-  // pairBlockRefs[begin … end), in the pairs' order. Per point, its pairs' references 2q (as a) or
-  // 2q + 1 (as b) from pairPointStart[point], for K's products in b; pinnedPairEntries: (reference
-  // 4q + role, r, c) whose entry (r, c) of that block is in a free row and an eliminated column.
-  struct PairBlock {
-    int slot[4];
-    int begin, end;
-  };
-  std::vector<PairBlock> pairBlocks;
-  std::vector<int> pairBlockRefs, pairPointStart, pairPointRefs;
-  std::vector<std::array<int, 3>> pinnedPairEntries;
-};
 
 // What the last implicit step did, for benchmarks and tests.
 struct ImplicitStepStats {
@@ -103,29 +72,6 @@ struct ImplicitStepStats {
   int schurRows = 0;                           // constraint rows through the Schur complement
 };
 
-struct ImplicitScratch {
-  ForceJacobians jacobians;
-  std::vector<ConstraintRow> constraintRows;
-  ConstraintRowsJ rows;
-  AssemblyPattern pattern;
-  std::vector<Eigen::Triplet<double>> triplets;
-  std::vector<char> pinned, found, railed;
-  std::vector<int> allRows, generalRows, railRows;  // constraint rows by how the solve takes them
-  Eigen::SparseMatrix<double> matrix;
-  Eigen::VectorXd k1, rhs, dv, known;  // k1: dy/dt at the start; known: eliminated coordinates' Δv
-  std::vector<double> pairA, pairKu;  // per Jacobian pair: −η d − η² k (xx, xy, yy), k (x̄ − x_b + η (v_a − v_b))
-  JacobiPreconditioner jacobi;
-  LdltPreconditioner ldlt;
-  bool ldltValid = false;  // factors (of an earlier or this step's A) of the current pattern
-  bool autoDirect = false;              // auto has moved to the direct solve
-  std::vector<int> cgIterationsWindow;  // auto: the last kAutoWindow CG steps' iterations
-  double reuseDebt = 0.0;  // multiply-adds the stale factors' extra iterations have cost
-  long factorizations = 0;
-  ProjectedPcgScratch pcg;
-  ImplicitStepStats stats;
-};
-
-// The step's target: η and, for BDF2, x̄ − x₀ and v̄ − v₀ (null: zero, backward Euler).
 // The step's target: η and, for BDF2, x̄ − x_b and v̄ − v_b, where (x_b, v_b) is the state y the
 // step is linearised at (null: zero, backward Euler, linearised at the step's start). BDF2
 // linearises at a predicted end (see integrators/bdf2.hpp) and gives the state its rigid bodies'
@@ -137,10 +83,42 @@ struct ImplicitTarget {
   const Eigen::VectorXd* rotationStart = nullptr;
 };
 
-// One step by h: y holds the state the step is linearised at, taken at time t, and receives the
-// step's end. Throws ImplicitSolverError when the scene's implicit solver is
-// `direct` and more constraint rows than kMaxSchurRows are neither fixed points nor rails.
-void implicitStep(System& system, Eigen::VectorXd& y, double t, double h, const ImplicitTarget& target,
-                  ImplicitScratch& w, double cgTolerance = kCgTolerance);
+// The common step with what it keeps between steps: A's pattern, the last Δv (CG's first guess),
+// the direct path's factors and its reuse account, and auto's choice. Each implicit integrator
+// owns one (integrators/backward_euler.hpp, integrators/bdf2.hpp); the scratch the stages fill is
+// private to implicit_step.cpp.
+class ImplicitStep {
+ public:
+  ImplicitStep();
+  ~ImplicitStep();
+  ImplicitStep(ImplicitStep&&) noexcept;
+  ImplicitStep& operator=(ImplicitStep&&) noexcept;
+
+  // One step by h: y holds the state the step is linearised at, taken at time t, and receives the
+  // step's end. Throws ImplicitSolverError when the scene's implicit solver is `direct` and more
+  // constraint rows than kMaxSchurRows are neither fixed points nor rails.
+  void step(System& system, Eigen::VectorXd& y, double t, double h, const ImplicitTarget& target,
+            double cgTolerance = kCgTolerance);
+
+  const ImplicitStepStats& stats() const;  // the last step's
+  long factorizations() const;             // the direct path's, so far
+
+  // The last step's linear system, A Δv = b with J Δv = c: for tests that check the solves
+  // against a dense one. matrix is A over every coordinate (an eliminated or fixed one's row and
+  // column the identity), rhs is b, dv the answer, constraintRows J's rows at the step's start.
+  struct LinearSystem {
+    const Eigen::SparseMatrix<double>& matrix;
+    const Eigen::VectorXd& rhs;
+    const Eigen::VectorXd& dv;
+    const std::vector<ConstraintRow>& constraintRows;
+  };
+  LinearSystem lastSystem() const;
+
+  // What the step's stages fill and keep: defined in implicit_step.cpp, for them alone.
+  struct Scratch;
+
+ private:
+  std::unique_ptr<Scratch> w_;
+};
 
 }  // namespace particles

@@ -9,17 +9,12 @@
 #include "core/integrators/rk4.hpp"
 #include "core/integrators/symplectic_euler.hpp"
 #include "core/integrators/verlet.hpp"
+#include "core/name_table.hpp"
 #include "core/system.hpp"
 
 namespace particles {
 
 namespace {
-
-using StepFn = void (*)(System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
-
-DerivFn derivOf(System& system) {
-  return [&system](const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt) { system.derivEval(y, t, dydt); };
-}
 
 struct IntegratorEntry {
   Integrator id;
@@ -28,47 +23,34 @@ struct IntegratorEntry {
   bool projects;
   bool implicit;  // solves for the step's end (stable at any step on a spring)
   std::string_view summary;
-  StepFn step;
+  std::unique_ptr<IntegratorState> (*makeState)();
 };
 
 // The registry: one row per integrator, in the order studies and help list them.
-const std::array<IntegratorEntry, 7> kIntegrators{{
-    {Integrator::Euler, "euler", 1, false, false, "explicit Euler, first order",
-     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-       integrateEuler(derivOf(s), y, t, h, w);
-     }},
-    {Integrator::Midpoint, "midpoint", 2, false, false, "explicit midpoint, second order",
-     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-       integrateMidpoint(derivOf(s), y, t, h, w);
-     }},
-    {Integrator::Rk4, "rk4", 4, false, false, "classic 4th-order Runge–Kutta",
-     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-       integrateRk4(derivOf(s), y, t, h, w);
-     }},
+constexpr std::array<IntegratorEntry, 7> kIntegrators{{
+    {Integrator::Euler, "euler", 1, false, false, "explicit Euler, first order", makeEulerState},
+    {Integrator::Midpoint, "midpoint", 2, false, false, "explicit midpoint, second order", makeMidpointState},
+    {Integrator::Rk4, "rk4", 4, false, false, "classic 4th-order Runge–Kutta", makeRk4State},
     {Integrator::SymplecticEuler, "symplectic_euler", 1, true, false, "semi-implicit Euler (v, then x), first order",
-     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-       const DerivFn withoutConstraintForces = [&s](const Eigen::VectorXd& at, double time, Eigen::VectorXd& dydt) {
-         s.derivEval(at, time, dydt, System::ConstraintForces::skip);
-       };
-       VelocityProjection project;
-       if (!s.constraints().empty()) project = [&s](Eigen::VectorXd& at) { s.projectVelocitiesOntoConstraints(at); };
-       integrateSymplecticEuler(withoutConstraintForces, s.layout(), y, t, h, w, project);
-     }},
-    {Integrator::Verlet, "verlet", 1, true, false, "velocity Verlet, second order",
-     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-       integrateVerlet(derivOf(s), s.layout(), y, t, h, w);
-     }},
+     makeSymplecticEulerState},
+    {Integrator::Verlet, "verlet", 1, true, false, "velocity Verlet, second order", makeVerletState},
     {Integrator::BackwardEuler, "backward_euler", 1, true, true,
-     "implicit Euler, one Newton step (Baraff & Witkin 1998), first order",
-     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-       integrateBackwardEuler(s, y, t, h, w);
-     }},
+     "implicit Euler, one Newton step (Baraff & Witkin 1998), first order", makeBackwardEulerState},
     {Integrator::Bdf2, "bdf2", 1, true, true,
-     "second-order backward differentiation (BDF2), one Newton step (Choi & Ko 2002), second order",
-     [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) { integrateBdf2(s, y, t, h, w); }},
+     "second-order backward differentiation (BDF2), one Newton step (Choi & Ko 2002), second order", makeBdf2State},
 }};
 
-const std::array<Integrator, kIntegrators.size()> kAll = [] {
+// The rows' names as a name table (core/name_table.hpp), so each name is spelled once, in its row.
+struct IntegratorNames {
+  NameTableRow<Integrator> rows[kIntegrators.size()];
+};
+constexpr IntegratorNames kIntegratorNames = [] {
+  IntegratorNames names{};
+  for (size_t i = 0; i < kIntegrators.size(); ++i) names.rows[i] = {kIntegrators[i].id, kIntegrators[i].name};
+  return names;
+}();
+
+constexpr std::array<Integrator, kIntegrators.size()> kAll = [] {
   std::array<Integrator, kIntegrators.size()> all{};
   for (size_t i = 0; i < all.size(); ++i) all[i] = kIntegrators[i].id;
   return all;
@@ -83,15 +65,12 @@ const IntegratorEntry& entry(Integrator integrator) {
 
 }  // namespace
 
-std::string_view integratorName(Integrator integrator) { return entry(integrator).name; }
-
-std::optional<Integrator> integratorFromName(std::string_view name) {
-  for (const IntegratorEntry& e : kIntegrators) {
-    if (e.name == name) return e.id;
-  }
-  return std::nullopt;
+std::string_view integratorName(Integrator integrator) {
+  return nameOf(kIntegratorNames.rows, integrator, "unknown");
 }
-
+std::optional<Integrator> integratorFromName(std::string_view name) {
+  return valueNamed(kIntegratorNames.rows, name);
+}
 std::span<const Integrator> allIntegrators() { return kAll; }
 int derivEvalsPerStep(Integrator integrator) { return entry(integrator).evalsPerStep; }
 bool projectsConstraints(Integrator integrator) { return entry(integrator).projects; }
@@ -100,9 +79,17 @@ bool isImplicit(Integrator integrator) {
 }
 std::string_view integratorSummary(Integrator integrator) { return entry(integrator).summary; }
 
-void integrate(Integrator integrator, System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
-  w.pool = system.pool();
-  entry(integrator).step(system, y, t, h, w);
+DerivFn derivativeOf(System& system) {
+  return [&system](const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt) { system.derivEval(y, t, dydt); };
+}
+
+void ScratchOnlyState::step(System& system, Eigen::VectorXd& y, double t, double h) {
+  scratch_.pool = system.pool();
+  step_(system, y, t, h, scratch_);
+}
+
+std::unique_ptr<IntegratorState> makeIntegratorState(Integrator integrator) {
+  return entry(integrator).makeState();
 }
 
 }  // namespace particles

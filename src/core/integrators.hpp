@@ -1,25 +1,26 @@
 #pragma once
 // The integrators (docs/physics.md §3) and their registry. One step advances the flat state y from
 // t to t + h; every integrator reaches the system only through derivEval (and, for the implicit
-// implicit ones, the force Jacobians). Each is a file pair under integrators/ with its formula at
+// ones, the force Jacobians). Each is a file pair under integrators/ with its formula at
 // the top: the report's three explicit methods over a derivative f(y, t) (explicit_euler,
 // midpoint, rk4), and the ones that treat positions and velocities apart (symplectic_euler,
 // verlet, and the implicit backward_euler and bdf2 over core/implicit_step.hpp).
 //
-// A new integrator: its file pair, an enum value below, and one row in the table of integrators.cpp.
+// A new integrator: its file pair (the step, and makeXxxState for its registry row: what it keeps
+// from one step to the next), an enum value below, and one row in the table of integrators.cpp.
 
 #include <Eigen/Core>
-#include <array>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string_view>
 
-#include "core/implicit_step.hpp"
 #include "core/worker_pool.hpp"
 
 namespace particles {
 
+class ImplicitStep;
 class System;
 
 enum class Integrator { Euler, Midpoint, Rk4, SymplecticEuler, Verlet, BackwardEuler, Bdf2 };
@@ -40,35 +41,60 @@ bool isImplicit(Integrator integrator);
 std::string_view integratorSummary(Integrator integrator);
 
 using DerivFn = std::function<void(const Eigen::VectorXd& y, double t, Eigen::VectorXd& dydt)>;
+// The system's derivEval as a DerivFn (constraint forces included).
+DerivFn derivativeOf(System& system);
 
-// Scratch kept between steps, so stepping does not allocate, and what an integrator carries from
-// one step to the next (Verlet's last evaluation, the implicit step's last Δv and factors, BDF2's
-// previous state).
+// Vectors a step fills, kept so that stepping does not allocate; nothing in them is carried from
+// one step to the next.
 struct IntegratorScratch {
-  // The System's threads, for the whole-vector updates (set by integrate; null: serial).
+  // The System's threads, for the whole-vector updates (null: serial).
   WorkerPool* pool = nullptr;
   Eigen::VectorXd k1, k2, k3, k4, tmp;
-
-  // Verlet: f at (verletY, verletT), valid when verletValid.
-  Eigen::VectorXd verletF, verletY;
-  double verletT = 0.0;
-  bool verletValid = false;
-  // The solver moved y by a projection after the step (a drift-sized correction): the cached
-  // evaluation stays, so Verlet keeps to one evaluation per step on constrained systems.
-  void stateProjected(const Eigen::VectorXd& y) {
-    if (verletValid) verletY = y;
-  }
-
-  // Backward Euler and BDF2 (core/implicit_step.hpp).
-  ImplicitScratch implicit;
-  // BDF2: the state a step before the current one (bdfPrevious at bdfPreviousT, a step of
-  // bdfPreviousH), valid when bdfValid; and x̄ − x₀, v̄ − v₀.
-  Eigen::VectorXd bdfPrevious, bdfStart, bdfXShift, bdfVShift;
-  double bdfPreviousT = 0.0, bdfPreviousH = 0.0;
-  bool bdfValid = false;
 };
 
-// One step of the named integrator on the system's state y at time t.
-void integrate(Integrator integrator, System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
+// One integrator's own state, made by its registry row and held by the Solver for as long as it
+// steps with that integrator: its scratch, and what it carries from one step to the next (Verlet's
+// last evaluation, the implicit step's pattern, factors and last Δv, BDF2's previous state). Each
+// checks what it carries against the step it is asked for (Verlet: the state and time; BDF2: h,
+// t and the state's size; the implicit step: A's pattern) and starts afresh where that no longer
+// applies, so a new dt, or a state or time set from outside, needs no call here.
+class IntegratorState {
+ public:
+  virtual ~IntegratorState() = default;
+  // One step of the system's state y at time t by h.
+  virtual void step(System& system, Eigen::VectorXd& y, double t, double h) = 0;
+  // The solver moved y by a projection onto the constraints after the step (a drift-sized
+  // correction).
+  virtual void stateProjected(const Eigen::VectorXd& y) { (void)y; }
+  // The solver undid the step (it blew up) and put the state back.
+  virtual void stepUndone() {}
+  // Backward Euler's and BDF2's common step (its statistics, for benchmarks and tests); null for
+  // the explicit integrators.
+  virtual const ImplicitStep* implicitStep() const { return nullptr; }
+};
+
+// The state of an integrator that carries nothing between steps: its scratch and its step.
+class ScratchOnlyState final : public IntegratorState {
+ public:
+  using Step = void (*)(System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
+  explicit ScratchOnlyState(Step step) : step_(step) {}
+  void step(System& system, Eigen::VectorXd& y, double t, double h) override;
+
+ private:
+  Step step_;
+  IntegratorScratch scratch_;
+};
+
+// The state of a method over a derivative f(y, t) (explicit Euler, midpoint, RK4): scratch only,
+// and the method over the system's derivEval.
+using ExplicitMethod = void (*)(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
+template <ExplicitMethod method>
+std::unique_ptr<IntegratorState> makeExplicitMethodState() {
+  return std::make_unique<ScratchOnlyState>([](System& system, Eigen::VectorXd& y, double t, double h,
+                                               IntegratorScratch& w) { method(derivativeOf(system), y, t, h, w); });
+}
+
+// A fresh state for the named integrator, from its registry row.
+std::unique_ptr<IntegratorState> makeIntegratorState(Integrator integrator);
 
 }  // namespace particles

@@ -27,10 +27,21 @@ SimulationError::SimulationError(const std::string& reason, long step, double ti
     : std::runtime_error(explosionMessage(reason, step, time, integrator, dt)),
       reason_(reason), step_(step), time_(time), integrator_(integrator), dt_(dt) {}
 
+const ImplicitStepStats& Solver::lastImplicitStep() const {
+  static const ImplicitStepStats kNone;
+  const ImplicitStep* implicit = state_->implicitStep();
+  return implicit ? implicit->stats() : kNone;
+}
+
+long Solver::factorizations() const {
+  const ImplicitStep* implicit = state_->implicitStep();
+  return implicit ? implicit->factorizations() : 0;
+}
+
 void Solver::doStep(System& system, double dt) {
   // The guard's copy and checks are whole-state passes like the integrators' own updates, so they
-  // run on the same threads (on one, they were an eighth of a symplectic Euler step of the 316²
-  // cloth). The finiteness check's chunk verdicts are 0/1 counts: their sum is exact in any order.
+  // run on the same threads (their share of the thinnest step, symplectic Euler's: bench/README.md,
+  // "The core on threads").
   WorkerPool* pool = system.pool();
   const Eigen::VectorXd& y = system.state();
   previous_.resize(y.size());
@@ -41,23 +52,21 @@ void Solver::doStep(System& system, double dt) {
     runDt_ = dt;
     runSteps_ = 0;
   }
-  integrate(integrator_, system, system.state(), t0, dt, scratch_);
+  state_->step(system, system.state(), t0, dt);
   if (projectsConstraints(integrator_) && !system.constraints().empty()) {
     system.projectOntoConstraints(system.state());
-    scratch_.stateProjected(system.state());
+    state_->stateProjected(system.state());
   }
   const long step = steps_ + 1;
   const double t1 = runStart_ + double(runSteps_ + 1) * dt;
 
   std::string reason;
-  const double nonFiniteChunks =
-      sumChunks(pool, size_t(y.size()), kVectorChunk, guardPartials_, [&](size_t begin, size_t end) {
-        // 0·x is 0 for a finite x and NaN for ±∞ or NaN, so the sum is NaN exactly when one is
-        // not finite: one vectorised pass (Eigen's allFinite forms x − x twice).
-        const double probe = (y.segment(Eigen::Index(begin), Eigen::Index(end - begin)).array() * 0.0).sum();
-        return std::isnan(probe) ? 1.0 : 0.0;
-      });
-  if (nonFiniteChunks != 0.0) {
+  // 0·x is 0 for a finite x and NaN for ±∞ or NaN: one multiply and compare per entry, which
+  // vectorises (Eigen's allFinite forms x − x twice).
+  const double* values = y.data();
+  const bool nonFinite = anyOf(pool, size_t(y.size()), kVectorChunk, guardChunks_,
+                               [values](size_t i) { return std::isnan(values[i] * 0.0); });
+  if (nonFinite) {
     reason = "the state became non-finite (NaN or infinity)";
   } else {
     const double kinetic = system.kineticEnergy(system.state());
@@ -69,7 +78,7 @@ void Solver::doStep(System& system, double dt) {
   }
   if (!reason.empty()) {
     system.state() = previous_;
-    scratch_.verletValid = false;
+    state_->stepUndone();
     throw SimulationError(reason, step, t1, integrator_, dt);
   }
   system.setTime(t1);

@@ -2,10 +2,12 @@
 // The solver advances a System with one integrator (docs/physics.md §1): doStep(system, dt) calls
 // system.derivEval 1, 2 or 4 times, then checks the new state with the explosion guard.
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "core/implicit_step.hpp"
 #include "core/integrators.hpp"
 #include "core/system.hpp"
 
@@ -39,13 +41,17 @@ struct ExplosionGuard {
 
 class Solver {
  public:
-  explicit Solver(Integrator integrator, ExplosionGuard guard = {}) : integrator_(integrator), guard_(guard) {}
+  // The integrator's state is made from its registry row (makeIntegratorState) and lives as long
+  // as the solver: a new scenario, or a trial of the stability study, gets a new solver.
+  explicit Solver(Integrator integrator, ExplosionGuard guard = {})
+      : integrator_(integrator), guard_(guard), state_(makeIntegratorState(integrator)) {}
   Integrator integrator() const { return integrator_; }
   long steps() const { return steps_; }
-  // What the last backward Euler or BDF2 step's linear solve did (core/implicit_step.hpp), and the
-  // direct path's factorisations so far: benchmarks and tests.
-  const ImplicitStepStats& lastImplicitStep() const { return scratch_.implicit.stats; }
-  long factorizations() const { return scratch_.implicit.factorizations; }
+  // What the last backward Euler or BDF2 step's linear solve did (core/implicit_step.hpp; all
+  // zero for the explicit integrators), and the direct path's factorisations so far: benchmarks
+  // and tests.
+  const ImplicitStepStats& lastImplicitStep() const;
+  long factorizations() const;
 
   // Advances the system's state and time by dt. Throws SimulationError (and leaves the system at
   // the last good state) when the step blows up.
@@ -58,9 +64,9 @@ class Solver {
  private:
   Integrator integrator_;
   ExplosionGuard guard_;
-  IntegratorScratch scratch_;
+  std::unique_ptr<IntegratorState> state_;
   Eigen::VectorXd previous_;
-  std::vector<double> guardPartials_;  // sumChunks scratch
+  std::vector<char> guardChunks_;  // anyOf's verdict per chunk
   long steps_ = 0;
   // The current run of equal steps: t = runStart_ + runSteps_ · runDt_.
   double runStart_ = 0.0, runDt_ = 0.0;

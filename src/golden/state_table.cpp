@@ -7,49 +7,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "input/csv_reader.hpp"
+#include "output/csv_writer.hpp"
 #include "scenario/scenario.hpp"
 
 namespace particles::golden {
 
 namespace {
-
-// RFC 4180: a field holding a comma, a quote or a line break goes in quotes, quotes doubled.
-std::string csvField(const std::string& text) {
-  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
-}
-
-// The fields of the record starting at `at`, which moves past its line break. Quoted fields may
-// hold line breaks. Throws std::invalid_argument for a quote that does not close.
-std::vector<std::string> csvRecord(std::string_view text, size_t& at, const std::string& where) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  while (at < text.size()) {
-    const char c = text[at++];
-    if (quoted) {
-      if (c != '"') {
-        fields.back() += c;
-      } else if (at < text.size() && text[at] == '"') {
-        fields.back() += '"';
-        ++at;
-      } else {
-        quoted = false;
-      }
-    } else if (c == '"' && fields.back().empty()) {
-      quoted = true;
-    } else if (c == ',') {
-      fields.emplace_back();
-    } else if (c == '\n') {
-      break;
-    } else if (c != '\r') {
-      fields.back() += c;
-    }
-  }
-  if (quoted) throw std::invalid_argument(where + ": a quoted field does not end");
-  return fields;
-}
 
 double numberOf(const std::string& text, const std::string& where) {
   double x = 0.0;
@@ -86,8 +50,9 @@ std::string stateText(const std::vector<StateRow>& rows) {
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "{}\n", kStateHeader);
   for (const StateRow& r : rows) {
-    fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{}\n", csvField(r.time), csvField(r.name),
-                   r.values[0], r.values[1], r.values[2], r.values[3], r.values[4], r.values[5]);
+    fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{}\n", output::csvField(r.time),
+                   output::csvField(r.name), r.values[0], r.values[1], r.values[2], r.values[3], r.values[4],
+                   r.values[5]);
   }
   return fmt::to_string(out);
 }
@@ -103,15 +68,18 @@ std::vector<StateRow> parseStateText(std::string_view text, const std::string& f
     throw std::invalid_argument(
         fmt::format("{}:1: the first line is not a state file's header '{}'", file, kStateHeader));
   }
+  std::vector<int> lines;
+  std::vector<std::vector<std::string>> records;
+  try {
+    records = input::parseCsv(text, &lines);
+  } catch (const input::CsvError& e) {
+    throw std::invalid_argument(fmt::format("{}:{}: {}", file, e.line(), e.what()));
+  }
   std::vector<StateRow> rows;
-  size_t at = headerEnd == std::string_view::npos ? text.size() : headerEnd + 1;
-  for (int line = 2; at < text.size(); ++line) {
-    const int first = line;
-    const size_t start = at;
-    const std::string where = fmt::format("{}:{}", file, first);
-    std::vector<std::string> fields = csvRecord(text, at, where);
-    for (size_t i = start; i < at && i + 1 < at; ++i) line += text[i] == '\n';  // line breaks inside quotes
-    if (fields.size() == 1 && fields[0].empty()) continue;                      // an empty line
+  for (size_t r = 1; r < records.size(); ++r) {  // records[0] is the header, checked above
+    std::vector<std::string>& fields = records[r];
+    if (fields.size() == 1 && fields[0].empty()) continue;  // an empty line
+    const std::string where = fmt::format("{}:{}", file, lines[r]);
     if (fields.size() != 8) {
       throw std::invalid_argument(
           fmt::format("{}: {} fields, where a state row has 8 ({})", where, fields.size(), kStateHeader));

@@ -37,7 +37,8 @@ std::vector<StateRow> stateRows(const System& system, const std::string& timeTex
 std::string stateText(const std::vector<StateRow>& rows);
 
 // Reads a state file; throws std::invalid_argument naming `file`, the line and what is wrong (a
-// header that is not kStateHeader, a row without 8 fields, a value that is not a number, a NUL byte).
+// header that is not kStateHeader, text that is not CSV (input/csv_reader.hpp), a row without 8 fields, a
+// value that is not a number, a NUL byte).
 std::vector<StateRow> parseStateText(std::string_view text, const std::string& file);
 
 // Absolute tolerances: position (x, y), velocity (vx, vy), angle, omega.

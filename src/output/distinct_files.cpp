@@ -57,6 +57,16 @@ bool same(const Identity& a, const Identity& b) {
   return a.device == b.device && a.inode == b.inode;
 }
 
+// Whether `inner` is `folder` or lies beneath it, both named by their canonical paths (the part
+// that exists resolved through its links, the rest made normal).
+bool beneath(const fs::path& folder, const fs::path& inner) {
+  std::error_code ec;
+  const fs::path out = fs::weakly_canonical(fs::absolute(folder, ec), ec);
+  const fs::path in = fs::weakly_canonical(fs::absolute(inner, ec), ec);
+  const fs::path relative = in.lexically_relative(out);
+  return in == out || (!relative.empty() && *relative.begin() != "..");
+}
+
 }  // namespace
 
 bool sameFile(const fs::path& a, const fs::path& b) {
@@ -86,6 +96,12 @@ void requireDistinctFiles(const std::vector<NamedFile>& outputs, const std::vect
     }
     for (const Identified& in : ins) {
       if (same(outs[i].id, in.id)) refuse(*outs[i].file, *in.file, "an input");
+      if (outs[i].file->wholeFolder && beneath(outs[i].file->path, in.file->path)) {
+        throw SameFileError(
+            fmt::format("{} '{}' is a folder replaced whole, and {} '{}' is in it; an output never "
+                        "replaces an input",
+                        outs[i].file->role, outs[i].file->path.string(), in.file->role, in.file->path.string()));
+      }
     }
   }
 }

@@ -12,6 +12,9 @@
 //    folder made canonical (std::filesystem::weakly_canonical).
 // A character device (/dev/null, a terminal) is exempt: it is written in place and keeps nothing
 // that a second writer could overwrite, so `--stats /dev/null --trace /dev/null` is fine.
+// An output that is a folder replaced whole (a golden report folder) also replaces everything
+// beneath it: an input there, or the folder of an input, is refused as well (both paths made
+// canonical as above, then compared component by component).
 // Inputs are not checked against each other (`concat a.mp4 a.mp4` joins a video to itself).
 
 #include <filesystem>
@@ -26,6 +29,8 @@ namespace particles::output {
 struct NamedFile {
   std::string role;
   std::filesystem::path path;
+  // An output that is a folder the command replaces whole, with all it holds; ignored for an input.
+  bool wholeFolder = false;
 };
 
 // Two of a command's files are one: bad usage, which the program maps to exit code 2 (not an
@@ -36,7 +41,7 @@ class SameFileError : public std::runtime_error {
 };
 
 // Throws SameFileError naming both paths when an output is the same file as another output or as
-// an input, by the rule above.
+// an input, or is a folder replaced whole that holds an input, by the rule above.
 void requireDistinctFiles(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs = {});
 
 // Whether `a` and `b` name the same file by the rule above.

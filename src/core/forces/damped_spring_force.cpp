@@ -12,7 +12,9 @@
 namespace particles {
 
 namespace {
-constexpr size_t kSpringChunk = 8192;  // springs per chunk of the threaded loops: ~40 µs of work
+// Springs per chunk of the threaded loops: enough work that a hand-over is small beside it (a
+// chunk's time, from the spring loop's per spring: bench/README.md, "derivEval on the cloth").
+constexpr size_t kSpringChunk = 8192;
 }
 
 void DampedSpringForce::add(const SpringSpec& spring) {
@@ -114,8 +116,8 @@ void DampedSpringForce::buildIncidence(int points) const {
     }
   }
   // Values that fit in a core's cache (its L2: 1–2 MiB on today's servers) come back from it
-  // anyway: the 100² cloth's 0.6 MiB were 11 % slower chunk-local, the 316² cloth's 6.4 MiB
-  // 13 % faster (bench/README.md, "The core on threads").
+  // anyway: chunk-local lost on the 100² cloth's 0.6 MiB and won on the 316² cloth's 6.4 MiB
+  // (bench/README.md, "The core on threads").
   constexpr size_t kCacheBytes = size_t(1) << 20;
   chunkLocal_ = 4 * sizeof(double) * n > kCacheBytes && 4 * computed <= 5 * n && mostRuns <= kMaxRuns;
   if (!chunkLocal_) {

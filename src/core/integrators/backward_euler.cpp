@@ -2,9 +2,12 @@
 
 namespace particles {
 
-void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w,
-                            const BackwardEulerOptions& options) {
-  implicitStep(system, y, t, h, ImplicitTarget{.eta = h}, w.implicit, options.cgTolerance);
+void BackwardEulerState::step(System& system, Eigen::VectorXd& y, double t, double h) {
+  implicit_.step(system, y, t, h, ImplicitTarget{.eta = h}, options_.cgTolerance);
+}
+
+std::unique_ptr<IntegratorState> makeBackwardEulerState() {
+  return std::make_unique<BackwardEulerState>();
 }
 
 }  // namespace particles

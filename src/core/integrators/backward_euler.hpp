@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include "core/implicit_step.hpp"
 #include "core/integrators.hpp"
 
 namespace particles {
@@ -30,7 +31,18 @@ struct BackwardEulerOptions {
   double cgTolerance = kCgTolerance;  // the CG path's relative residual
 };
 
-void integrateBackwardEuler(System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w,
-                            const BackwardEulerOptions& options = {});
+// Backward Euler's state: the common implicit step's (its pattern, factors and last Δv).
+class BackwardEulerState final : public IntegratorState {
+ public:
+  explicit BackwardEulerState(const BackwardEulerOptions& options = {}) : options_(options) {}
+  void step(System& system, Eigen::VectorXd& y, double t, double h) override;
+  const ImplicitStep* implicitStep() const override { return &implicit_; }
+
+ private:
+  BackwardEulerOptions options_;
+  ImplicitStep implicit_;
+};
+
+std::unique_ptr<IntegratorState> makeBackwardEulerState();
 
 }  // namespace particles

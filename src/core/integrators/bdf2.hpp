@@ -20,12 +20,31 @@
 
 #include <Eigen/Core>
 
+#include "core/implicit_step.hpp"
 #include "core/integrators.hpp"
 
 namespace particles {
 
 class System;
 
-void integrateBdf2(System& system, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
+// BDF2's state: the common implicit step's, and the state one step back.
+class Bdf2State final : public IntegratorState {
+ public:
+  void step(System& system, Eigen::VectorXd& y, double t, double h) override;
+  const ImplicitStep* implicitStep() const override { return &implicit_; }
+  // Whether the next step of h from t would use the history (a BDF2 step), not start afresh (a
+  // backward Euler step): tests.
+  bool continues(const Eigen::VectorXd& y, double t, double h) const;
+
+ private:
+  ImplicitStep implicit_;
+  // The state a step before the current one (previous_ at previousT_, a step of previousH_),
+  // valid when hasPrevious_; the step's start, x̄ − x_b and v̄ − v_b.
+  Eigen::VectorXd previous_, start_, xShift_, vShift_;
+  double previousT_ = 0.0, previousH_ = 0.0;
+  bool hasPrevious_ = false;
+};
+
+std::unique_ptr<IntegratorState> makeBdf2State();
 
 }  // namespace particles

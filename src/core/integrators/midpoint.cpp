@@ -11,4 +11,8 @@ void integrateMidpoint(const DerivFn& f, Eigen::VectorXd& y, double t, double h,
   forSegments(w.pool, y.size(), [&](long i, long n) { y.segment(i, n) += h * w.k2.segment(i, n); });
 }
 
+std::unique_ptr<IntegratorState> makeMidpointState() {
+  return makeExplicitMethodState<integrateMidpoint>();
+}
+
 }  // namespace particles

@@ -11,5 +11,7 @@
 namespace particles {
 
 void integrateMidpoint(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
+// Its registry row's state: scratch only, the step over the system's derivEval.
+std::unique_ptr<IntegratorState> makeMidpointState();
 
 }  // namespace particles

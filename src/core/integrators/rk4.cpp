@@ -23,4 +23,8 @@ void integrateRk4(const DerivFn& f, Eigen::VectorXd& y, double t, double h, Inte
   });
 }
 
+std::unique_ptr<IntegratorState> makeRk4State() {
+  return makeExplicitMethodState<integrateRk4>();
+}
+
 }  // namespace particles

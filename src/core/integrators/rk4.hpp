@@ -14,5 +14,7 @@
 namespace particles {
 
 void integrateRk4(const DerivFn& f, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w);
+// Its registry row's state: scratch only, the step over the system's derivEval.
+std::unique_ptr<IntegratorState> makeRk4State();
 
 }  // namespace particles

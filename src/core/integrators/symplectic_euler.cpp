@@ -2,6 +2,8 @@
 
 #include <functional>
 
+#include "core/system.hpp"
+
 namespace particles {
 
 void integrateSymplecticEuler(const DerivFn& f, const StateLayout& layout, Eigen::VectorXd& y, double t, double h,
@@ -17,6 +19,18 @@ void integrateSymplecticEuler(const DerivFn& f, const StateLayout& layout, Eigen
     forSegments(w.pool, b.length,
                 [&](long i, long n) { y.segment(b.position + i, n) += h * y.segment(b.velocity + i, n); });
   }
+}
+
+std::unique_ptr<IntegratorState> makeSymplecticEulerState() {
+  return std::make_unique<ScratchOnlyState>(
+      [](System& s, Eigen::VectorXd& y, double t, double h, IntegratorScratch& w) {
+        const DerivFn withoutConstraintForces = [&s](const Eigen::VectorXd& at, double time, Eigen::VectorXd& dydt) {
+          s.derivEval(at, time, dydt, System::ConstraintForces::skip);
+        };
+        VelocityProjection project;
+        if (!s.constraints().empty()) project = [&s](Eigen::VectorXd& at) { s.projectVelocitiesOntoConstraints(at); };
+        integrateSymplecticEuler(withoutConstraintForces, s.layout(), y, t, h, w, project);
+      });
 }
 
 }  // namespace particles

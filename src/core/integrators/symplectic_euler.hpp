@@ -23,5 +23,8 @@ using VelocityProjection = std::function<void(Eigen::VectorXd& y)>;
 
 void integrateSymplecticEuler(const DerivFn& f, const StateLayout& layout, Eigen::VectorXd& y, double t, double h,
                               IntegratorScratch& w, const VelocityProjection& projectVelocities = {});
+// Its registry row's state: scratch only, the step over the system's derivEval without the
+// constraint forces, and its velocity projection when the system has constraints.
+std::unique_ptr<IntegratorState> makeSymplecticEulerState();
 
 }  // namespace particles

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/system.hpp"
+
 namespace particles {
 
 namespace {
@@ -14,14 +16,18 @@ bool sameState(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 
 }  // namespace
 
-void integrateVerlet(const DerivFn& f, const StateLayout& layout, Eigen::VectorXd& y, double t, double h,
-                     IntegratorScratch& w) {
+void VerletState::step(System& system, Eigen::VectorXd& y, double t, double h) {
+  scratch_.pool = system.pool();
+  stepWith(derivativeOf(system), system.layout(), y, t, h);
+}
+
+void VerletState::stepWith(const DerivFn& f, const StateLayout& layout, Eigen::VectorXd& y, double t, double h) {
+  IntegratorScratch& w = scratch_;
   // The solver computes t as t₀ + k·dt afresh each step, so the cached time may differ from it in
   // the last bits; anything further off is a jump in time.
-  const bool cached = w.verletValid && std::abs(w.verletT - t) <= 1e-12 * std::max(1.0, std::abs(t)) &&
-                      sameState(w.verletY, y);
-  if (!cached) f(y, t, w.verletF);
-  const Eigen::VectorXd& a0 = w.verletF;
+  const bool cached = cached_ && std::abs(lastT_ - t) <= 1e-12 * std::max(1.0, std::abs(t)) && sameState(lastY_, y);
+  if (!cached) f(y, t, lastF_);
+  const Eigen::VectorXd& a0 = lastF_;
   w.tmp.resize(y.size());
   for (const auto& b : layout.secondOrderBlocks()) {
     forSegments(w.pool, b.length, [&](long i, long n) {
@@ -38,11 +44,19 @@ void integrateVerlet(const DerivFn& f, const StateLayout& layout, Eigen::VectorX
       y.segment(b.velocity + i, n) += (0.5 * h) * (a0.segment(b.velocity + i, n) + w.k2.segment(b.velocity + i, n));
     });
   }
-  w.verletF.swap(w.k2);
-  w.verletY.resize(y.size());
-  forSegments(w.pool, y.size(), [&](long i, long n) { w.verletY.segment(i, n) = y.segment(i, n); });
-  w.verletT = t + h;
-  w.verletValid = true;
+  lastF_.swap(w.k2);
+  lastY_.resize(y.size());
+  forSegments(w.pool, y.size(), [&](long i, long n) { lastY_.segment(i, n) = y.segment(i, n); });
+  lastT_ = t + h;
+  cached_ = true;
+}
+
+void VerletState::stateProjected(const Eigen::VectorXd& y) {
+  if (cached_) lastY_ = y;
+}
+
+std::unique_ptr<IntegratorState> makeVerletState() {
+  return std::make_unique<VerletState>();
 }
 
 }  // namespace particles

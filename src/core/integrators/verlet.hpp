@@ -6,7 +6,7 @@
 // of velocity (drag, spring damping) makes the exact scheme implicit in v₁; a₁ is taken at the
 // Euler prediction v₀ + h a₀ instead, an O(h²) error in a₁'s argument, so the step stays second
 // order. The cached a₀ is used only when y and t are those the last step ended at (a projection
-// after the step keeps it, IntegratorScratch::stateProjected); otherwise it is evaluated afresh.
+// after the step keeps it, VerletState::stateProjected); otherwise it is evaluated afresh.
 
 #include <Eigen/Core>
 
@@ -15,7 +15,24 @@
 
 namespace particles {
 
-void integrateVerlet(const DerivFn& f, const StateLayout& layout, Eigen::VectorXd& y, double t, double h,
-                     IntegratorScratch& w);
+// Verlet's state: a₀, the derivative at the state and time its last step ended at.
+class VerletState final : public IntegratorState {
+ public:
+  void step(System& system, Eigen::VectorXd& y, double t, double h) override;
+  // The same step over any derivative f (on the calling thread).
+  void stepWith(const DerivFn& f, const StateLayout& layout, Eigen::VectorXd& y, double t, double h);
+  // The projection moved y by a drift-sized correction: a₀ is kept for the moved state, so that
+  // Verlet keeps to one evaluation per step on constrained systems.
+  void stateProjected(const Eigen::VectorXd& y) override;
+  void stepUndone() override { cached_ = false; }
+
+ private:
+  IntegratorScratch scratch_;
+  Eigen::VectorXd lastF_, lastY_;  // a₀ = f(lastY_, lastT_), valid when cached_
+  double lastT_ = 0.0;
+  bool cached_ = false;
+};
+
+std::unique_ptr<IntegratorState> makeVerletState();
 
 }  // namespace particles

@@ -15,11 +15,10 @@
 // per row, kept dense (n × rows), and S dense (rows × rows) with a pivoting LDLᵀ, so this is for a
 // few rows (kMaxSchurRows), not a net of thousands of rods.
 //
-// Measured on the 25² cloth's A (1,250 coordinates): Eigen's SimplicialLDLT factors in 0.50 ms,
-// CHOLMOD's simplicial LDLᵀ (SuiteSparse 5.12, Debian's, through Eigen's CholmodSupport, with
-// OpenBLAS) in 0.55 ms and its supernodal LLᵀ in 1.1 ms, the 2 × 2 blocks in 0.14 ms; on the 100²
-// cloth's (20,000) 42, 45, 53 and 13 ms. Supernodes are small on a cloth's grid, so CHOLMOD does
-// not pay; the blocks do (core/block_ldlt.hpp says why).
+// Why our own factorisation rather than Eigen's SimplicialLDLT or CHOLMOD's (simplicial LDLᵀ,
+// supernodal LLᵀ): supernodes are small on a cloth's grid, so CHOLMOD does not pay; the 2 × 2
+// blocks do (core/block_ldlt.hpp says why). The timings of all four on the 25² and 100² cloths'
+// A: bench/README.md, "Implicit integration".
 
 #include <Eigen/Core>
 #include <Eigen/Dense>

@@ -1,34 +1,11 @@
-#include "app/csv_table.hpp"
-
-#include <fmt/format.h>
+// Reading CSV text: see csv_reader.hpp.
+#include "input/csv_reader.hpp"
 
 #include <algorithm>
 
-#include "app/exit_codes.hpp"
+namespace particles::input {
 
-namespace particles::app {
-
-std::string csvField(std::string_view field) {
-  if (field.find_first_of(",\"\n\r") == std::string_view::npos) return std::string(field);
-  std::string out = "\"";
-  for (char c : field) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
-std::string csvRow(const std::vector<std::string>& fields) {
-  std::string out;
-  for (size_t i = 0; i < fields.size(); ++i) {
-    if (i > 0) out += ',';
-    out += csvField(fields[i]);
-  }
-  return out + "\n";
-}
-
-std::vector<std::vector<std::string>> parseCsv(std::string_view text, const std::string& file,
-                                               std::vector<int>* rowLines) {
+std::vector<std::vector<std::string>> parseCsv(std::string_view text, std::vector<int>* recordLines) {
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> row;
   std::string field;
@@ -51,7 +28,7 @@ std::vector<std::vector<std::string>> parseCsv(std::string_view text, const std:
       continue;
     }
     if (c == '"') {
-      if (fieldStarted) throw InputError(fmt::format("{}:{}: a quote inside an unquoted field", file, line));
+      if (fieldStarted) throw CsvError(line, "a quote inside an unquoted field");
       quoted = true;
       fieldStarted = true;
     } else if (c == ',') {
@@ -64,7 +41,7 @@ std::vector<std::vector<std::string>> parseCsv(std::string_view text, const std:
       field.clear();
       fieldStarted = false;
       rows.push_back(std::move(row));
-      if (rowLines) rowLines->push_back(rowLine);
+      if (recordLines) recordLines->push_back(rowLine);
       row.clear();
       rowLine = ++line;
     } else {
@@ -75,13 +52,13 @@ std::vector<std::vector<std::string>> parseCsv(std::string_view text, const std:
       fieldStarted = true;
     }
   }
-  if (quoted) throw InputError(fmt::format("{}:{}: a quoted field is not closed", file, rowLine));
+  if (quoted) throw CsvError(rowLine, "a quoted field is not closed");
   if (fieldStarted || !row.empty()) {
     row.push_back(std::move(field));
     rows.push_back(std::move(row));
-    if (rowLines) rowLines->push_back(rowLine);
+    if (recordLines) recordLines->push_back(rowLine);
   }
   return rows;
 }
 
-}  // namespace particles::app
+}  // namespace particles::input
