@@ -21,11 +21,11 @@
 namespace fs = std::filesystem;
 using namespace particles;
 using namespace particles::golden;
+using scenario::GoldenCheck;
+using scenario::GoldenManifest;
 using test::kSwingScenario;
 using test::Scratch;
 using test::slurp;
-using scenario::GoldenCheck;
-using scenario::GoldenManifest;
 
 namespace {
 
@@ -237,4 +237,56 @@ TEST_CASE("state check: missing, passed, failed, an unusable reference, errors")
   CHECK(r.outcome == Outcome::error);
   CHECK(r.message == "t = 2 s is after the scenario's duration, 1 s");
   CHECK_FALSE(g.badReference);
+}
+
+TEST_CASE("golden run: entries on a pool of threads give one thread's results, in manifest order") {
+  GoldenRun g(
+      "frames:\n"
+      "  - {scenario: swing.yaml, times: [0.5], name: a}\n"
+      "  - {scenario: swing.yaml, times: [0.25, 0.75], set: {\"particles[1].pos\": [0.5, -0.8]}}\n"
+      "states:\n"
+      "  - {scenario: swing.yaml, times: [0.5], name: s1}\n"
+      "  - {scenario: swing.yaml, times: [1], name: s2}\n"
+      "  - {scenario: swing.yaml, times: [3], name: late}\n");
+  auto runWith = [&](int jobs, const std::string& folder) {
+    g.options.jobs = jobs;
+    long calls = 0;
+    g.options.progress = [&](long done, long total, const std::string&) {
+      ++calls;
+      CHECK(done == calls);
+      CHECK(total == 6);
+    };
+    CheckRun run = runCheck(g.manifest, g.dir() / folder, g.options);
+    CHECK(calls == 6);
+    return run;
+  };
+  const CheckRun one = runWith(1, "one");
+  const CheckRun pooled = runWith(4, "pooled");
+  auto namesOf = [](const auto& results) {
+    std::vector<std::string> names;
+    for (const auto& r : results) names.push_back(r.name);
+    return names;
+  };
+  CHECK(namesOf(pooled.results.frames) == std::vector<std::string>{"a", "swing_t0.25", "swing_t0.75"});
+  CHECK(namesOf(pooled.results.states) == std::vector<std::string>{"s1", "s2", "late"});
+  for (size_t i = 0; i < one.results.frames.size(); ++i) {
+    const FrameResult &a = one.results.frames[i], &b = pooled.results.frames[i];
+    CAPTURE(a.name);
+    CHECK(b.outcome == Outcome::missing);
+    CHECK(b.message == a.message);
+    CHECK(b.reproduce == a.reproduce);
+    CHECK(slurp(g.dir() / "pooled" / b.files.actual) == slurp(g.dir() / "one" / a.files.actual));
+  }
+  for (size_t i = 0; i < one.results.states.size(); ++i) {
+    const StateResult &a = one.results.states[i], &b = pooled.results.states[i];
+    CAPTURE(a.name);
+    CHECK(b.outcome == a.outcome);
+    CHECK(b.message == a.message);
+    if (!a.files.actual.empty()) {
+      CHECK(slurp(g.dir() / "pooled" / b.files.actual) == slurp(g.dir() / "one" / a.files.actual));
+    }
+  }
+  CHECK(pooled.results.states[2].outcome == Outcome::error);
+  CHECK(pooled.results.runs.at(0).gl == one.results.runs.at(0).gl);
+  CHECK_FALSE(pooled.results.runs.at(0).gl.empty());
 }
