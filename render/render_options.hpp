@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/drawing.hpp"
 #include "core/state.hpp"
@@ -68,13 +69,37 @@ struct RenderOptions {
   double strainForFullColor = 0.2;
 };
 
-// The names the command line and golden manifests give the themes and raster paths, and back.
-inline constexpr std::array<std::string_view, 2> kThemeNames = {"dark", "light"};
-inline constexpr std::array<std::string_view, 3> kRasterNames = {"auto", "triangles", "tiles"};
+// The names the command line and golden manifests give the themes, raster paths and backgrounds
+// (render/render_options.cpp's name tables), and back.
 std::optional<ThemeName> themeFromName(std::string_view name);
 std::optional<Raster> rasterFromName(std::string_view name);
 std::string_view themeNameOf(ThemeName theme);
 std::string_view rasterNameOf(Raster raster);
+std::vector<std::string> rasterNames();  // "auto", "triangles", "tiles"
+
+// The look options of `particles render`, one row each: its command-line word, what its text may
+// be, how the text sets RenderOptions and how RenderOptions writes it back. The render command
+// reads its look through these rows and golden's reproduce commands write theirs with them, so a
+// frame `golden check` draws and the command it prints for it draw the same; a new look option is
+// one row here.
+struct LookOption {
+  std::string_view flag;  // "--theme"
+  std::string expected;   // what `read` takes, for messages: "dark or light"
+  // Sets the option in `look` from its text; false, `look` unchanged, for a text it does not take.
+  bool (*read)(std::string_view text, RenderOptions& look);
+  // The text that sets `look`'s value, or nothing where the command leaves the option out: the
+  // background, raster path and particle radius at the program's defaults. The size (which is
+  // otherwise the scenario's), samples and theme are always written, so a command shows the look.
+  std::optional<std::string> (*write)(const RenderOptions& look);
+};
+
+// --size, --msaa, --theme, --background, --raster, --particle-radius: the order lookWords writes.
+const std::vector<LookOption>& lookOptions();
+// The row of `flag`, one of lookOptions()'; throws std::invalid_argument for another.
+const LookOption& lookOption(std::string_view flag);
+// The words that give `look` to `particles render`: {"--size", "320x240", "--msaa", "4", "--theme",
+// "dark"} and the options off their defaults after them.
+std::vector<std::string> lookWords(const RenderOptions& look);
 
 // Throws std::invalid_argument when a size, width or sample count is out of range.
 void validate(const RenderOptions& options);

@@ -61,7 +61,7 @@ void addGoldenOptions(CLI::App& command, GoldenOptions& o) {
       ->type_name("NAME")
       ->allow_extra_args(false);
   check->add_option("--raster", o.check.raster, "The raster path for entries that do not set their own")
-      ->check(CLI::IsMember(std::vector<std::string>(render::kRasterNames.begin(), render::kRasterNames.end())));
+      ->check(CLI::IsMember(render::rasterNames()));
   check->add_option("--threshold", o.check.threshold, "The threshold for entries that do not set their own (0 … 255)")
       ->check(CLI::Range(0, 255));
   check->add_option("--max-share", o.check.maxShare, "The share bound for entries that do not set their own (0 … 1)")

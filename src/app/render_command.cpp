@@ -39,20 +39,6 @@ constexpr double kMinKeyintSeconds = 1e-3;
 // The largest --png-level: zlib's best compression (render/png_io.hpp).
 constexpr int kMaxPngLevel = 9;
 
-std::optional<render::Length> parseRadius(const std::string& text) {
-  // "4px" (pixels, also a bare number) or "0.02m" (world units).
-  try {
-    size_t used = 0;
-    const double value = std::stod(text, &used);
-    const std::string unit = text.substr(used);
-    if (!(value > 0)) return std::nullopt;
-    if (unit.empty() || unit == "px") return render::Length{value, render::Length::Unit::pixels};
-    if (unit == "m") return render::Length{value, render::Length::Unit::world};
-  } catch (const std::exception&) {
-  }
-  return std::nullopt;
-}
-
 // The --hud text: time, integrator, dt and energy, in the top-left corner of every frame.
 auto hudOverlay(const scenario::Scenario& s, const render::RenderOptions& look) {
   plot::OverlayStyle style;
@@ -69,38 +55,23 @@ auto hudOverlay(const scenario::Scenario& s, const render::RenderOptions& look) 
   };
 }
 
-// The look of the frames: the scenario's render block, then the command line. Throws InputError.
+// The look of the frames: the scenario's render block, then the command line, each option as its
+// row of render::lookOptions() reads it. Throws InputError.
 render::RenderOptions lookOf(const scenario::Scenario& s, const RenderCommandOptions& options) {
   render::RenderOptions look;
   look.width = s.render.width;
   look.height = s.render.height;
-  if (!options.size.empty()) {
-    int w = 0, h = 0;
-    char x = 0, extra = 0;
-    if (std::sscanf(options.size.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w <= 0 ||
-        h <= 0) {
-      throw InputError(fmt::format("--size: expected WIDTHxHEIGHT in pixels, e.g. 1280x720, not '{}'", options.size));
+  auto given = [](const std::string& text) { return text.empty() ? std::nullopt : std::optional(text); };
+  // In the order their mistakes are told; --raster and --msaa CLI11 checked already.
+  const std::pair<std::string_view, std::optional<std::string>> words[] = {
+      {"--size", given(options.size)},      {"--msaa", std::to_string(options.msaa)},
+      {"--raster", options.raster},         {"--theme", options.theme},
+      {"--background", options.background}, {"--particle-radius", given(options.particleRadius)}};
+  for (const auto& [flag, text] : words) {
+    const render::LookOption& option = render::lookOption(flag);
+    if (text && !option.read(*text, look)) {
+      throw InputError(fmt::format("{}: expected {}, not '{}'", flag, option.expected, *text));
     }
-    look.width = w;
-    look.height = h;
-  }
-  look.msaa = options.msaa;
-  look.raster = render::rasterFromName(options.raster).value_or(render::Raster::automatic);  // CLI11 checked it
-  const auto theme = render::themeFromName(options.theme);
-  if (!theme) throw InputError(fmt::format("--theme: expected dark or light, not '{}'", options.theme));
-  look.themeName = *theme;
-  if (options.background == "transparent") {
-    look.transparentBackground = true;
-  } else if (options.background != "theme") {
-    throw InputError(fmt::format("--background: expected theme or transparent, not '{}'", options.background));
-  }
-  if (!options.particleRadius.empty()) {
-    const auto radius = parseRadius(options.particleRadius);
-    if (!radius) {
-      throw InputError(fmt::format("--particle-radius: expected a positive length like 4px or 0.02m, not '{}'",
-                                   options.particleRadius));
-    }
-    look.particleRadius = *radius;
   }
   return look;
 }
@@ -333,7 +304,7 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
                                "screen tiles on the CPU, one pass; fast for large scenes) or auto (tiles from {} "
                                "shapes)",
                                render::kTilesFromShapes))
-      ->check(CLI::IsMember(std::vector<std::string>(render::kRasterNames.begin(), render::kRasterNames.end())))
+      ->check(CLI::IsMember(render::rasterNames()))
       ->capture_default_str();
   renderCmd->add_option("--theme", render.theme, "dark (screens) or light (printed reports)")->capture_default_str();
   renderCmd->add_option("--background", render.background, render::backgroundHelp())->capture_default_str();

@@ -9,6 +9,11 @@
 // Nothing here prints, parses the command line or writes the report's pages: the program does
 // (src/app/golden_command.cpp, golden/results.hpp). What this writes is the files kept for the
 // report (actual, expected, diff) into the folder it is given.
+//
+// The pieces: check.cpp selects the checks and runs each entry's on the core's WorkerPool;
+// golden/frame_check.hpp and golden/state_check.hpp check an entry's frames or state;
+// golden/check_settings.hpp lays an entry's settings; golden/reproduce_commands.hpp writes the
+// commands that reproduce a result.
 
 #include <cstdint>
 #include <filesystem>
@@ -19,6 +24,7 @@
 #include <vector>
 
 #include "golden/results.hpp"
+#include "input/text_file.hpp"
 #include "render/gl_backend.hpp"
 #include "render/image_compare.hpp"
 #include "render/render_options.hpp"
@@ -46,8 +52,8 @@ struct CheckOptions {
   bool missingOnly = false;                  // only the checks whose reference is absent (update --missing)
   render::GlRequest gl;
   CheckOverrides overrides;
-  int jobs = 1;                     // entries simulated at once, each on its own thread and GL context
-  std::uintmax_t maxInputMiB = 64;  // scenarios, reference PNGs and state files
+  int jobs = 1;  // entries simulated at once, each on a thread of a WorkerPool with its own GL context
+  std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;  // scenarios, reference PNGs and state files
   // Keep the actual frame or state of every check, passing or not (update writes them as references).
   bool keepAll = false;
   std::string program = "particles";  // how the commands that reproduce a result spell the program
@@ -66,6 +72,12 @@ struct CheckRun {
 
 // The names of every check of the manifest, frames then states, in manifest order.
 std::vector<std::string> checkNames(const scenario::GoldenManifest& manifest);
+
+// The checks the options select, in manifest order: those --only names (all when it names none),
+// only those whose reference is absent with missingOnly (never a frame that compares with another's
+// reference), then the shard's contiguous block of them. Throws std::invalid_argument for --only
+// names the manifest does not have (with the closest one) or a shard out of range.
+std::vector<scenario::GoldenCheck> selectChecks(const scenario::GoldenManifest& manifest, const CheckOptions& options);
 
 // Throws ScenarioError in the manifest for render settings the renderer does not know (a theme,
 // a raster path, a background), for every entry, before anything runs.

@@ -28,7 +28,7 @@ std::vector<std::string_view> allowedKeys(const KindSpec& kind, bool typed) {
   return keys;
 }
 
-EntryArgs::EntryArgs(const KindSpec& kind, const Value& entry, bool typed, const NameTable& names,
+EntryArgs::EntryArgs(const KindSpec& kind, const Value& entry, bool typed, const NamedObjects& names,
                      const PointBook& points)
     : kind_(kind), reader_(entry, allowedKeys(kind, typed)), names_(names), points_(points) {}
 

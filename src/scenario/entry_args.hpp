@@ -29,7 +29,7 @@ struct PointBook {
 class EntryArgs final : public KindArgs {
  public:
   // typed: the entry carries a `type` key (already read) beside the kind's own keys.
-  EntryArgs(const KindSpec& kind, const Value& entry, bool typed, const NameTable& names, const PointBook& points);
+  EntryArgs(const KindSpec& kind, const Value& entry, bool typed, const NamedObjects& names, const PointBook& points);
 
   bool has(std::string_view key) const override;
   double number(std::string_view key) const override;
@@ -48,7 +48,7 @@ class EntryArgs final : public KindArgs {
 
   const KindSpec& kind_;
   MapReader reader_;
-  const NameTable& names_;
+  const NamedObjects& names_;
   const PointBook& points_;
 };
 

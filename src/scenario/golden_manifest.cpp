@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -338,7 +339,63 @@ void checkNamesDiffer(std::vector<CheckName>& names, const std::string& file) {
   }
 }
 
+// The first of `settings` that is set, or an absent one.
+template <class T>
+std::optional<GoldenSetting<T>> firstSet(std::initializer_list<const std::optional<GoldenSetting<T>>*> settings) {
+  for (const auto* setting : settings) {
+    if (*setting) return *setting;
+  }
+  return std::nullopt;
+}
+
+// Settings whose `keys` are each the first of `own`, `commandLine` and `fallback` to set it.
+template <class Settings, auto... keys>
+Settings laidOver(const Settings& own, const Settings& commandLine, const Settings& fallback) {
+  Settings laid;
+  ((laid.*keys = firstSet({&(own.*keys), &(commandLine.*keys), &(fallback.*keys)})), ...);
+  return laid;
+}
+
 }  // namespace
+
+std::vector<GoldenCheck> goldenChecks(const GoldenManifest& manifest) {
+  std::vector<GoldenCheck> checks;
+  for (size_t i = 0; i < manifest.frames.size(); ++i) {
+    const std::vector<GoldenTime>& times = manifest.frames[i].times;
+    for (size_t t = 0; t < times.size(); ++t) checks.push_back({GoldenCheck::Kind::frame, i, t, times[t].frameName});
+  }
+  for (size_t i = 0; i < manifest.states.size(); ++i) {
+    checks.push_back({GoldenCheck::Kind::state, i, 0, manifest.states[i].stateName});
+  }
+  return checks;
+}
+
+GoldenRenderSettings renderSettingsOf(const GoldenManifest& manifest, const GoldenEntry& entry,
+                                      const GoldenRenderSettings& commandLine) {
+  using R = GoldenRenderSettings;
+  return laidOver<R, &R::size, &R::msaa, &R::theme, &R::background, &R::raster>(entry.render, commandLine,
+                                                                                manifest.defaultRender);
+}
+
+GoldenFrameTolerance frameToleranceOf(const GoldenManifest& manifest, const GoldenEntry& entry,
+                                      const GoldenFrameTolerance& commandLine) {
+  using T = GoldenFrameTolerance;
+  return laidOver<T, &T::threshold, &T::maxShare>(entry.tolerance, commandLine, manifest.defaultTolerance);
+}
+
+GoldenStateToleranceValues stateToleranceOf(const GoldenManifest& manifest, const GoldenEntry& entry) {
+  const GoldenStateTolerance& own = entry.stateTolerance;
+  const GoldenStateTolerance& fallback = manifest.defaultStateTolerance;
+  GoldenStateToleranceValues laid = kDefaultGoldenStateTolerance;
+  auto lay = [](double& into, const auto& ownSetting, const auto& fallbackSetting) {
+    if (const auto setting = firstSet({&ownSetting, &fallbackSetting})) into = setting->value;
+  };
+  lay(laid.position, own.position, fallback.position);
+  lay(laid.velocity, own.velocity, fallback.velocity);
+  lay(laid.angle, own.angle, fallback.angle);
+  lay(laid.omega, own.omega, fallback.omega);
+  return laid;
+}
 
 void failInManifest(const GoldenManifest& manifest, const GoldenPosition& at, const std::string& message) {
   throw ScenarioError(manifest.file, at.line, at.column, at.keyPath, message);

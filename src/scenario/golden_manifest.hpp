@@ -98,7 +98,7 @@ struct GoldenEntry {
   // references' folder, which may belong to another manifest). One time only; NAME a file name as
   // a frame's. `golden update` never writes it.
   std::optional<GoldenSetting<std::string>> reference;
-  GoldenPosition at;                    // the entry
+  GoldenPosition at;  // the entry
 };
 
 struct GoldenManifest {
@@ -109,6 +109,37 @@ struct GoldenManifest {
   GoldenStateTolerance defaultStateTolerance;
   std::vector<GoldenEntry> frames, states;
 };
+
+// One check of a manifest: a frame (a time of a frame entry) or a state (a state entry).
+struct GoldenCheck {
+  enum class Kind { frame, state };
+  Kind kind = Kind::frame;
+  std::size_t entry = 0;  // into the manifest's frames or states
+  std::size_t time = 0;   // frames: into the entry's times
+  std::string name;       // the frame's or state's name, its reference's file name
+};
+
+// Every check of the manifest, frames then states, in manifest order.
+std::vector<GoldenCheck> goldenChecks(const GoldenManifest& manifest);
+
+// An entry's settings, key by key: its own, over `commandLine`'s (a run's settings over the
+// manifest's defaults: `golden check --raster --threshold --max-share`), over the manifest's
+// defaults. What none of them sets stays absent: the program's default (`particles render`'s,
+// `particles compare`'s).
+GoldenRenderSettings renderSettingsOf(const GoldenManifest& manifest, const GoldenEntry& entry,
+                                      const GoldenRenderSettings& commandLine = {});
+GoldenFrameTolerance frameToleranceOf(const GoldenManifest& manifest, const GoldenEntry& entry,
+                                      const GoldenFrameTolerance& commandLine = {});
+
+// A state check's tolerances once laid: position (m), velocity (m/s), angle (rad), omega (rad/s).
+struct GoldenStateToleranceValues {
+  double position = 0.0, velocity = 0.0, angle = 0.0, omega = 0.0;
+};
+// What neither an entry nor the manifest's defaults set: golden/README.md, "States", tells how
+// they were chosen.
+inline constexpr GoldenStateToleranceValues kDefaultGoldenStateTolerance{1e-6, 1e-5, 1e-6, 1e-5};
+// An entry's state tolerances: its own, over the manifest's defaults, over kDefaultGoldenStateTolerance.
+GoldenStateToleranceValues stateToleranceOf(const GoldenManifest& manifest, const GoldenEntry& entry);
 
 // The most frames and states one manifest may name in all (entries × times).
 inline constexpr std::uintmax_t kMaxGoldenChecks = 100'000;

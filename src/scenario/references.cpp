@@ -73,17 +73,17 @@ std::optional<std::array<std::string, 2>> cellSelectors(const std::string& rest)
   return std::array<std::string, 2>{parts[0], parts[1]};
 }
 
-const char* kindName(NameTable::Kind kind) {
+const char* kindName(NamedObjects::Kind kind) {
   switch (kind) {
-    case NameTable::Kind::Particle: return "a particle";
-    case NameTable::Kind::Grid: return "a grid";
-    case NameTable::Kind::Body: return "a rigid body";
+    case NamedObjects::Kind::Particle: return "a particle";
+    case NamedObjects::Kind::Grid: return "a grid";
+    case NamedObjects::Kind::Body: return "a rigid body";
   }
   return "?";
 }
 
 // One reference string to its points.
-std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const NameTable& names, PointKind kind,
+std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const NamedObjects& names, PointKind kind,
                                  bool allowList) {
   const std::string text = trim(raw);
   auto bad = [&](const std::string& why) { at.fail(fmt::format("reference '{}': {}", text, why)); };
@@ -104,7 +104,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   const auto split = splitName(text);
   const std::string& name = split.first;
   const std::string& rest = split.second;
-  const NameTable::Entry* entry = names.find(name);
+  const NamedObjects::Entry* entry = names.find(name);
   if (!entry) {
     const std::string suggestion = input::closestName(name, names.names());
     bad(fmt::format("nothing is named '{}'{}", name,
@@ -113,13 +113,13 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
 
   if (rest.empty()) {
     switch (entry->kind) {
-      case NameTable::Kind::Particle: return {Endpoint::ofParticle(entry->index)};
-      case NameTable::Kind::Body:
+      case NamedObjects::Kind::Particle: return {Endpoint::ofParticle(entry->index)};
+      case NamedObjects::Kind::Body:
         if (kind == PointKind::Particle) {
           bad(fmt::format("'{}' is a rigid body, but only particles are allowed here", name));
         }
         return {Endpoint::ofBody(entry->index)};
-      case NameTable::Kind::Grid: {
+      case NamedObjects::Kind::Grid: {
         if (!allowList) bad(fmt::format("'{}' is a whole grid; name one particle, as in {}[0][0]", name, name));
         std::vector<Endpoint> all;
         for (int r = 0; r < entry->grid.rows; ++r)
@@ -130,7 +130,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   }
 
   if (rest[0] == '@') {
-    if (entry->kind != NameTable::Kind::Body) {
+    if (entry->kind != NamedObjects::Kind::Body) {
       bad(fmt::format("'{}' is {}; an anchor `name@[x, y]` needs a rigid body", name, kindName(entry->kind)));
     }
     if (kind == PointKind::Particle) bad("rigid-body anchors are not allowed here, only particles");
@@ -146,7 +146,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   }
 
   if (rest[0] == '[') {
-    if (entry->kind != NameTable::Kind::Grid) {
+    if (entry->kind != NamedObjects::Kind::Grid) {
       bad(fmt::format("'{}' is {}, not a grid; only grid particles are addressed as grid[row][col]", name,
                       kindName(entry->kind)));
     }
@@ -181,7 +181,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
 
 }  // namespace
 
-void NameTable::add(const Value& at, const std::string& name, Entry entry) {
+void NamedObjects::add(const Value& at, const std::string& name, Entry entry) {
   if (name.empty() || !isNameStart(name[0]) ||
       !std::all_of(name.begin(), name.end(), [](char c) { return isNameChar(c); })) {
     at.fail(
@@ -194,18 +194,18 @@ void NameTable::add(const Value& at, const std::string& name, Entry entry) {
   entries_.emplace(name, entry);
 }
 
-const NameTable::Entry* NameTable::find(const std::string& name) const {
+const NamedObjects::Entry* NamedObjects::find(const std::string& name) const {
   const auto it = entries_.find(name);
   return it == entries_.end() ? nullptr : &it->second;
 }
 
-std::vector<std::string> NameTable::names() const {
+std::vector<std::string> NamedObjects::names() const {
   std::vector<std::string> out;
   for (const auto& [name, entry] : entries_) out.push_back(name);
   return out;
 }
 
-std::vector<Endpoint> resolvePoints(const Value& value, const NameTable& names, PointKind kind, bool allowList) {
+std::vector<Endpoint> resolvePoints(const Value& value, const NamedObjects& names, PointKind kind, bool allowList) {
   if (value.isSequence() && allowList) {
     std::vector<Endpoint> out;
     for (const Value& item : value.items()) {

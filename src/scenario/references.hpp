@@ -18,7 +18,8 @@
 
 namespace particles::scenario::detail {
 
-class NameTable {
+// The particles, grids and rigid bodies declared so far, by the name each was given.
+class NamedObjects {
  public:
   enum class Kind { Particle, Grid, Body };
   struct Entry {
@@ -46,7 +47,7 @@ enum class PointKind {
 
 // Resolves `value` (a reference string, or with allowList also a YAML list of them) to points.
 // A single reference (allowList false) must name exactly one point.
-std::vector<Endpoint> resolvePoints(const Value& value, const NameTable& names, PointKind kind, bool allowList);
+std::vector<Endpoint> resolvePoints(const Value& value, const NamedObjects& names, PointKind kind, bool allowList);
 
 // How many points `value` (a reference or a list of them) names once expanded, without checking or
 // building anything: whole grids and `*` rows or columns count by the sizes in `grids`; anything
