@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 #include <vector>
 
@@ -95,13 +96,17 @@ AxisTicks linearTicks(double dataLo, double dataHi, int targetCount, bool widenT
   }
   // A span below 1e-9 of the magnitude is rounding noise around a constant, not a range to label.
   if (hi - lo <= 1e-9 * std::max(std::fabs(lo), std::fabs(hi))) {
-    const double c = 0.5 * (lo + hi);
+    // Halved first only where lo + hi overflows (near ±1.8e308): halving a subnormal first loses it.
+    double c = 0.5 * (lo + hi);
+    if (!std::isfinite(c)) c = 0.5 * lo + 0.5 * hi;
     if (c == 0) {
       lo = 0;
       hi = 1;
     } else {
-      lo = c - 0.1 * std::fabs(c);
-      hi = c + 0.1 * std::fabs(c);
+      // Stopping at the largest double: a constant near ±1.8e308 gave a non-finite end and no
+      // pixel for its points (issue 40: the marked-series test counts them).
+      lo = std::max(c - 0.1 * std::fabs(c), std::numeric_limits<double>::lowest());
+      hi = std::min(c + 0.1 * std::fabs(c), std::numeric_limits<double>::max());
     }
   }
   // Nor is a span below kMinLinearSpan: it is widened to that around its middle, so that the step,

@@ -225,4 +225,12 @@ inline std::vector<std::string> outputs(const Scratch& s) {
   return files;
 }
 
+// Whether `text` holds `part`.
+inline bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// The most memory a command of the CLI tests may peak at (getrusage), where no sanitizer runs.
+inline constexpr double kMaxPeakMiB = 200.0;
+
 }  // namespace particles::test

@@ -8,11 +8,14 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "core/forces/gravity_force.hpp"
+#include "core/solver.hpp"
 #include "core/system.hpp"
 #include "render/image.hpp"
 #include "render/renderer.hpp"
+#include "scenario/scenario.hpp"
 #include "support/video_probe.hpp"
 
 namespace particles::test {
@@ -83,6 +86,20 @@ inline void checkVideo(const VideoInfo& info, const std::string& codec, int widt
   CHECK(info.width == width);
   CHECK(info.height == height);
   CHECK(info.frames == frames);
+}
+
+// A demo scenario (scenarios/NAME.yaml, with `overrides`) advanced to `at` seconds: its drawing
+// and camera.
+struct DemoFrame {
+  Drawing drawing;
+  render::Camera camera;
+};
+
+inline DemoFrame demoFrame(const std::string& name, double at, const std::vector<scenario::Override>& overrides = {}) {
+  scenario::Scenario s =
+      scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/" + name + ".yaml", overrides);
+  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(at);
+  return {s.system.draw(), {s.render.viewCenter, s.render.viewHeight}};
 }
 
 }  // namespace particles::test

@@ -26,11 +26,7 @@ using namespace particles::test;
 
 namespace {
 
-constexpr double kMaxPeakMiB = 200.0;
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 // A big-endian 32-bit number, as PNG stores them.
 void put32(std::string& out, std::uint32_t v) {

@@ -19,6 +19,8 @@ namespace fs = std::filesystem;
 using particles::render::Image;
 using particles::test::slurp;
 
+using particles::test::contains;
+
 namespace {
 
 struct Run {
@@ -50,9 +52,6 @@ Image grey(int w, int h, std::uint8_t level) {
   return img;
 }
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 // expected.png: 10×10 grey; actual.png: the same with 3 pixels changed (3 % of the pixels, the
 // largest by 200, inside x 2…7, y 1…3).

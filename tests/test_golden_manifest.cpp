@@ -21,18 +21,18 @@ namespace {
 
 const fs::path kCheckout = PARTICLES_SOURCE_DIR;
 
-GoldenManifest load(const std::string& yaml) {
+GoldenManifest loadManifest(const std::string& yaml) {
   return loadGoldenManifestText(yaml, "golden.yaml", "dir");
 }
 
-struct Reported {
+struct ManifestError {
   int line = -1, column = -1;
   std::string keyPath, message, what;
 };
 
-Reported errorOf(const std::string& yaml) {
+ManifestError manifestErrorOf(const std::string& yaml) {
   try {
-    load(yaml);
+    loadManifest(yaml);
   } catch (const ScenarioError& e) {
     return {e.line(), e.column(), e.keyPath(), e.message(), e.what()};
   }
@@ -40,9 +40,9 @@ Reported errorOf(const std::string& yaml) {
   return {};
 }
 
-void expectError(const std::string& yaml, int line, int column, const std::string& keyPath,
+void expectManifestError(const std::string& yaml, int line, int column, const std::string& keyPath,
                  const std::string& fragment) {
-  const Reported r = errorOf(yaml);
+  const ManifestError r = manifestErrorOf(yaml);
   CAPTURE(yaml);
   CAPTURE(r.what);
   CHECK(r.line == line);
@@ -80,7 +80,7 @@ TEST_CASE("golden manifest: every key read into its structs, paths resolved, tim
       "    times: [37.5, 9]\n"                                                                // 19
       "    state_tolerance: {position: 1e-6}\n"                                               // 20
       "  - {scenario: rigid_chain.yaml, times: [1], name: \"chain+{scenario}\"}\n";           // 21
-  const GoldenManifest m = load(yaml);
+  const GoldenManifest m = loadManifest(yaml);
   CHECK(m.file == "golden.yaml");
   CHECK(m.references == fs::path("dir/refs"));
 
@@ -174,7 +174,7 @@ TEST_CASE("golden manifest: every key read into its structs, paths resolved, tim
 
 TEST_CASE("golden manifest: what may be left out") {
   // No references (the manifest's folder), no defaults, no frames.
-  const GoldenManifest m = load("states:\n  - {scenario: sub/x.yaml, times: [0]}\n");
+  const GoldenManifest m = loadManifest("states:\n  - {scenario: sub/x.yaml, times: [0]}\n");
   CHECK(m.references == fs::path("dir"));
   CHECK(!m.defaultRender.size);
   CHECK(!m.defaultTolerance.threshold);
@@ -184,7 +184,7 @@ TEST_CASE("golden manifest: what may be left out") {
   CHECK(m.states[0].stateName == "x");
   CHECK(m.states[0].nameAt.line == 2);  // not written: the entry's position
   // An empty list beside a full one, a name without {time} for one time, a time of 0 written "-0".
-  const GoldenManifest n = load("states: []\nframes:\n  - {scenario: a.yaml, times: [-0], name: only}\n");
+  const GoldenManifest n = loadManifest("states: []\nframes:\n  - {scenario: a.yaml, times: [-0], name: only}\n");
   REQUIRE(n.frames.size() == 1);
   CHECK(n.frames[0].times[0].frameName == "only");
   CHECK(n.frames[0].times[0].seconds == 0.0);
@@ -199,66 +199,66 @@ TEST_CASE("golden manifest: the sample counts are the renderer's") {
     const bool sampleCount =
         std::find(std::begin(kGoldenSampleCounts), std::end(kGoldenSampleCounts), n) != std::end(kGoldenSampleCounts);
     if (sampleCount) {
-      CHECK(load(yaml).defaultRender.msaa->value == n);
+      CHECK(loadManifest(yaml).defaultRender.msaa->value == n);
     } else {
-      CHECK_THROWS_AS(load(yaml), ScenarioError);
+      CHECK_THROWS_AS(loadManifest(yaml), ScenarioError);
     }
   }
 }
 
 TEST_CASE("golden manifest: mistakes are refused where they are written") {
   SUBCASE("an unknown key, with the closest one") {
-    expectError("frames:\n  - scenario: a.yaml\n    times: [1]\n    tolerence: {threshold: 3}\n", 4, 5,
+    expectManifestError("frames:\n  - scenario: a.yaml\n    times: [1]\n    tolerence: {threshold: 3}\n", 4, 5,
                 "frames[0].tolerence", "unknown key 'tolerence'; did you mean 'tolerance'?");
-    expectError("frame:\n  - {scenario: a.yaml, times: [1]}\n", 1, 1, "frame", "did you mean 'frames'?");
+    expectManifestError("frame:\n  - {scenario: a.yaml, times: [1]}\n", 1, 1, "frame", "did you mean 'frames'?");
   }
   SUBCASE("a state entry with render settings") {
-    expectError("states:\n  - {scenario: a.yaml, times: [1], render: {msaa: 4}}\n", 2, 36, "states[0].render",
+    expectManifestError("states:\n  - {scenario: a.yaml, times: [1], render: {msaa: 4}}\n", 2, 36, "states[0].render",
                 "unknown key 'render'");
   }
   SUBCASE("times: negative, repeated, not numbers, missing, empty") {
-    expectError("frames:\n  - {scenario: a.yaml, times: [1, -2]}\n", 2, 35, "frames[0].times[1]",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1, -2]}\n", 2, 35, "frames[0].times[1]",
                 "expected a number ≥ 0, got -2");
-    expectError("frames:\n  - scenario: a.yaml\n    times: [2.5, 1, 2.50]\n", 3, 21, "frames[0].times[2]",
+    expectManifestError("frames:\n  - scenario: a.yaml\n    times: [2.5, 1, 2.50]\n", 3, 21, "frames[0].times[2]",
                 "the time 2.50 is listed twice (first as 2.5 at line 3)");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1, \"2\"]}\n", 2, 35, "frames[0].times[1]",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1, \"2\"]}\n", 2, 35, "frames[0].times[1]",
                 "expected a number, got '2'");
-    expectError("frames:\n  - {scenario: a.yaml, times: [.inf]}\n", 2, 32, "frames[0].times[0]", "a finite number");
-    expectError("frames:\n  - {scenario: a.yaml}\n", 2, 5, "frames[0].times", "missing required key 'times'");
-    expectError("frames:\n  - {scenario: a.yaml, times: []}\n", 2, 31, "frames[0].times", "an empty list");
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [.inf]}\n", 2, 32, "frames[0].times[0]", "a finite number");
+    expectManifestError("frames:\n  - {scenario: a.yaml}\n", 2, 5, "frames[0].times", "missing required key 'times'");
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: []}\n", 2, 31, "frames[0].times", "an empty list");
   }
   SUBCASE("render settings out of range") {
-    expectError(kOneFrame + "defaults:\n  render: {size: 320by240}\n", 4, 18, "defaults.render.size",
+    expectManifestError(kOneFrame + "defaults:\n  render: {size: 320by240}\n", 4, 18, "defaults.render.size",
                 "expected a size WIDTHxHEIGHT in px, such as 320x240, got '320by240'");
-    expectError(kOneFrame + "defaults:\n  render: {size: 0x240}\n", 4, 18, "defaults.render.size",
+    expectManifestError(kOneFrame + "defaults:\n  render: {size: 0x240}\n", 4, 18, "defaults.render.size",
                 "expected each side of the size from 1 to 16384 px, got '0x240'");
-    expectError(kOneFrame + "defaults:\n  render: {size: 320x99999999999999999999999}\n", 4, 18, "defaults.render.size",
+    expectManifestError(kOneFrame + "defaults:\n  render: {size: 320x99999999999999999999999}\n", 4, 18, "defaults.render.size",
                 "from 1 to 16384 px");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], render: {msaa: 3}}\n", 2, 51, "frames[0].render.msaa",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], render: {msaa: 3}}\n", 2, 51, "frames[0].render.msaa",
                 "expected 1, 2, 4, 8, 16 samples per pixel (1: off), got 3");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], render: {theme: \"\"}}\n", 2, 52, "frames[0].render.theme",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], render: {theme: \"\"}}\n", 2, 52, "frames[0].render.theme",
                 "expected a text");
   }
   SUBCASE("tolerances out of range") {
-    expectError(kOneFrame + "defaults:\n  tolerance: {threshold: 300}\n", 4, 26, "defaults.tolerance.threshold",
+    expectManifestError(kOneFrame + "defaults:\n  tolerance: {threshold: 300}\n", 4, 26, "defaults.tolerance.threshold",
                 "expected a whole number from 0 to 255, got 300");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], tolerance: {max_share: 2}}\n", 2, 59,
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], tolerance: {max_share: 2}}\n", 2, 59,
                 "frames[0].tolerance.max_share", "expected a number from 0 to 1, got 2");
-    expectError(kOneFrame + "defaults:\n  state_tolerance: {omega: -1e-9}\n", 4, 28, "defaults.state_tolerance.omega",
+    expectManifestError(kOneFrame + "defaults:\n  state_tolerance: {omega: -1e-9}\n", 4, 28, "defaults.state_tolerance.omega",
                 "expected a number ≥ 0");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], expect: same}\n", 2, 44, "frames[0].expect",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], expect: same}\n", 2, 44, "frames[0].expect",
                 "expected match or differ, got 'same'");
   }
   SUBCASE("sets that --set would not take") {
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], set: [dt]}\n", 2, 42, "frames[0].set[0]",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], set: [dt]}\n", 2, 42, "frames[0].set[0]",
                 "expected PATH=VALUE");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], set: {\"forces[1\": 2}}\n", 2, 42,
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], set: {\"forces[1\": 2}}\n", 2, 42,
                 "frames[0].set.forces[1", "cannot use this key path: unclosed '['");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], set: {simulation.dt: {a: 1}}}\n", 2, 57,
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], set: {simulation.dt: {a: 1}}}\n", 2, 57,
                 "frames[0].set.simulation.dt", "expected a value for --set");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], set: [a=1, a=2]}\n", 2, 47, "frames[0].set[1]",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], set: [a=1, a=2]}\n", 2, 47, "frames[0].set[1]",
                 "'a' is set twice");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], set: [a=]}\n", 2, 42, "frames[0].set[0]",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], set: [a=]}\n", 2, 42, "frames[0].set[0]",
                 "expected a value for 'a'");
   }
 }
@@ -268,74 +268,74 @@ TEST_CASE("golden manifest: names are file names, one per check, across frames a
     const std::string shared =
         "frames:\n  - {scenario: cloth.yaml, times: [1], name: shared}\n"
         "states:\n  - {scenario: soft.yaml, times: [1], name: shared}\n";
-    expectError(shared, 4, 45, "states[0].name",
+    expectManifestError(shared, 4, 45, "states[0].name",
                 "a second check named 'shared' (the first is frames[0].name at line 2)");
     const std::string statesFirst =
         "states:\n  - {scenario: soft.yaml, times: [1], name: shared}\n"
         "frames:\n  - {scenario: cloth.yaml, times: [1], name: shared}\n";
-    expectError(statesFirst, 4, 46, "frames[0].name", "(the first is states[0].name at line 2)");
+    expectManifestError(statesFirst, 4, 46, "frames[0].name", "(the first is states[0].name at line 2)");
     // Default names: the same scenario at the same time, reported at the time.
     const std::string twice =
         "frames:\n  - {scenario: cloth.yaml, times: [1, 2]}\n  - {scenario: x/cloth.yaml, times: [3, 2]}\n";
-    expectError(twice, 3, 41, "frames[1].times[1]", "a second check named 'cloth_t2' (the first is frames[0].times[1]");
+    expectManifestError(twice, 3, 41, "frames[1].times[1]", "a second check named 'cloth_t2' (the first is frames[0].times[1]");
   }
   SUBCASE("a frames name without {time} for more than one time") {
-    expectError("frames:\n  - {scenario: a.yaml, times: [1, 2], name: still}\n", 2, 45, "frames[0].name",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1, 2], name: still}\n", 2, 45, "frames[0].name",
                 "the name 'still' has no {time}, so the entry's 2 frames would share it: add {time} to the name");
   }
   SUBCASE("placeholders") {
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], name: \"{scenario}_{step}\"}\n", 2, 42, "frames[0].name",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], name: \"{scenario}_{step}\"}\n", 2, 42, "frames[0].name",
                 "unknown placeholder '{step}' in the name (known: {scenario}, {time})");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], name: \"{scenario\"}\n", 2, 42, "frames[0].name",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], name: \"{scenario\"}\n", 2, 42, "frames[0].name",
                 "opens a '{' it does not close");
-    expectError("states:\n  - {scenario: a.yaml, times: [1], name: \"{scenario}_t{time}\"}\n", 2, 42, "states[0].name",
+    expectManifestError("states:\n  - {scenario: a.yaml, times: [1], name: \"{scenario}_t{time}\"}\n", 2, 42, "states[0].name",
                 "a state's name cannot hold {time}");
   }
   SUBCASE("characters, a leading dot, emptiness and length: at what makes them") {
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], name: \"cloth frame\"}\n", 2, 42, "frames[0].name",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], name: \"cloth frame\"}\n", 2, 42, "frames[0].name",
                 "the name 'cloth frame' is not a file name: only letters, digits and . _ + - may be in one");
-    expectError("frames:\n  - {scenario: a/b.yaml, times: [1], name: \"x/{time}\"}\n", 2, 44, "frames[0].name",
+    expectManifestError("frames:\n  - {scenario: a/b.yaml, times: [1], name: \"x/{time}\"}\n", 2, 44, "frames[0].name",
                 "only letters, digits");
-    expectError("frames:\n  - {scenario: \"my cloth.yaml\", times: [1]}\n", 2, 16, "frames[0].scenario",
+    expectManifestError("frames:\n  - {scenario: \"my cloth.yaml\", times: [1]}\n", 2, 16, "frames[0].scenario",
                 "the name 'my cloth_t1' is not a file name: only letters, digits and . _ + - may be in one; give the "
                 "entry a name");
-    expectError("frames:\n  - {scenario: a.yaml, times: [.5], name: \"{time}\"}\n", 2, 32, "frames[0].times[0]",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [.5], name: \"{time}\"}\n", 2, 32, "frames[0].times[0]",
                 "the name '.5' is not a file name: it starts with a dot; write the time another way");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], name: \".{scenario}\"}\n", 2, 42, "frames[0].name",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], name: \".{scenario}\"}\n", 2, 42, "frames[0].name",
                 "it starts with a dot");
-    expectError("states:\n  - {scenario: sub/, times: [1]}\n", 2, 16, "states[0].scenario", "it is empty");
+    expectManifestError("states:\n  - {scenario: sub/, times: [1]}\n", 2, 16, "states[0].scenario", "it is empty");
     const std::string longName(kMaxGoldenNameLength, 'n');
-    CHECK(load("frames:\n  - {scenario: a.yaml, times: [1], name: " + longName + "}\n").frames[0].times[0].frameName ==
+    CHECK(loadManifest("frames:\n  - {scenario: a.yaml, times: [1], name: " + longName + "}\n").frames[0].times[0].frameName ==
           longName);
-    expectError("frames:\n  - {scenario: a.yaml, times: [1], name: " + longName + "x}\n", 2, 42, "frames[0].name",
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1], name: " + longName + "x}\n", 2, 42, "frames[0].name",
                 "it is longer than 200 characters");
-    expectError("frames:\n  - {scenario: a.yaml, times: [1" + std::string(200, '0') + "], name: \"t{time}\"}\n", 2, 32,
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [1" + std::string(200, '0') + "], name: \"t{time}\"}\n", 2, 32,
                 "frames[0].times[0]", "it is longer than 200 characters");
   }
 }
 
 TEST_CASE("golden manifest: the file as a whole") {
   SUBCASE("empty") {
-    expectError("", 1, 1, "", "the file is empty; expected a golden manifest (frames: and/or states:)");
-    expectError("# nothing yet\n", 1, 1, "", "the file is empty");
+    expectManifestError("", 1, 1, "", "the file is empty; expected a golden manifest (frames: and/or states:)");
+    expectManifestError("# nothing yet\n", 1, 1, "", "the file is empty");
   }
   SUBCASE("nothing to check") {
-    expectError("frames: []\nstates: []\n", 1, 1, "", "a manifest with nothing to check");
-    expectError("references: refs\n", 1, 1, "", "a manifest with nothing to check");
+    expectManifestError("frames: []\nstates: []\n", 1, 1, "", "a manifest with nothing to check");
+    expectManifestError("references: refs\n", 1, 1, "", "a manifest with nothing to check");
   }
   SUBCASE("two documents") {
-    expectError(kOneFrame + "---\nstates: []\n", 4, 1, "", "more than one YAML document; expected one golden manifest");
+    expectManifestError(kOneFrame + "---\nstates: []\n", 4, 1, "", "more than one YAML document; expected one golden manifest");
   }
   SUBCASE("a stray comma") {
-    expectError(",\n", 1, 1, "", "YAML syntax error");
+    expectManifestError(",\n", 1, 1, "", "YAML syntax error");
   }
   SUBCASE("an alias") {
-    expectError(
+    expectManifestError(
         "defaults:\n  tolerance: &t {threshold: 3}\nframes:\n  - {scenario: a.yaml, times: [1], tolerance: *t}\n", 4,
         47, "", "an alias (*name)");
   }
   SUBCASE("not a map") {
-    expectError("- 1\n", 1, 1, "", "expected a map of keys, got a list of 1");
+    expectManifestError("- 1\n", 1, 1, "", "expected a map of keys, got a list of 1");
   }
   SUBCASE("more checks than a manifest may make, refused before the rest is read") {
     std::string times;
@@ -347,8 +347,8 @@ TEST_CASE("golden manifest: the file as a whole") {
     }
     const std::string yaml =
         "frames:\n  - {scenario: a.yaml, times: [" + times + "]}\n  - {scenario: b.yaml, times: [" + times + "]}\n";
-    expectError(yaml, 3, 5, "frames[1]", "more than 100000 checks");
-    expectError("frames:\n  - {scenario: a.yaml, times: [" + times + "," + times + "]}\n", 2, 31, "",
+    expectManifestError(yaml, 3, 5, "frames[1]", "more than 100000 checks");
+    expectManifestError("frames:\n  - {scenario: a.yaml, times: [" + times + "," + times + "]}\n", 2, 31, "",
                 "a list of more than 100000 items");
   }
 }
@@ -370,7 +370,7 @@ TEST_CASE("golden manifest: a file, its folder, and the schema's good and bad ex
   }
   fs::remove_all(dir);
 
-  // tests/schema/golden: the files the schema takes load, those it refuses do not (schema:scenarios
+  // tests/schema/golden: the files the schema takes loadManifest, those it refuses do not (schema:scenarios
   // checks the schema's side with python3-jsonschema).
   const fs::path examples = kCheckout / "tests/schema/golden";
   int good = 0, bad = 0;

@@ -27,7 +27,6 @@ using namespace particles::test;
 namespace {
 
 constexpr double kMaxCpuSeconds = 2.0;
-constexpr double kMaxPeakMiB = 200.0;
 
 std::vector<std::string> sorted(std::vector<std::string> names) {
   std::sort(names.begin(), names.end());

@@ -19,8 +19,8 @@ using particles::render::PixelBox;
 
 namespace {
 
-// An opaque image filled with one colour.
-Image filled(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+// An opaque image solidImage with one colour.
+Image solidImage(int w, int h, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   Image img(w, h);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
@@ -39,7 +39,7 @@ bool hasRgb(const Image& img, int x, int y, const std::uint8_t (&rgb)[3]) {
 }  // namespace
 
 TEST_CASE("image compare: identical images match, with nothing to report") {
-  const Image a = filled(8, 6, 10, 20, 30);
+  const Image a = solidImage(8, 6, 10, 20, 30);
   const ImageComparison c = compareImages(a, a);
   CHECK(c.width == 8);
   CHECK(c.height == 6);
@@ -52,7 +52,7 @@ TEST_CASE("image compare: identical images match, with nothing to report") {
 }
 
 TEST_CASE("image compare: a pixel differs when any channel differs by more than the threshold") {
-  const Image a = filled(4, 4, 100, 100, 100);
+  const Image a = solidImage(4, 4, 100, 100, 100);
   for (int channel = 0; channel < 4; ++channel) {
     CAPTURE(channel);
     Image b = a;
@@ -80,7 +80,7 @@ TEST_CASE("image compare: a pixel differs when any channel differs by more than 
 }
 
 TEST_CASE("image compare: share of differing pixels against the bound, boundary included") {
-  const Image a = filled(10, 10, 0, 0, 0);  // 100 pixels
+  const Image a = solidImage(10, 10, 0, 0, 0);  // 100 pixels
   Image b = a;
   for (int x = 0; x < 5; ++x) b.pixel(x, 4)[1] = 200;  // 5 pixels
   ImageComparison c = compareImages(a, b, {16, 0.05});
@@ -95,7 +95,7 @@ TEST_CASE("image compare: share of differing pixels against the bound, boundary 
 }
 
 TEST_CASE("image compare: the bounding box encloses exactly the differing pixels") {
-  const Image a = filled(20, 10, 50, 50, 50);
+  const Image a = solidImage(20, 10, 50, 50, 50);
   Image b = a;
   b.pixel(2, 3)[0] = 0;
   b.pixel(7, 1)[1] = 0;
@@ -110,8 +110,8 @@ TEST_CASE("image compare: the bounding box encloses exactly the differing pixels
 }
 
 TEST_CASE("image compare: sizes that do not match are refused with both sizes named") {
-  const Image a = filled(320, 240, 0, 0, 0);
-  const Image b = filled(640, 480, 0, 0, 0);
+  const Image a = solidImage(320, 240, 0, 0, 0);
+  const Image b = solidImage(640, 480, 0, 0, 0);
   CHECK(particles::render::sizeMismatch(a, a).empty());
   const std::string message = particles::render::sizeMismatch(a, b);
   CHECK(message.find("320×240") != std::string::npos);
@@ -119,11 +119,11 @@ TEST_CASE("image compare: sizes that do not match are refused with both sizes na
   CHECK(message.find("320×240") < message.find("640×480"));  // expected first
   CHECK_THROWS_AS(compareImages(a, b), std::invalid_argument);
   CHECK_THROWS_AS(diffImage(a, b), std::invalid_argument);
-  CHECK_THROWS_AS(compareImages(filled(4, 3, 0, 0, 0), filled(3, 4, 0, 0, 0)), std::invalid_argument);
+  CHECK_THROWS_AS(compareImages(solidImage(4, 3, 0, 0, 0), solidImage(3, 4, 0, 0, 0)), std::invalid_argument);
 }
 
 TEST_CASE("image compare: tolerances out of range are refused") {
-  const Image a = filled(2, 2, 0, 0, 0);
+  const Image a = solidImage(2, 2, 0, 0, 0);
   CHECK_THROWS_AS(compareImages(a, a, {-1, 0.1}), std::invalid_argument);
   CHECK_THROWS_AS(compareImages(a, a, {256, 0.1}), std::invalid_argument);
   CHECK_THROWS_AS(compareImages(a, a, {0, -0.1}), std::invalid_argument);
@@ -147,7 +147,7 @@ TEST_CASE("image compare: the defaults are those documented in golden/README.md"
 
 TEST_CASE("image compare: the diff picture highlights differences over a dimmed grey expected frame") {
   using namespace particles::render;
-  const Image expected = filled(12, 10, 200, 100, 50);
+  const Image expected = solidImage(12, 10, 200, 100, 50);
   Image actual = expected;
   actual.pixel(5, 4)[0] = 0;    // far above the threshold
   actual.pixel(7, 6)[3] = 100;  // alpha counts too
@@ -186,7 +186,7 @@ TEST_CASE("image compare: the diff picture highlights differences over a dimmed 
 
 TEST_CASE("image compare: the box outline is clipped at the image border and spares highlighted pixels") {
   using namespace particles::render;
-  const Image expected = filled(6, 5, 0, 0, 0);
+  const Image expected = solidImage(6, 5, 0, 0, 0);
   Image actual = expected;
   actual.pixel(0, 0)[0] = 255;
   actual.pixel(2, 0)[0] = 255;

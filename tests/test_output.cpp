@@ -41,7 +41,7 @@ std::set<std::string> entries(const fs::path& dir) {
   return names;
 }
 
-struct stat lstatOf(const fs::path& path) {
+struct stat lstatOrFail(const fs::path& path) {
   struct stat st {};
   REQUIRE_MESSAGE(::lstat(path.c_str(), &st) == 0, path << ": " << std::strerror(errno));
   return st;
@@ -150,7 +150,7 @@ TEST_CASE("output: a file gets the permissions fopen would give it") {
   std::FILE* reference = std::fopen((s.dir / "by_fopen").c_str(), "w");
   REQUIRE(reference != nullptr);
   std::fclose(reference);
-  const mode_t fopenMode = lstatOf(s.dir / "by_fopen").st_mode & 07777;
+  const mode_t fopenMode = lstatOrFail(s.dir / "by_fopen").st_mode & 07777;
   CHECK(fopenMode == 0640);
   for (const auto temporary : {PendingOutput::Temporary::anonymousWherePossible, PendingOutput::Temporary::named}) {
     CAPTURE(int(temporary));
@@ -158,14 +158,14 @@ TEST_CASE("output: a file gets the permissions fopen would give it") {
     PendingOutput pending(out, temporary);
     writeAll(pending, "x");
     pending.commit();
-    CHECK((lstatOf(out).st_mode & 07777) == fopenMode);
+    CHECK((lstatOrFail(out).st_mode & 07777) == fopenMode);
 
     // An existing file keeps its mode when replaced.
     REQUIRE(::chmod(out.c_str(), 0604) == 0);
     PendingOutput again(out, temporary);
     writeAll(again, "y");
     again.commit();
-    CHECK((lstatOf(out).st_mode & 07777) == 0604);
+    CHECK((lstatOrFail(out).st_mode & 07777) == 0604);
     CHECK(slurp(out) == "y");
     fs::remove(out);
   }
@@ -185,13 +185,13 @@ void requireWrittenInPlace(const fs::path& device) {
 
 TEST_CASE("output: /dev/null is written in place and stays a character device") {
   requireWrittenInPlace("/dev/null");
-  CHECK(S_ISCHR(lstatOf("/dev/null").st_mode));
+  CHECK(S_ISCHR(lstatOrFail("/dev/null").st_mode));
   {
     OutputFile file("/dev/null");
     file.write("nothing to see\n");
     file.commit();
   }
-  CHECK(S_ISCHR(lstatOf("/dev/null").st_mode));
+  CHECK(S_ISCHR(lstatOrFail("/dev/null").st_mode));
 }
 
 // /dev/stdout and /dev/fd/N lead to /proc/self/fd/N: a process's open file, not a path to follow.
@@ -214,7 +214,7 @@ TEST_CASE("output: an open descriptor through /dev/fd or /proc is written in pla
   const fs::path log = s.write("log.txt", "printed before\n");
   const int logFd = ::open(log.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
   REQUIRE(logFd >= 0);
-  const ino_t inode = lstatOf(log).st_ino;
+  const ino_t inode = lstatOrFail(log).st_ino;
   {
     OutputFile file("/proc/self/fd/" + std::to_string(logFd));
     file.write("t,kinetic\n");
@@ -222,7 +222,7 @@ TEST_CASE("output: an open descriptor through /dev/fd or /proc is written in pla
   }
   ::close(logFd);
   CHECK(slurp(log) == "printed before\nt,kinetic\n");
-  CHECK(lstatOf(log).st_ino == inode);
+  CHECK(lstatOrFail(log).st_ino == inode);
   CHECK(entries(s.dir) == std::set<std::string>{"log.txt"});
 }
 
@@ -259,7 +259,7 @@ TEST_CASE("output: a FIFO is written in place and its reader gets the data") {
   keeper.reset();
   reader.join();
   CHECK(received == "t,kinetic\n0,1\n");
-  CHECK(S_ISFIFO(lstatOf(fifo).st_mode));
+  CHECK(S_ISFIFO(lstatOrFail(fifo).st_mode));
   CHECK(entries(s.dir) == std::set<std::string>{"pipe"});
 }
 
@@ -292,7 +292,7 @@ TEST_CASE("output: a symbolic link is followed to its target, and stays a link")
     CHECK(slurp(s.dir / "files" / "new.csv") == "created");
     CHECK(entries(s.dir / "files") == std::set<std::string>{"target.csv", "new.csv"});
     CHECK(entries(s.dir / "links") == links);
-    for (const std::string& link : links) CHECK(S_ISLNK(lstatOf(s.dir / "links" / link).st_mode));
+    for (const std::string& link : links) CHECK(S_ISLNK(lstatOrFail(s.dir / "links" / link).st_mode));
     CHECK(fs::read_symlink(s.dir / "links" / "link.csv") == "../files/target.csv");
     fs::remove(s.dir / "files" / "new.csv");
   }
@@ -309,7 +309,7 @@ TEST_CASE("output: a symbolic link is followed to its target, and stays a link")
   for (int i = 0; i < 3; ++i) writer->write(particles::render::Image(64, 48));
   writer->finish();
   CHECK(particles::test::probeVideo(s.dir / "files" / "video.mp4").frames == 3);
-  CHECK(S_ISLNK(lstatOf(s.dir / "links" / "video.mp4").st_mode));
+  CHECK(S_ISLNK(lstatOrFail(s.dir / "links" / "video.mp4").st_mode));
   CHECK(entries(s.dir / "files") == std::set<std::string>{"target.csv", "video.mp4"});
 }
 
@@ -331,15 +331,15 @@ TEST_CASE("output: a directory or a socket is refused and left as it is") {
   CHECK_THROWS_WITH_AS(OutputFile(s.dir / "to_folder"), doctest::Contains(linkMessage.c_str()), OutputError);
   CHECK_THROWS_WITH_AS(PendingOutput{socketPath}, doctest::Contains("sock: it is a socket"), OutputError);
   CHECK(fs::is_empty(s.dir / "folder"));
-  CHECK(S_ISSOCK(lstatOf(socketPath).st_mode));
-  CHECK(S_ISLNK(lstatOf(s.dir / "to_folder").st_mode));
+  CHECK(S_ISSOCK(lstatOrFail(socketPath).st_mode));
+  CHECK(S_ISLNK(lstatOrFail(s.dir / "to_folder").st_mode));
 
   // Through the program: exit 3 and the same words.
   s.write("s.yaml", particles::test::kSwingScenario);
   const particles::test::Result r = s.run("run s.yaml --quiet --stats sock");
   CHECK(r.code == 3);
   CHECK(r.err == "error: cannot write sock: it is a socket\n");
-  CHECK(S_ISSOCK(lstatOf(socketPath).st_mode));
+  CHECK(S_ISSOCK(lstatOrFail(socketPath).st_mode));
   ::close(sock);
   CHECK(entries(s.dir) == std::set<std::string>{"folder", "to_folder", "sock", "s.yaml"});
 }
@@ -350,7 +350,7 @@ TEST_CASE("output: the program writes --stats to /dev/null and leaves it a devic
   s.write("s.yaml", particles::test::kSwingScenario);
   const particles::test::Result r = s.run("run s.yaml --quiet --stats /dev/null");
   CHECK_MESSAGE(r.code == 0, r.err);
-  CHECK(S_ISCHR(lstatOf("/dev/null").st_mode));
+  CHECK(S_ISCHR(lstatOrFail("/dev/null").st_mode));
   CHECK(entries(s.dir) == std::set<std::string>{"s.yaml"});
 }
 
@@ -361,7 +361,7 @@ TEST_CASE("output: the program writes --stats to /dev/stdout, a file there is ap
   const particles::test::Result toStdout = s.run("run s.yaml --quiet --stats /dev/stdout");
   CHECK_MESSAGE(toStdout.code == 0, toStdout.err);
   CHECK(toStdout.out.starts_with("t,kinetic,potential,total,constraint_error,penetration\n"));
-  CHECK(S_ISLNK(lstatOf("/dev/stdout").st_mode));
+  CHECK(S_ISLNK(lstatOrFail("/dev/stdout").st_mode));
   CHECK(entries(s.dir) == std::set<std::string>{"s.yaml"});
 }
 

@@ -65,14 +65,14 @@ std::string wholeLoad(const std::string& text, const std::string& file, const st
   });
 }
 
-using Case = std::vector<std::pair<std::string, std::string>>;
+using OverrideCase = std::vector<std::pair<std::string, std::string>>;
 
-void expectSameAsWholeLoads(const std::string& name, const std::vector<Case>& cases,
+void expectSameAsWholeLoads(const std::string& name, const std::vector<OverrideCase>& cases,
                             const std::vector<Override>& fixed = {}) {
   const std::string text = scenarioText(name);
   OverrideChecker checker(text, name, fixed);
   for (int round = 0; round < 2; ++round) {
-    for (const Case& c : cases) {
+    for (const OverrideCase& c : cases) {
       const std::vector<Override> changes = overrides(c);
       CAPTURE(name);
       CAPTURE(round);

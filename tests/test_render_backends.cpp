@@ -21,6 +21,10 @@
 
 using namespace particles;
 using namespace particles::render;
+using particles::test::DemoFrame;
+using particles::test::demoFrame;
+
+using particles::test::contains;
 
 namespace {
 
@@ -32,9 +36,6 @@ std::vector<GlBackend> builtBackends() {
   return built;
 }
 
-bool contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
 
 // The message of what `f` throws as E, "" when it throws nothing.
 template <class E, class F>
@@ -45,18 +46,6 @@ std::string thrownMessage(F&& f) {
     return e.what();
   }
   return "";
-}
-
-// A demo scenario advanced to `at` seconds: its drawing and camera.
-struct DemoFrame {
-  Drawing drawing;
-  Camera camera;
-};
-
-DemoFrame demoFrame(const std::string& name, double at) {
-  scenario::Scenario s = scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/" + name + ".yaml");
-  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(at);
-  return {s.system.draw(), {s.render.viewCenter, s.render.viewHeight}};
 }
 
 // Every sample count, opaque and with a transparent background.

@@ -17,10 +17,13 @@
 #include "render/shader_program.hpp"
 #include "render/shape_mesh.hpp"
 #include "render/tile_bins.hpp"
+#include "render_support.hpp"
 #include "scenario/scenario.hpp"
 
 using namespace particles;
 using namespace particles::render;
+using particles::test::DemoFrame;
+using particles::test::demoFrame;
 
 namespace {
 
@@ -102,18 +105,6 @@ long checkBins(const TileBins& bins) {
   }
   MESSAGE("pairs left out behind a shape covering the tile: ", hiddenPairs);
   return slack;
-}
-
-struct DemoFrame {
-  Drawing drawing;
-  Camera camera;
-};
-
-DemoFrame demoFrame(const std::string& name, double at, const std::vector<scenario::Override>& overrides = {}) {
-  scenario::Scenario s =
-      scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/" + name + ".yaml", overrides);
-  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(at);
-  return {s.system.draw(), {s.render.viewCenter, s.render.viewHeight}};
 }
 
 RenderOptions options(int width, int height, int msaa, Raster raster) {

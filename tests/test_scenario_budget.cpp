@@ -23,13 +23,13 @@ using particles::test::kScenarios;
 namespace {
 
 
-struct Refusal {
+struct BudgetRefusal {
   int line = -1;
   std::string keyPath, message;
 };
 
 // The ScenarioError of loading `yaml` under `limits`, or a failed check when it loads.
-Refusal refusalOf(const std::string& yaml, const SceneLimits& limits) {
+BudgetRefusal refusalOf(const std::string& yaml, const SceneLimits& limits) {
   try {
     loadScenarioText(yaml, "b.yaml", {}, limits);
   } catch (const ScenarioError& e) {
@@ -106,7 +106,7 @@ TEST_CASE("scene budget: the key where a total passes its limit, with the number
   SUBCASE("particles: a grid past the limit is refused at its size, before it is built") {
     SceneLimits limits;
     limits.particles = 12;  // 1 particle + 12 grid particles = 13
-    const Refusal r = refusalOf(head, limits);
+    const BudgetRefusal r = refusalOf(head, limits);
     CHECK(r.line == 6);
     CHECK(r.keyPath == "grids[0].size");
     CHECK(r.message ==
@@ -116,7 +116,7 @@ TEST_CASE("scene budget: the key where a total passes its limit, with the number
   SUBCASE("springs: a grid's spring families") {
     SceneLimits limits;
     limits.springs = 16;  // structural on 4 × 3: 3·3 across + 2·4 down = 17
-    const Refusal r = refusalOf(head, limits);
+    const BudgetRefusal r = refusalOf(head, limits);
     CHECK(r.line == 7);
     CHECK(r.keyPath == "grids[0].springs");
     CHECK(r.message.find("this makes 17 springs, more than the limit of 16") == 0);
@@ -124,7 +124,7 @@ TEST_CASE("scene budget: the key where a total passes its limit, with the number
   SUBCASE("springs: one point paired with a whole grid, then a row") {
     SceneLimits limits;
     limits.springs = 17 + 12 + 3;  // grid springs + p to each of g + p to each of row 0 = 33
-    const Refusal r = refusalOf(head +
+    const BudgetRefusal r = refusalOf(head +
                                     "forces:\n"                                    // 8
                                     "  - {type: spring, a: p, b: g, ks: 1}\n"      // 9
                                     "  - {type: spring, a: p, b: 'g[0][*]', ks: 1}\n",  // 10
@@ -136,7 +136,7 @@ TEST_CASE("scene budget: the key where a total passes its limit, with the number
   SUBCASE("endpoints: a list of whole-grid references") {
     SceneLimits limits;
     limits.endpoints = 35;  // 3 × 12 = 36
-    const Refusal r = refusalOf(head +
+    const BudgetRefusal r = refusalOf(head +
                                     "forces:\n"                                          // 8
                                     "  - {type: spring, a: [g, g, g], b: p, ks: 1}\n",  // 9
                                 limits);
@@ -148,7 +148,7 @@ TEST_CASE("scene budget: the key where a total passes its limit, with the number
   SUBCASE("constraints: a wire holding a column") {
     SceneLimits limits;
     limits.constraints = 2;
-    const Refusal r = refusalOf(head +
+    const BudgetRefusal r = refusalOf(head +
                                     "constraints:\n"  // 8
                                     "  - {type: circular_wire, particles: 'g[*][0]', center: [0, 0]}\n",  // 9
                                 limits);
@@ -159,7 +159,7 @@ TEST_CASE("scene budget: the key where a total passes its limit, with the number
   SUBCASE("entries: one entry repeated through YAML aliases counts once per repetition") {
     SceneLimits limits;
     limits.entries = 3;
-    const Refusal r = refusalOf(head +
+    const BudgetRefusal r = refusalOf(head +
                                     "forces:\n"                        // 8
                                     "  - &gravity {type: gravity}\n"  // 9
                                     "  - *gravity\n"                   // 10
@@ -178,7 +178,7 @@ TEST_CASE("scene budget: the issue's expanding files are refused before the grid
   std::string refs;
   for (int i = 0; i < 200; ++i) refs += i ? ", g" : "g";
   const std::string grid = "name: big\ngrids:\n  - {name: g, size: [1000, 1000]}\n";
-  const Refusal many = refusalOf(grid + "forces:\n  - {type: spring, a: [" + refs + "], b: [" + refs + "], ks: 1}\n",
+  const BudgetRefusal many = refusalOf(grid + "forces:\n  - {type: spring, a: [" + refs + "], b: [" + refs + "], ks: 1}\n",
                                  SceneLimits{});
   CHECK(many.keyPath == "forces[0].a");
   CHECK(many.message.find("this makes 200000000 points named by references") == 0);
@@ -187,7 +187,7 @@ TEST_CASE("scene budget: the issue's expanding files are refused before the grid
       "name: big\nparticles:\n  - {name: h, pos: [0, 1]}\ngrids:\n  - {name: g, size: [1000, 999]}\n"
       "forces:\n  - &s {type: spring, a: g, b: h, ks: 1}\n";
   for (int i = 0; i < 60; ++i) aliases += "  - *s\n";
-  const Refusal repeated = refusalOf(aliases, SceneLimits{});
+  const BudgetRefusal repeated = refusalOf(aliases, SceneLimits{});
   CHECK(repeated.keyPath == "forces[8]");  // the ninth repetition passes the default of 8,000,000
   CHECK(repeated.message.find("this makes 8991000 springs and forces in the scene so far") == 0);
 }

@@ -21,19 +21,19 @@ using particles::test::kScenarios;
 namespace {
 
 
-struct Bounds {
+struct DriftBounds {
   double constraintError;  // m
   double penetration;      // m
 };
 
 // docs/scenarios.md, "The demos": measured worst values with about a factor two of headroom.
 // Scenarios not listed here must meet the default.
-const std::map<std::string, Bounds> kBounds{
+const std::map<std::string, DriftBounds> kBounds{
     {"soft_body", {0.0, 0.25}},  // unit spacing: a quarter of a spacing at the hardest landing
     {"collisions", {0.0, 0.1}},  // 0.1 kg balls falling 3 m on k = 1e5
     {"rigid_chain", {0.0, 0.08}},
 };
-constexpr Bounds kDefault{1e-4, 0.05};
+constexpr DriftBounds kDefault{1e-4, 0.05};
 
 // Too large to run whole in a test: 6000 steps of a million particles, minutes on the 2-core
 // machine (bench/README.md, "A million particles"). Checked by the test case named after it.
@@ -62,7 +62,7 @@ TEST_CASE("demos: every scenario runs its full duration within its bounds") {
           doctest::Approx(s.simulation.duration).epsilon(s.simulation.dt / s.simulation.duration));
     CHECK(s.system.state().allFinite());
     const auto it = kBounds.find(stem);
-    const Bounds bounds = it == kBounds.end() ? kDefault : it->second;
+    const DriftBounds bounds = it == kBounds.end() ? kDefault : it->second;
     CAPTURE(summary.worstConstraintError);
     CAPTURE(summary.worstPenetration);
     CHECK(summary.worstConstraintError <= std::max(bounds.constraintError, kDefault.constraintError));

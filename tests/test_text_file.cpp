@@ -20,14 +20,14 @@ using particles::input::readTextFile;
 
 namespace {
 
-struct TempDir {
+struct TextFileDir {
   fs::path dir;
-  TempDir() {
+  TextFileDir() {
     std::string pattern = (fs::temp_directory_path() / "particles_text_file_XXXXXX").string();
     REQUIRE(::mkdtemp(pattern.data()) != nullptr);
     dir = pattern;
   }
-  ~TempDir() {
+  ~TextFileDir() {
     std::error_code ignored;
     fs::remove_all(dir, ignored);
   }
@@ -51,7 +51,7 @@ ReadError::Reason reasonOf(const fs::path& file, std::uintmax_t maxMiB, std::str
 }  // namespace
 
 TEST_CASE("text file: up to the limit is read whole, one byte more is refused before reading") {
-  TempDir t;
+  TextFileDir t;
   const std::string mib(1024 * 1024, 'x');
   CHECK(readTextFile(t.write("small.yaml", "name: a\n"), 1) == "name: a\n");
   CHECK(readTextFile(t.write("exact.yaml", mib), 1) == mib);
@@ -63,7 +63,7 @@ TEST_CASE("text file: up to the limit is read whole, one byte more is refused be
 }
 
 TEST_CASE("text file: a pipe that never ends is refused once past the limit") {
-  TempDir t;
+  TextFileDir t;
   const fs::path fifo = t.dir / "endless";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   std::thread writer([&] {
@@ -83,7 +83,7 @@ TEST_CASE("text file: a pipe that never ends is refused once past the limit") {
 }
 
 TEST_CASE("text file: a NUL byte, a directory, a missing file") {
-  TempDir t;
+  TextFileDir t;
   std::string message;
   CHECK(reasonOf(t.write("nul.yaml", std::string("name: a\n\0rest", 13)), 1, message) == ReadError::Reason::notText);
   CHECK(message == "byte 9 is a NUL byte, which no text holds: this is not a text file");
@@ -96,7 +96,7 @@ TEST_CASE("text file: a NUL byte, a directory, a missing file") {
 
 TEST_CASE("text file: regular files only, for files the program wrote itself: a FIFO or device is refused at once") {
   using particles::input::Accept;
-  TempDir t;
+  TextFileDir t;
   const fs::path fifo = t.dir / "record.txt";
   REQUIRE(::mkfifo(fifo.c_str(), 0644) == 0);
   // With nobody writing, a blocking open would wait for ever: this must return at once.
