@@ -12,7 +12,7 @@ std::size_t FramePipeline::slotCount(std::size_t capacity) {
 FramePipeline::FramePipeline(std::size_t capacity, Fill fill, Consumer consume)
     : capacity_(capacity), fill_(std::move(fill)), consume_(std::move(consume)) {
   for (std::size_t slot = slotCount(capacity); slot-- > 0;) free_.push_back(slot);  // slot 0 is used first
-  if (capacity_ > 0) worker_ = std::thread([this] { run(); });
+  if (capacity_ > 0) worker_.emplace(pool_.start([this] { run(); }));
 }
 
 FramePipeline::~FramePipeline() {
@@ -62,7 +62,8 @@ void FramePipeline::close() {
     closing_ = true;
     changed_.notify_all();
   }
-  if (worker_.joinable()) worker_.join();
+  if (worker_) worker_->wait();  // run() throws nothing: a consumer's exception is kept in error_
+  worker_.reset();
   std::unique_lock lock(mutex_);
   rethrowIfFailed();
 }
@@ -74,7 +75,7 @@ void FramePipeline::cancel() noexcept {
     queue_.clear();
     changed_.notify_all();
   }
-  if (worker_.joinable()) worker_.join();
+  worker_.reset();  // waits for run()
 }
 
 void FramePipeline::run() {

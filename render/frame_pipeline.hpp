@@ -1,13 +1,16 @@
 #pragma once
-// Internal to render/: a worker thread behind a bounded queue of frames, so that rendering frame
-// n+1 overlaps encoding frame n. The frames live in slots the writer owns, in whatever form its
-// encoder takes (an RGBA Image for PNG, a yuv420p AVFrame for H.264): push() hands a free slot and
-// the renderer's image to `fill` on the calling thread (a copy or a conversion, straight into the
-// slot, so the frame is never copied twice), queues it, and blocks while the queue is full; the
-// worker calls `consume` for each queued slot in order and then frees it. An exception thrown by
-// `fill` propagates from push(); one thrown by `consume` stops the worker and is rethrown by the
-// next push() or close().
-// A capacity of 0 starts no worker: push() fills and consumes each frame on the calling thread
+// Internal to render/: a consumer task behind a bounded queue of frames, so that rendering frame
+// n+1 overlaps encoding frame n. The consumer is a task started on a WorkerPool of two threads, the
+// caller's and one more (core/worker_pool.hpp: the program's one way onto threads, and its
+// determinism contract); the queue is this class's, and a started task is one call on one thread,
+// so frames are consumed in the order they were pushed. The frames live in slots the writer owns,
+// in whatever form its encoder takes (an RGBA Image for PNG, a yuv420p AVFrame for H.264): push()
+// hands a free slot and the renderer's image to `fill` on the calling thread (a copy or a
+// conversion, straight into the slot, so the frame is never copied twice), queues it, and blocks
+// while the queue is full; the consumer calls `consume` for each queued slot in order and then
+// frees it. An exception thrown by `fill` propagates from push(); one thrown by `consume` stops the
+// consumer and is rethrown by the next push() or close().
+// A capacity of 0 starts no thread: push() fills and consumes each frame on the calling thread
 // (a render held to one thread, `particles render --threads 1`).
 
 #include <condition_variable>
@@ -16,9 +19,10 @@
 #include <exception>
 #include <functional>
 #include <mutex>
-#include <thread>
+#include <optional>
 #include <vector>
 
+#include "core/worker_pool.hpp"
 #include "render/image.hpp"
 
 namespace particles::render {
@@ -58,7 +62,9 @@ class FramePipeline {
   std::vector<std::size_t> free_;  // slots no thread is using
   bool closing_ = false, cancelled_ = false;
   std::exception_ptr error_;
-  std::thread worker_;  // last: started after everything it uses exists
+  WorkerPool pool_{2};
+  // run() on pool_, while it may be running; last: started after everything it uses exists.
+  std::optional<WorkerPool::Started> worker_;
 };
 
 }  // namespace particles::render

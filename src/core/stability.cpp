@@ -13,9 +13,10 @@
 #include <optional>
 #include <set>
 #include <stdexcept>
-#include <thread>
+#include <vector>
 
 #include "core/solver.hpp"
+#include "core/worker_pool.hpp"
 
 namespace particles {
 
@@ -204,11 +205,12 @@ StabilityResult searchIntegrator(Integrator integrator, const StabilityOptions& 
   return r;
 }
 
-// The parallel study. The trials of all the integrators' searches form one queue that `threads`
-// threads take from; the table is the serial one because a search's next dt is decided only by
-// replaying the serial search (searchIntegrator) over finished trials, and a trial's outcome
-// depends on its dt alone (one thread per trial, and the core's results do not depend on the
-// thread count anyway).
+// The parallel study. The trials of all the integrators' searches form one queue that the
+// `threads` tasks of a WorkerPool take from, one search loop each; the table is the serial one
+// because a search's next dt is decided only by replaying the serial search (searchIntegrator)
+// over finished trials, and a trial's outcome depends on its dt alone (point 3 of the contract in
+// core/worker_pool.hpp: the order in which verdicts arrive changes which trials start, never a
+// verdict kept).
 //
 // Integrators are independent, but each search is a chain: every probe waits for the previous
 // one's verdict. Explicit Euler's chain is most of the cloth's study (23 trials at the smallest
@@ -351,12 +353,10 @@ class ParallelStudy {
   }
 
   std::vector<StabilityResult> run(int threads) {
-    {
-      // jthreads: should starting one fail, those started are joined (they finish the study).
-      std::vector<std::jthread> helpers;
-      for (int k = 1; k < threads; ++k) helpers.emplace_back([this] { work(); });
-      work();  // the calling thread is one of the threads
-    }
+    // One search loop per thread. Any thread's loop finishes the study, so threads the pool could
+    // not start, or that arrive late, change the time taken, never the table.
+    WorkerPool pool(threads);
+    pool.run(size_t(threads), [this](size_t) { work(); });
     if (error_) std::rethrow_exception(error_);
     std::vector<StabilityResult> results;
     for (const IntegratorProgress& p : progress_) {

@@ -70,7 +70,7 @@ struct StabilityOptions {
   double maxDt = 10.0;            // above this the search stops growing: stable beyond measure
   double relativePrecision = 0.005;  // bisection stops when (hi − lo) ≤ this × lo: 2 significant digits
   // Trial runs at once (below 1: one), each on one thread; the caller decides (the program: --threads).
-  // The table is the same for every count; only the wall-clock timings may differ.
+  // The table is the same for every count (core/worker_pool.hpp); only the wall-clock timings may differ.
   int threads = 1;
   double timingBudget = 0.5;      // s of timed runs per integrator (at least one run); 0: no timing
   // Costs of an integrator still smooth at maxDt are given at this step instead (the frame

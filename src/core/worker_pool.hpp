@@ -1,13 +1,41 @@
 #pragma once
-// The core's threads (docs/architecture.md, "Threads"): a System owns one WorkerPool, and every
-// parallel loop of derivEval, the integrators and the solvers runs on it.
+// The one way the program runs work on threads (docs/architecture.md, "Threads"). Every thread the
+// program starts is a WorkerPool's: a System's pool runs the parallel loops of derivEval, the
+// integrators and the solvers; the stability study's trials, golden check's entries and the
+// renderer's encoder run on pools of their own. A pool has two ways in:
+// - run(count, task): task(0) … task(count − 1), each once, on the pool's threads and the caller's,
+//   returning when all have returned. The chunked loops below (forChunks, sumChunks, anyOf) are
+//   built on it, and so are sets of coarse tasks, fewer or more than the threads: one search loop
+//   per thread (src/core/stability.cpp), one golden entry per task.
+// - start(task): one task on one of the pool's threads while the caller goes on, until the handle's
+//   wait(). A producer/consumer pair is one started task, the consumer, behind a bounded queue its
+//   user owns (render/frame_pipeline.hpp: encoding frame n while frame n + 1 is drawn).
 //
-// Results never depend on how many threads run, because the work is cut before any thread sees it:
-// a loop over n items is split into chunks of a fixed `grain` (chunk k is [k·grain, (k+1)·grain)),
-// so which items share a chunk depends on n and the grain alone. Threads take whole chunks, in any
-// order; a chunk writes only its own items (elementwise loops, a gather by point), and a sum is
-// formed per chunk and the chunk sums are added in chunk order (sumChunks). Nothing adds into a
-// shared double from two threads, and no atomic touches a double.
+// The determinism contract, stated here once (the rest of the program refers to it): the same
+// bytes on 1 or 64 threads, because
+// 1. Work is cut before any thread sees it. What task k does depends on k and the problem, never on
+//    the thread count or on which thread runs it. A loop over n items is split into chunks of a
+//    fixed `grain` (chunk k is [k·grain, (k+1)·grain)), so which items share a chunk depends on n
+//    and the grain alone.
+// 2. A task writes only what is its own: its chunk's items (elementwise loops, a gather by point),
+//    its entry of a vector indexed by k. A sum is formed per chunk, and the chunk sums are added in
+//    chunk order (sumChunks). Nothing adds into a shared double from two threads, and no atomic
+//    touches a double.
+// 3. Tasks run, and finish, in any order, on however many threads there are (a thread the system
+//    refuses to start, or threads that are not free: the caller takes what is left). A user that
+//    reacts to the order (the stability study starts trials on speculation as verdicts arrive) keeps
+//    only results that do not depend on it (a verdict is the same whenever it is reached).
+// 4. A started task is one call on one thread: what it does in order stays in that order (frames are
+//    encoded in the order they were queued).
+// tests/test_worker_pool.cpp checks the pool, the determinism tests (tests/test_determinism*.cpp,
+// test_stability_threads.cpp, test_render*.cpp) their outputs for 1–8 threads, byte for byte, and
+// the TSan build (-DPARTICLES_TSAN=ON) the pool's synchronisation.
+//
+// Nesting. Pools share nothing (no global state), so a task may own and use a pool of its own (a
+// trial's System with a pool, inside the study's): each pool's threads are its own. A task that
+// calls run on a pool it is already running a task of (directly, or through another pool's task)
+// gets that loop on its own thread, in index order: the same results (point 3), no deadlock. One
+// thread hands a pool its work, besides those nested calls: the thread that owns it.
 //
 // A loop of one chunk runs on the calling thread with no hand-over at all, so small scenes (the 25²
 // cloth: 1,200 springs) cost what they did before the pool existed.
@@ -17,6 +45,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
+#include <functional>
 #include <mutex>
 #include <thread>
 #include <type_traits>
@@ -25,12 +54,26 @@
 
 namespace particles {
 
+class WorkerPool;
+
+namespace detail {
+// The pools whose tasks a thread is running, innermost first (worker_pool.cpp).
+struct InsideTask {
+  const WorkerPool* pool;
+  const InsideTask* outer;
+};
+}  // namespace detail
+
 class WorkerPool {
  public:
+  class Started;
+
   // `threads` counts the calling thread: 1 starts no thread. Values below 1 are taken as 1. The
-  // threads start at the first job of more than one chunk, so a scene whose loops are all one
-  // chunk long never starts any.
+  // threads start at the first job handed out (a run of more than one task, or a start), so a
+  // scene whose loops are all one chunk long never starts any.
   explicit WorkerPool(int threads = 1);
+  // Waits for a started task that was not waited for (dropping its exception), then ends the
+  // threads. A pool never used, or idle, ends at once.
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
   WorkerPool& operator=(const WorkerPool&) = delete;
@@ -38,12 +81,14 @@ class WorkerPool {
   int threads() const { return threads_; }
 
   // Calls task(k) once for every k in [0, count) and returns when all calls have returned; the
-  // calling thread takes chunks too. The first exception a task throws is rethrown here, after
-  // every call has ended (the others still run). Not reentrant: a task must not call run.
+  // calling thread takes tasks too. The first exception a task throws is rethrown here, after
+  // every call has ended (the others still run). When the pool's threads are not free for it (one
+  // thread, a started task holding them, or a call from inside one of this pool's tasks) the
+  // calling thread runs every task itself, in index order.
   template <typename Task>
   void run(size_t count, Task&& task) {
     if (count == 0) return;
-    if (count == 1 || threads_ == 1) {
+    if (count == 1 || threads_ == 1 || !threadsFree()) {
       std::exception_ptr error;
       for (size_t k = 0; k < count; ++k) {
         try {
@@ -59,15 +104,46 @@ class WorkerPool {
     dispatch(count, &task, [](void* context, size_t k) { (*static_cast<Plain*>(context))(k); });
   }
 
+  // Starts task() on one of the pool's threads and returns at once: the caller goes on with its
+  // own work while the task runs (Box2D's enqueueTask / finishTask, for one task). The pool takes
+  // no other job until the handle's wait(); a run meanwhile runs on the calling thread. Throws
+  // std::logic_error when a started task is not yet waited for or when called from one of this
+  // pool's tasks, std::invalid_argument on a pool of one thread (it has none besides the
+  // caller's), and std::system_error when the system refuses to start any thread.
+  [[nodiscard]] Started start(std::function<void()> task);
+
+  // A started task. wait() returns when the task has returned and rethrows its exception; if no
+  // thread has taken the task by then, the waiting thread runs it. Destroying a handle that was not
+  // waited for waits and drops the exception. A handle must not outlive its pool.
+  class Started {
+   public:
+    Started(Started&& other) noexcept : pool_(std::exchange(other.pool_, nullptr)) {}
+    Started& operator=(Started&&) = delete;
+    ~Started();
+    void wait();  // once; afterwards the handle is empty
+
+   private:
+    friend class WorkerPool;
+    explicit Started(WorkerPool* pool) : pool_(pool) {}
+    WorkerPool* pool_;
+  };
+
  private:
   using Trampoline = void (*)(void* context, size_t k);
   struct Job {
     void* context = nullptr;
     Trampoline call = nullptr;
     size_t count = 0;
+    // The pools whose tasks the publishing thread was inside: the job's tasks are inside them too.
+    const detail::InsideTask* outer = nullptr;
   };
 
+  bool runningOwnTask() const;  // whether this thread is inside one of this pool's tasks
+  bool threadsFree() const;     // see run
+  void startWorkers();
   void dispatch(size_t count, void* context, Trampoline call);
+  void publish(const Job& job);
+  void finishJob();  // takes the job's chunks left, waits for the rest, rethrows the first exception
   void workerLoop();
   void takeChunks(const Job& job);
 
@@ -84,6 +160,9 @@ class WorkerPool {
   std::atomic<size_t> next_{0};      // the job's next chunk to take
   std::atomic<size_t> finished_{0};  // the job's chunks whose call has returned
   std::exception_ptr error_;         // the first exception of the job's tasks, under mutex_
+  // The started task: set by the owning thread before the job that calls it is published.
+  std::function<void()> started_;
+  bool startedPending_ = false;  // until the handle's wait(); the owning thread's alone
 };
 
 // The chunks a loop over n items is cut into: ⌈n / grain⌉, at least 1 when n > 0.
