@@ -33,15 +33,11 @@ void addConcatOptions(CLI::App& command, ConcatOptions& o) {
 }
 
 int concatCommand(const ConcatOptions& o) {
-  try {
-    render::checkConcatOutput(o.output);
-  } catch (const std::invalid_argument& e) {
-    throw InputError(e.what());
-  }
   render::setLibavVerbose(false);  // the muxer's notes at "info" are not ours to print
   std::vector<std::filesystem::path> segments(o.segments.begin(), o.segments.end());
   render::ConcatSummary summary;
   try {
+    render::checkConcatOutput(o.output);  // before any segment is opened
     summary = render::concatMp4(segments, o.output);
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
