@@ -296,7 +296,9 @@ TEST_CASE("determinism: a net of 19,800 rods, 1–8 threads") {
     REQUIRE(expected.back().state.allFinite());
     if (integrator == Integrator::Rk4) CHECK(expected.back().constraints.iterations > 1);
     const System model = rodGrid(side);
-    for (int threads : kThreadCounts)
+    // Under either sanitizer 3 threads alone (47 s under TSan with 3 and 8): the cloths above reach
+    // the threads that join late and find no chunk left.
+    for (int threads : kUnderSanitizer ? std::span<const int>(kThreeThreads) : kThreadCounts)
       checkSameBits(model.model(), expected, stepNet(side, integrator, threads, steps), threads);
   }
 }
