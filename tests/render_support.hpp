@@ -16,6 +16,7 @@
 #include "render/image.hpp"
 #include "render/renderer.hpp"
 #include "scenario/scenario.hpp"
+#include "source_tree.hpp"
 #include "support/video_probe.hpp"
 
 namespace particles::test {
@@ -96,8 +97,7 @@ struct DemoFrame {
 };
 
 inline DemoFrame demoFrame(const std::string& name, double at, const std::vector<scenario::Override>& overrides = {}) {
-  scenario::Scenario s =
-      scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/" + name + ".yaml", overrides);
+  scenario::Scenario s = scenario::loadScenarioFile(kScenarios / (name + ".yaml"), overrides);
   Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(at);
   return {s.system.draw(), {s.render.viewCenter, s.render.viewHeight}};
 }
