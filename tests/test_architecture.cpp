@@ -35,6 +35,7 @@ const std::vector<Room>& rooms() {
       {"render", kCheckout / "render", {"core", "output"}},
       {"plot", kCheckout / "plot", {"output", "input"}},
       {"golden", kCheckout / "src/golden", {"core", "scenario", "render", "output", "input"}},
+      {"api", kCheckout / "src/api", {"core", "scenario", "input", "output"}},
       {"app", kCheckout / "src/app", {"core", "scenario", "render", "plot", "output", "input", "golden"}},
       // What only the tests use (particles_test_support): no room above may include it.
       {"support", kCheckout / "tests/support", {"core", "render", "output"}},
@@ -107,6 +108,22 @@ TEST_CASE("the core uses no files, YAML, GL, images or video") {
     }
   }
   CHECK(checked > 20);
+}
+
+// The public headers are all a user's program includes (issue 41): they include each other and the
+// standard library, never a room's header, Eigen, GL, libav or yaml-cpp, so that the installed
+// package is all a consumer needs.
+TEST_CASE("the public headers include only each other and the standard library") {
+  const std::regex allowed(R"(^(particles/[a-z_]+\.hpp|[a-z_]+)$)");
+  int checked = 0;
+  for (const Include& inc : includesUnder(kCheckout / "include/particles")) {
+    ++checked;
+    CAPTURE(inc.file.string());
+    CAPTURE(inc.target);
+    CHECK(inc.angled);
+    CHECK(std::regex_match(inc.target, allowed));
+  }
+  CHECK(checked >= 8);
 }
 
 // CTest takes a test's name from doctest_discover_tests as a list, so a ';' in a TEST_CASE name

@@ -122,7 +122,7 @@ TEST_CASE("tile bins: a line's record is the record of its rectangle as a convex
   TileBins direct, generic;
   direct.reset(64, 64);
   generic.reset(64, 64);
-  const Rgb col{10, 200, 30};
+  const render::Rgb col{10, 200, 30};
   const P2 a = {10.3f, 20.7f}, b = {41.9f, 33.1f};
   direct.line(a, b, 3.0f, col, true);
   // What ShapeSink::line builds: the corners a + n, b + n, b − n, a − n of the capped segment.
@@ -146,7 +146,7 @@ TEST_CASE("tile bins: a line's record is the record of its rectangle as a convex
 TEST_CASE("tile bins: every tile lists, in painter's order, every shape that reaches one of its pixels") {
   TileBins bins;
   bins.reset(203, 157);  // not a multiple of the tile size: the last row and column are partial
-  const Rgb col{1, 2, 3};
+  const render::Rgb col{1, 2, 3};
   // Small and large discs and rings (the large ones take the ring test), lines in every direction
   // (long ones take the edge test), a triangle with one shared edge, a huge quad like a half-plane's,
   // and shapes partly or wholly off the image.
@@ -266,7 +266,7 @@ TEST_CASE("tile path: an empty frame is the background, and a frame of one odd s
   Drawing empty;
   Renderer tiles(options(37, 23, 4, Raster::tiles));
   const Image& image = tiles.render(empty, Camera{});
-  const Rgb bg = theme(ThemeName::dark).background;
+  const render::Rgb bg = theme(ThemeName::dark).background;
   for (size_t i = 0; i < image.rgba.size(); i += 4) {
     REQUIRE(image.rgba[i] == bg.r);
     REQUIRE(image.rgba[i + 1] == bg.g);

@@ -23,9 +23,10 @@ std::string explosionMessage(const std::string& reason, long step, double time, 
 
 }  // namespace
 
-SimulationError::SimulationError(const std::string& reason, long step, double time, Integrator integrator, double dt)
-    : std::runtime_error(explosionMessage(reason, step, time, integrator, dt)),
-      reason_(reason), step_(step), time_(time), integrator_(integrator), dt_(dt) {}
+SimulationError explosionError(const std::string& reason, long step, double time, Integrator integrator, double dt) {
+  return SimulationError(explosionMessage(reason, step, time, integrator, dt), reason, step, time,
+                         std::string(integratorName(integrator)), dt);
+}
 
 const ImplicitStepStats& Solver::lastImplicitStep() const {
   static const ImplicitStepStats kNone;
@@ -79,7 +80,7 @@ void Solver::doStep(System& system, double dt) {
   if (!reason.empty()) {
     system.state() = previous_;
     state_->stepUndone();
-    throw SimulationError(reason, step, t1, integrator_, dt);
+    throw explosionError(reason, step, t1, integrator_, dt);
   }
   system.setTime(t1);
   steps_ = step;

@@ -7,30 +7,17 @@
 #include <string>
 #include <vector>
 
+#include <particles/errors.hpp>
+
 #include "core/implicit_step.hpp"
 #include "core/integrators.hpp"
 #include "core/system.hpp"
 
 namespace particles {
 
-// A simulation that blew up: a non-finite state or runaway kinetic energy. what() names the step,
-// time, integrator and dt and suggests what to change.
-class SimulationError : public std::runtime_error {
- public:
-  SimulationError(const std::string& reason, long step, double time, Integrator integrator, double dt);
-  const std::string& reason() const { return reason_; }
-  long step() const { return step_; }
-  double time() const { return time_; }
-  Integrator integrator() const { return integrator_; }
-  double dt() const { return dt_; }
-
- private:
-  std::string reason_;
-  long step_;
-  double time_;
-  Integrator integrator_;
-  double dt_;
-};
+// A simulation that blew up: the public particles::SimulationError (include/particles/errors.hpp),
+// thrown by doStep. what() names the step, time, integrator and dt and suggests what to change.
+SimulationError explosionError(const std::string& reason, long step, double time, Integrator integrator, double dt);
 
 struct ExplosionGuard {
   // Kinetic energy above this multiple of System::energyScale() is runaway. Explosions grow

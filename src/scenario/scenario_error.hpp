@@ -1,29 +1,13 @@
 #pragma once
 // The one error of the scenario room: a scenario file, a --set or --limit option or a sweep file
-// that cannot be used, with where (file, line, column, key path, option) and why.
+// that cannot be used, with where (file, line, column, key path, option) and why. It is the public
+// particles::ScenarioError (include/particles/errors.hpp): what the loader throws is what a program
+// using the library catches.
 
-#include <stdexcept>
-#include <string>
+#include <particles/errors.hpp>
 
 namespace particles::scenario {
 
-class ScenarioError : public std::runtime_error {
- public:
-  // line, column: 1-based; 0 when the error has no position (an unreadable file, a --set value).
-  // origin: the command-line option the offending value came from, or empty.
-  ScenarioError(std::string file, int line, int column, std::string keyPath, std::string message,
-                std::string origin = {});
-  const std::string& file() const { return file_; }
-  int line() const { return line_; }
-  int column() const { return column_; }
-  const std::string& keyPath() const { return keyPath_; }
-  const std::string& message() const { return message_; }
-  const std::string& origin() const { return origin_; }
-
- private:
-  std::string file_;
-  int line_, column_;
-  std::string keyPath_, message_, origin_;
-};
+using ScenarioError = particles::ScenarioError;
 
 }  // namespace particles::scenario

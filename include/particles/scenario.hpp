@@ -1,0 +1,70 @@
+#pragma once
+// A scenario: a YAML description of a system and its simulation and render settings
+// (docs/scenarios.md), loaded and checked as `particles check` checks it.
+//
+//   particles::Scenario cloth = particles::Scenario::load("scenarios/cloth.yaml");
+//   cloth.set("dt", 0.005).set("forces[1].ks", "200");
+//   particles::Simulation sim(cloth);
+//
+// Every error is a particles::ScenarioError naming the file, line, column and key.
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include <particles/export.hpp>
+
+namespace particles {
+
+class Simulation;
+
+class PARTICLES_API Scenario {
+ public:
+  // Reads and validates a scenario file. Throws ScenarioError (a missing or unreadable file, bad
+  // YAML, a bad key or value), naming the file, line and column.
+  static Scenario load(const std::string& path);
+  // The same from text in memory; `label` names it in messages, as a file would be named.
+  static Scenario fromText(std::string_view yaml, const std::string& label = "<text>");
+
+  Scenario(const Scenario& other);
+  Scenario& operator=(const Scenario& other);
+  Scenario(Scenario&& other) noexcept;
+  Scenario& operator=(Scenario&& other) noexcept;
+  ~Scenario();
+
+  // Replaces (or creates) the value at `path` before validation, as `--set path=value` does: the
+  // path is `simulation.dt`, `forces[1].ks` or `forces.1.ks`, the value is parsed as YAML. The
+  // shorthands `integrator`, `dt`, `duration` and `implicit_solver` are the simulation's keys, as
+  // the options --integrator, --dt, --duration and --implicit-solver. The scenario is checked at
+  // once with every value set so far: a bad path, type or value throws ScenarioError, and the
+  // scenario stays as it was. Returns *this, so that calls chain.
+  Scenario& set(std::string_view path, std::string_view value);
+  Scenario& set(std::string_view path, const char* value) { return set(path, std::string_view(value)); }
+  // A number, written so that it reads back as the same double.
+  Scenario& set(std::string_view path, double value);
+
+  // What `particles check` prints for a valid scenario: its name, contents, integrator, dt,
+  // duration and steps. A Scenario is checked whole when it is made and at each set(), so this
+  // only reports.
+  std::string validate() const;
+
+  const std::string& name() const;
+  const std::string& description() const;
+  const std::string& file() const;    // the path or label it was loaded from
+  std::string integrator() const;     // as scenarios name it: rk4, backward_euler, …
+  double dt() const;                  // s
+  double duration() const;            // simulated seconds
+  long steps() const;                 // steps of dt that cover the duration
+  double fps() const;                 // the render rate, frames per simulated second
+  int particleCount() const;
+  int bodyCount() const;
+
+  struct Impl;  // the library's own, opaque here
+
+ private:
+  explicit Scenario(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+  friend class Simulation;
+};
+
+}  // namespace particles

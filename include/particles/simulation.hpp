@@ -1,0 +1,106 @@
+#pragma once
+// A simulation made from a scenario: steps its system with the scenario's integrator and time step,
+// and reads and changes its state. Stepping gives the same bits as `particles run` for the same
+// scenario, whatever the thread count.
+//
+//   particles::Simulation sim(particles::Scenario::load("scenarios/cloth.yaml"));
+//   sim.advance(1.0);                                   // one simulated second
+//   particles::Point p = sim.position(sim.particleIndex("cloth[0][0]"));
+//
+// A Simulation is driven by one thread at a time: a call that steps or changes it while another
+// thread's call is under way throws particles::Error (it never races). Reading while another
+// thread steps is not checked; do not.
+
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <particles/export.hpp>
+
+namespace particles {
+
+class Scenario;
+
+struct Point {
+  double x = 0.0, y = 0.0;  // m, or m/s for a velocity
+};
+
+// A rigid body's centre of mass, orientation and spin.
+struct BodyState {
+  double x = 0.0, y = 0.0;  // m
+  double angle = 0.0;       // rad, counter-clockwise
+  double omega = 0.0;       // rad/s
+};
+
+struct Energy {
+  double kinetic = 0.0;    // J
+  double potential = 0.0;  // J: gravity, springs, the mouse's spring, the colliders' penalty
+  double total = 0.0;      // J
+};
+
+class PARTICLES_API Simulation {
+ public:
+  // A new system built from the scenario as it is now (later set()s on it do not reach this
+  // simulation), at t = 0, stepping on `threads` threads (1 to 1024; the bits are the same for
+  // every count). Throws ScenarioError for a scenario that cannot be built, ArgumentError for a
+  // bad thread count.
+  explicit Simulation(const Scenario& scenario, int threads = 1);
+  Simulation(Simulation&& other) noexcept;
+  Simulation& operator=(Simulation&& other) noexcept;
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+  ~Simulation();
+
+  // n steps of dt (n ≥ 0). Throws SimulationError when a step blows up: the simulation stays at
+  // the last good state.
+  void step(long n = 1);
+  // Steps until time() is the last multiple of dt at or before time() + seconds (finite, ≥ 0).
+  void advance(double seconds);
+  double time() const;       // s: t₀ + k·dt after k steps, computed afresh (no drift from summing)
+  long steps() const;        // steps taken since the simulation was made
+  double dt() const;         // s
+  std::string integrator() const;
+
+  void setThreads(int threads);  // 1 to 1024
+  int threads() const;
+
+  int particleCount() const;
+  int bodyCount() const;
+
+  // The particles' positions and velocities as they are in the state, without a copy: 2 ×
+  // particleCount() doubles, x₀ y₀ x₁ y₁ …. The span stays valid, and follows the state, for as
+  // long as the simulation lives (stepping writes into the same memory); not after it is destroyed
+  // or moved from.
+  std::span<const double> positions() const;
+  std::span<const double> velocities() const;
+  Point position(int particle) const;
+  Point velocity(int particle) const;
+  BodyState body(int body) const;
+  std::vector<BodyState> bodies() const;
+
+  Energy energy() const;
+  double constraintError() const;  // m: the largest violation of a constraint now
+  double penetration() const;      // m: the deepest a point is inside a collider now
+
+  // The names `particles run --trace` writes: the scenario's names, `cloth[3][4]` for a grid's
+  // particle, `#7` for an unnamed particle, `body#2` for an unnamed body.
+  std::vector<std::string> particleNames() const;
+  std::vector<std::string> bodyNames() const;
+  // The index of a name; throws ArgumentError naming the closest name when there is none.
+  int particleIndex(std::string_view name) const;
+  int bodyIndex(std::string_view name) const;
+
+  // Moves a particle, or sets its velocity, where the next step starts (constraints are not
+  // projected: the next step's constraint forces pull it back). Finite values only.
+  void setPosition(int particle, Point position);
+  void setVelocity(int particle, Point velocity);
+
+  struct Impl;  // the library's own, opaque here
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace particles

@@ -1,0 +1,108 @@
+// particles::Scenario: see include/particles/scenario.hpp.
+#include <particles/scenario.hpp>
+
+#include <fmt/format.h>
+
+#include <array>
+#include <utility>
+
+#include "api/guarded_call.hpp"
+#include "api/scenario_impl.hpp"
+
+namespace particles {
+
+namespace {
+
+// set()'s shorthands: the simulation's keys, as the command line's --integrator, --dt, --duration
+// and --implicit-solver (app/cli_support.cpp).
+constexpr std::array<std::string_view, 4> kSimulationShorthands = {"integrator", "dt", "duration", "implicit_solver"};
+
+std::string keyPathOf(std::string_view path) {
+  for (std::string_view shorthand : kSimulationShorthands) {
+    if (path == shorthand) return fmt::format("simulation.{}", shorthand);
+  }
+  return std::string(path);
+}
+
+}  // namespace
+
+scenario::Scenario Scenario::Impl::load() const { return scenario::loadScenarioText(text, file, overrides); }
+
+Scenario::Scenario(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Scenario::Scenario(const Scenario& other) : impl_(other.impl_ ? std::make_unique<Impl>(*other.impl_) : nullptr) {}
+Scenario& Scenario::operator=(const Scenario& other) {
+  if (this != &other) impl_ = other.impl_ ? std::make_unique<Impl>(*other.impl_) : nullptr;
+  return *this;
+}
+Scenario::Scenario(Scenario&& other) noexcept = default;
+Scenario& Scenario::operator=(Scenario&& other) noexcept = default;
+Scenario::~Scenario() = default;
+
+std::unique_ptr<Scenario::Impl> Scenario::Impl::loadedFrom(std::string text, std::string file) {
+  auto impl = std::make_unique<Impl>();
+  impl->text = std::move(text);
+  impl->file = std::move(file);
+  impl->loaded = std::make_shared<const scenario::Scenario>(impl->load());
+  return impl;
+}
+
+Scenario Scenario::load(const std::string& path) {
+  return api::guardedCall("Scenario::load",
+                          [&] { return Scenario(Impl::loadedFrom(scenario::readScenarioText(path), path)); });
+}
+
+Scenario Scenario::fromText(std::string_view yaml, const std::string& label) {
+  return api::guardedCall("Scenario::fromText", [&] { return Scenario(Impl::loadedFrom(std::string(yaml), label)); });
+}
+
+Scenario& Scenario::set(std::string_view path, std::string_view value) {
+  return api::guardedCall("Scenario::set", [&]() -> Scenario& {
+    if (!impl_) throw ArgumentError("Scenario::set: this Scenario was moved from");
+    if (path.empty()) throw ArgumentError("Scenario::set: the key path is empty");
+    const std::string origin = fmt::format("set(\"{}\", \"{}\")", path, value);
+    impl_->overrides.push_back({keyPathOf(path), std::string(value), origin});
+    try {
+      impl_->loaded = std::make_shared<const scenario::Scenario>(impl_->load());
+    } catch (...) {
+      impl_->overrides.pop_back();
+      throw;
+    }
+    return *this;
+  });
+}
+
+Scenario& Scenario::set(std::string_view path, double value) { return set(path, std::string_view(fmt::format("{}", value))); }
+
+namespace {
+const scenario::Scenario& loadedOf(const std::unique_ptr<Scenario::Impl>& impl, std::string_view call) {
+  if (!impl) throw ArgumentError(fmt::format("Scenario::{}: this Scenario was moved from", call));
+  return *impl->loaded;
+}
+}  // namespace
+
+std::string Scenario::validate() const {
+  return api::guardedCall("Scenario::validate", [&] {
+    const scenario::Scenario& s = loadedOf(impl_, "validate");
+    const auto& sim = s.simulation;
+    return fmt::format("{}: ok: '{}' with {} particles, {} rigid bodies, {} springs, {} constraints and {} colliders; "
+                       "{}, dt {} s, duration {} s ({} steps)",
+                       s.file, s.name, s.system.layout().numParticles, s.system.layout().numBodies,
+                       scenario::springCount(s.system), s.system.constraints().size(), s.system.colliders().size(),
+                       integratorName(sim.integrator), sim.dt, sim.duration, sim.steps());
+  });
+}
+
+const std::string& Scenario::name() const { return loadedOf(impl_, "name").name; }
+const std::string& Scenario::description() const { return loadedOf(impl_, "description").description; }
+const std::string& Scenario::file() const { return loadedOf(impl_, "file").file; }
+std::string Scenario::integrator() const {
+  return std::string(integratorName(loadedOf(impl_, "integrator").simulation.integrator));
+}
+double Scenario::dt() const { return loadedOf(impl_, "dt").simulation.dt; }
+double Scenario::duration() const { return loadedOf(impl_, "duration").simulation.duration; }
+long Scenario::steps() const { return loadedOf(impl_, "steps").simulation.steps(); }
+double Scenario::fps() const { return loadedOf(impl_, "fps").render.fps; }
+int Scenario::particleCount() const { return loadedOf(impl_, "particleCount").system.layout().numParticles; }
+int Scenario::bodyCount() const { return loadedOf(impl_, "bodyCount").system.layout().numBodies; }
+
+}  // namespace particles

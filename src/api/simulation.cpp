@@ -1,0 +1,285 @@
+// particles::Simulation: see include/particles/simulation.hpp.
+#include <particles/simulation.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <optional>
+
+#include "api/guarded_call.hpp"
+#include "api/scenario_impl.hpp"
+#include "core/solver.hpp"
+#include "input/closest_name.hpp"
+#include "scenario/runner.hpp"
+
+namespace particles {
+
+namespace {
+
+// The thread counts setThreads accepts: the command line's --threads range.
+constexpr int kMaxThreads = 1024;
+
+void checkThreads(std::string_view call, int threads) {
+  if (threads < 1 || threads > kMaxThreads) {
+    throw ArgumentError(fmt::format("{}: threads must be 1 to {}, got {}", call, kMaxThreads, threads));
+  }
+}
+
+}  // namespace
+
+struct Simulation::Impl {
+  scenario::Scenario scenario;
+  Stepper stepper;
+  std::atomic<bool> busy{false};
+  // The names of --trace, made on first use (a million-particle cloth has a million of them).
+  std::optional<std::vector<std::string>> particleNames, bodyNames;
+
+  explicit Impl(scenario::Scenario loaded)
+      : scenario(std::move(loaded)),
+        stepper(scenario.system, scenario.simulation.integrator, scenario.simulation.dt) {}
+
+  System& system() { return scenario.system; }
+  const System& system() const { return scenario.system; }
+
+  const std::vector<std::string>& names(bool bodies) {
+    auto& cache = bodies ? bodyNames : particleNames;
+    if (!cache) {
+      const Model& model = system().model();
+      const int first = bodies ? model.layout.numParticles : 0;
+      const int count = bodies ? model.layout.numBodies : model.layout.numParticles;
+      cache.emplace();
+      cache->reserve(size_t(count));
+      for (int p = first; p < first + count; ++p) cache->push_back(scenario::pointName(model, p));
+    }
+    return *cache;
+  }
+};
+
+namespace {
+
+// Refuses a second thread's call while one is under way (include/particles/simulation.hpp).
+class ExclusiveUse {
+ public:
+  ExclusiveUse(std::atomic<bool>& busy, std::string_view call) : busy_(busy) {
+    if (busy_.exchange(true)) {
+      throw Error(fmt::format("{}: this Simulation is in use by another thread's call; a Simulation is driven by "
+                              "one thread at a time",
+                              call));
+    }
+  }
+  ~ExclusiveUse() { busy_.store(false); }
+  ExclusiveUse(const ExclusiveUse&) = delete;
+  ExclusiveUse& operator=(const ExclusiveUse&) = delete;
+
+ private:
+  std::atomic<bool>& busy_;
+};
+
+Simulation::Impl& implOf(const std::unique_ptr<Simulation::Impl>& impl, std::string_view call) {
+  if (!impl) throw ArgumentError(fmt::format("Simulation::{}: this Simulation was moved from", call));
+  return *impl;
+}
+
+void checkIndex(std::string_view call, std::string_view what, int index, int count) {
+  if (index < 0 || index >= count) {
+    throw ArgumentError(count == 0 ? fmt::format("Simulation::{}: {} {} out of range: the scenario has none", call,
+                                                 what, index)
+                                   : fmt::format("Simulation::{}: {} {} out of range 0 to {}", call, what, index,
+                                                 count - 1));
+  }
+}
+
+void checkFinite(std::string_view call, Point p) {
+  if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+    throw ArgumentError(fmt::format("Simulation::{}: expected finite values, got ({}, {})", call, p.x, p.y));
+  }
+}
+
+}  // namespace
+
+Simulation::Simulation(const Scenario& scenario, int threads) {
+  impl_ = api::guardedCall("Simulation", [&] {
+    checkThreads("Simulation", threads);
+    if (!scenario.impl_) throw ArgumentError("Simulation: the Scenario was moved from");
+    auto impl = std::make_unique<Impl>(scenario.impl_->load());
+    impl->system().setThreads(threads);
+    return impl;
+  });
+}
+Simulation::Simulation(Simulation&& other) noexcept = default;
+Simulation& Simulation::operator=(Simulation&& other) noexcept = default;
+Simulation::~Simulation() = default;
+
+void Simulation::step(long n) {
+  api::guardedCall("Simulation::step", [&] {
+    Impl& impl = implOf(impl_, "step");
+    if (n < 0) throw ArgumentError(fmt::format("Simulation::step: expected a number of steps ≥ 0, got {}", n));
+    if (n > scenario::kMaxSteps) {
+      throw ArgumentError(fmt::format("Simulation::step: {} steps is more than {} at once", n, scenario::kMaxSteps));
+    }
+    ExclusiveUse use(impl.busy, "Simulation::step");
+    for (long k = 0; k < n; ++k) impl.stepper.step();
+  });
+}
+
+void Simulation::advance(double seconds) {
+  api::guardedCall("Simulation::advance", [&] {
+    Impl& impl = implOf(impl_, "advance");
+    const double dt = impl.scenario.simulation.dt;
+    if (!std::isfinite(seconds) || seconds < 0.0) {
+      throw ArgumentError(fmt::format("Simulation::advance: expected finite seconds ≥ 0, got {}", seconds));
+    }
+    if (seconds / dt > double(scenario::kMaxSteps)) {
+      throw ArgumentError(fmt::format("Simulation::advance: {} s is more than {} steps of dt = {} s at once", seconds,
+                                      scenario::kMaxSteps, dt));
+    }
+    ExclusiveUse use(impl.busy, "Simulation::advance");
+    impl.stepper.advanceTo(impl.system().time() + seconds);
+  });
+}
+
+double Simulation::time() const { return implOf(impl_, "time").system().time(); }
+long Simulation::steps() const { return implOf(impl_, "steps").stepper.steps(); }
+double Simulation::dt() const { return implOf(impl_, "dt").scenario.simulation.dt; }
+std::string Simulation::integrator() const {
+  return std::string(integratorName(implOf(impl_, "integrator").scenario.simulation.integrator));
+}
+
+void Simulation::setThreads(int threads) {
+  api::guardedCall("Simulation::setThreads", [&] {
+    Impl& impl = implOf(impl_, "setThreads");
+    checkThreads("Simulation::setThreads", threads);
+    ExclusiveUse use(impl.busy, "Simulation::setThreads");
+    impl.system().setThreads(threads);
+  });
+}
+int Simulation::threads() const { return implOf(impl_, "threads").system().threads(); }
+
+int Simulation::particleCount() const { return implOf(impl_, "particleCount").system().layout().numParticles; }
+int Simulation::bodyCount() const { return implOf(impl_, "bodyCount").system().layout().numBodies; }
+
+std::span<const double> Simulation::positions() const {
+  const Impl& impl = implOf(impl_, "positions");
+  return {impl.system().state().data(), 2 * size_t(impl.system().layout().numParticles)};
+}
+
+std::span<const double> Simulation::velocities() const {
+  const Impl& impl = implOf(impl_, "velocities");
+  const StateLayout& layout = impl.system().layout();
+  return {impl.system().state().data() + layout.velocityOffset(), 2 * size_t(layout.numParticles)};
+}
+
+Point Simulation::position(int particle) const {
+  const Impl& impl = implOf(impl_, "position");
+  checkIndex("position", "particle", particle, impl.system().layout().numParticles);
+  const Vec2 x = impl.system().view().pos(particle);
+  return {x.x(), x.y()};
+}
+
+Point Simulation::velocity(int particle) const {
+  const Impl& impl = implOf(impl_, "velocity");
+  checkIndex("velocity", "particle", particle, impl.system().layout().numParticles);
+  const Vec2 v = impl.system().view().vel(particle);
+  return {v.x(), v.y()};
+}
+
+BodyState Simulation::body(int body) const {
+  const Impl& impl = implOf(impl_, "body");
+  const StateLayout& layout = impl.system().layout();
+  checkIndex("body", "body", body, layout.numBodies);
+  const StateView view = impl.system().view();
+  const Vec2 x = view.pos(layout.bodyPoint(body));
+  return {x.x(), x.y(), view.angle(body), view.omega(body)};
+}
+
+std::vector<BodyState> Simulation::bodies() const {
+  return api::guardedCall("Simulation::bodies", [&] {
+    std::vector<BodyState> out;
+    out.reserve(size_t(bodyCount()));
+    for (int j = 0; j < bodyCount(); ++j) out.push_back(body(j));
+    return out;
+  });
+}
+
+Energy Simulation::energy() const {
+  return api::guardedCall("Simulation::energy", [&] {
+    const EnergyReport e = implOf(impl_, "energy").system().energy();
+    return Energy{e.kinetic, e.potential, e.total()};
+  });
+}
+
+double Simulation::constraintError() const {
+  return api::guardedCall("Simulation::constraintError", [&] {
+    const System& system = implOf(impl_, "constraintError").system();
+    return system.constraintError(system.state());
+  });
+}
+
+double Simulation::penetration() const {
+  return api::guardedCall("Simulation::penetration", [&] {
+    const System& system = implOf(impl_, "penetration").system();
+    return system.penetration(system.state());
+  });
+}
+
+std::vector<std::string> Simulation::particleNames() const {
+  return api::guardedCall("Simulation::particleNames", [&] { return implOf(impl_, "particleNames").names(false); });
+}
+
+std::vector<std::string> Simulation::bodyNames() const {
+  return api::guardedCall("Simulation::bodyNames", [&] { return implOf(impl_, "bodyNames").names(true); });
+}
+
+namespace {
+
+int indexOf(Simulation::Impl& impl, std::string_view call, std::string_view what, bool bodies,
+            std::string_view name) {
+  const std::vector<std::string>& names = impl.names(bodies);
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it != names.end()) return int(it - names.begin());
+  const std::string closest = input::closestName(name, names);
+  throw ArgumentError(fmt::format("Simulation::{}: no {} is named '{}'{} (names are spelled as in `particles run "
+                                  "--trace`: bob, cloth[3][4], #7, body#2)",
+                                  call, what, name, closest.empty() ? "" : fmt::format("; did you mean '{}'?", closest)));
+}
+
+}  // namespace
+
+int Simulation::particleIndex(std::string_view name) const {
+  return api::guardedCall("Simulation::particleIndex",
+                          [&] { return indexOf(implOf(impl_, "particleIndex"), "particleIndex", "particle", false, name); });
+}
+
+int Simulation::bodyIndex(std::string_view name) const {
+  return api::guardedCall("Simulation::bodyIndex",
+                          [&] { return indexOf(implOf(impl_, "bodyIndex"), "bodyIndex", "body", true, name); });
+}
+
+void Simulation::setPosition(int particle, Point position) {
+  api::guardedCall("Simulation::setPosition", [&] {
+    Impl& impl = implOf(impl_, "setPosition");
+    checkIndex("setPosition", "particle", particle, impl.system().layout().numParticles);
+    checkFinite("setPosition", position);
+    ExclusiveUse use(impl.busy, "Simulation::setPosition");
+    Eigen::VectorXd& y = impl.system().state();
+    y[2 * particle] = position.x;
+    y[2 * particle + 1] = position.y;
+  });
+}
+
+void Simulation::setVelocity(int particle, Point velocity) {
+  api::guardedCall("Simulation::setVelocity", [&] {
+    Impl& impl = implOf(impl_, "setVelocity");
+    const StateLayout& layout = impl.system().layout();
+    checkIndex("setVelocity", "particle", particle, layout.numParticles);
+    checkFinite("setVelocity", velocity);
+    ExclusiveUse use(impl.busy, "Simulation::setVelocity");
+    Eigen::VectorXd& y = impl.system().state();
+    y[layout.velocityOffset() + 2 * particle] = velocity.x;
+    y[layout.velocityOffset() + 2 * particle + 1] = velocity.y;
+  });
+}
+
+}  // namespace particles

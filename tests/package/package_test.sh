@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# The library as a user gets it (issue 41): `cmake --install BUILD --prefix P` into a new folder,
+# then examples/cpp built against P twice, by its CMake project (find_package(particles)) and by
+# hand with pkg-config, and run on the cloth. Checks on the way:
+#   - libparticles.so's SONAME is libparticles.so.MAJOR and it exports particles:: names alone;
+#   - the installed headers include only the standard library and each other (a consumer needs
+#     nothing but the package: the example is compiled with no other include folder);
+#   - both builds print the same, and the particle they print is the one `particles run --trace`
+#     writes at the same time, to the bit (one truth for the command line and the library).
+# usage: package_test.sh BUILD_DIR SOURCE_DIR PARTICLES_BINARY
+set -euo pipefail
+build=$1 source=$2 program=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+prefix=$work/prefix
+
+cmake --install "$build" --prefix "$prefix" >/dev/null
+library=$(find "$prefix" -name 'libparticles.so.*.*' -type f)
+[ -n "$library" ] || { echo "no libparticles.so.X.Y.Z under $prefix" >&2; exit 1; }
+libdir=$(dirname "$library")
+soname=$(readelf -d "$library" | sed -n 's/.*(SONAME).*\[\(.*\)\]/\1/p')
+case "$soname" in
+  libparticles.so.[0-9]*) ;;
+  *) echo "SONAME is '$soname', expected libparticles.so.MAJOR" >&2; exit 1 ;;
+esac
+[ -e "$libdir/$soname" ] || { echo "no $soname link next to $library" >&2; exit 1; }
+# Every symbol the library defines for others is the public API's (typeinfo and vtables included).
+exported=$(nm -D --defined-only -C "$library")
+others=$(echo "$exported" | sed 's/^[0-9a-f]* [A-Za-z] //' |
+  grep -v -E '^((typeinfo|typeinfo name|vtable) for )?particles::' | grep -v -E '^PARTICLES_0$' || true)
+if [ -n "$others" ]; then
+  echo "libparticles.so exports names outside the public API:" >&2
+  echo "$others" | head -20 >&2
+  exit 1
+fi
+# The rooms' namespaces (particles::scenario::, particles::render::, …) stay inside.
+if grep -q -E 'particles::[a-z_]+::' <<<"$exported"; then
+  echo "libparticles.so exports the rooms' names:" >&2
+  grep -E 'particles::[a-z_]+::' <<<"$exported" | head -20 >&2
+  exit 1
+fi
+for name in 'particles::Simulation::step(long)' 'particles::Scenario::load(' 'typeinfo for particles::ScenarioError'; do
+  grep -q -F "$name" <<<"$exported" || { echo "libparticles.so does not export $name" >&2; exit 1; }
+done
+# The installed headers: only <particles/…> and the standard library's.
+bad_includes=$(grep -h -E '^\s*#\s*include' "$prefix"/include/particles/*.hpp | grep -v -E '<particles/[a-z_]+\.hpp>' |
+  grep -v -E '<(memory|span|string|string_view|vector|stdexcept|utility)>' || true)
+if [ -n "$bad_includes" ]; then
+  echo "the installed headers include more than the standard library: $bad_includes" >&2
+  exit 1
+fi
+
+cd "$source"
+# find_package(particles), as examples/cpp/CMakeLists.txt does.
+cmake -S examples/cpp -B "$work/cmake-build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+cmake --build "$work/cmake-build" >/dev/null
+"$work/cmake-build/cloth_example" scenarios/cloth.yaml >"$work/cmake.out"
+
+# pkg-config, by hand. Its output is words for the compiler's command line, split where it puts spaces.
+read -r -a flags < <(PKG_CONFIG_PATH="$libdir/pkgconfig" pkg-config --cflags --libs particles)
+c++ -std=c++20 examples/cpp/main.cpp "${flags[@]}" -o "$work/pkg-config-example"
+LD_LIBRARY_PATH="$libdir" "$work/pkg-config-example" scenarios/cloth.yaml >"$work/pkg-config.out"
+cmp "$work/cmake.out" "$work/pkg-config.out" || { echo "the two builds print differently" >&2; exit 1; }
+
+# The particle printed against the command line's trace at the same time.
+"$program" run scenarios/cloth.yaml --dt 0.005 --duration 0.5 --threads 2 --quiet \
+  --trace "$work/trace.csv"
+/usr/bin/python3 - "$work/cmake.out" "$work/trace.csv" <<'PY'
+import csv, sys
+out = open(sys.argv[1], encoding="utf-8").read().splitlines()
+print("\n".join(out))
+name, rest = out[1].split(" at (", 1)
+x, y = (float(v) for v in rest.split(")")[0].split(", "))
+t = float(out[0].split(" at t = ")[1].split(" s")[0])
+rows = [r for r in csv.DictReader(open(sys.argv[2], encoding="utf-8")) if r["name"] == name]
+last = rows[-1]
+assert abs(float(last["t"]) - t) < 1e-9, (last["t"], t)
+assert (float(last["x"]), float(last["y"])) == (x, y), ("library", x, y, "particles run --trace", last["x"], last["y"])
+print(f"{name} at t = {t}: the same bits as particles run --trace")
+PY

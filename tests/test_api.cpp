@@ -1,0 +1,288 @@
+// The public C++ API (include/particles/, issue 41): what a program that embeds particles sees.
+// Every case goes through the public headers alone, as a user's program would.
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include <particles/particles.hpp>
+
+#include "cli_support.hpp"
+#include "source_tree.hpp"
+
+using namespace particles::test;
+
+namespace {
+
+std::string scenarioPath(const std::string& name) { return (kScenarios / (name + ".yaml")).string(); }
+
+// A stiff spring stepped by explicit Euler far past its stable step: it blows up within steps.
+const std::string kExplodingScenario =
+    "name: explodes\n"
+    "simulation: {integrator: euler, dt: 0.5, duration: 100}\n"
+    "particles:\n"
+    "  - {name: hook, pos: [0, 0], fixed: true}\n"
+    "  - {name: bob, pos: [1, 0]}\n"
+    "forces:\n"
+    "  - {type: spring, a: hook, b: bob, rest: 0.5, ks: 1000000}\n";
+
+// One trace row of `particles run --trace`, parsed back to the doubles it was written from.
+struct TraceRow {
+  double x, y, vx, vy, angle, omega;
+};
+
+// The last row of each name in a trace (the state at the run's end).
+std::map<std::string, TraceRow> lastRows(const std::string& csv) {
+  std::map<std::string, TraceRow> out;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream fields(line);
+    for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+    REQUIRE(cells.size() == 8);
+    auto number = [](const std::string& s) { return std::strtod(s.c_str(), nullptr); };
+    out[cells[1]] = {number(cells[2]), number(cells[3]), number(cells[4]),
+                     number(cells[5]), number(cells[6]), number(cells[7])};
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("api: a scenario loads with its settings, and set() takes --set's key paths and the shorthands") {
+  particles::Scenario cloth = particles::Scenario::load(scenarioPath("cloth"));
+  CHECK(cloth.name() == "cloth");
+  CHECK(cloth.file() == scenarioPath("cloth"));
+  CHECK(cloth.integrator() == "rk4");
+  CHECK(cloth.dt() == 0.01);
+  CHECK(cloth.particleCount() == 625);
+  CHECK(cloth.bodyCount() == 0);
+  CHECK(cloth.validate().find("ok: 'cloth'") != std::string::npos);
+
+  cloth.set("dt", 0.005).set("integrator", "midpoint").set("simulation.duration", "2");
+  CHECK(cloth.dt() == 0.005);
+  CHECK(cloth.integrator() == "midpoint");
+  CHECK(cloth.duration() == 2.0);
+  CHECK(cloth.steps() == 400);
+  // A double set reads back as the same double.
+  cloth.set("dt", 0.1 / 3.0);
+  CHECK(cloth.dt() == 0.1 / 3.0);
+
+  // A copy is its own: set() on it leaves the original.
+  particles::Scenario copy = cloth;
+  copy.set("dt", 0.002);
+  CHECK(copy.dt() == 0.002);
+  CHECK(cloth.dt() == 0.1 / 3.0);
+
+  const particles::Scenario text = particles::Scenario::fromText(kSwingScenario, "swing.yaml");
+  CHECK(text.name() == "swing");
+  CHECK(text.particleCount() == 2);
+  CHECK(text.fps() == 10.0);
+}
+
+TEST_CASE("api: a scenario that cannot be used is a ScenarioError with the file, line, column and key") {
+  SUBCASE("a missing file") {
+    try {
+      (void)particles::Scenario::load("no/such/file.yaml");
+      FAIL("no exception");
+    } catch (const particles::ScenarioError& e) {
+      CHECK(e.file() == "no/such/file.yaml");
+      CHECK(std::string(e.what()).find("no/such/file.yaml") != std::string::npos);
+    }
+  }
+  SUBCASE("a bad value in the text") {
+    try {
+      (void)particles::Scenario::fromText("name: x\nsimulation: {dt: -1}\n", "mine.yaml");
+      FAIL("no exception");
+    } catch (const particles::ScenarioError& e) {
+      CHECK(e.file() == "mine.yaml");
+      CHECK(e.line() == 2);
+      CHECK(e.column() > 0);
+      CHECK(e.keyPath() == "simulation.dt");
+      CHECK(std::string(e.what()).rfind("mine.yaml:2:", 0) == 0);
+    }
+  }
+  SUBCASE("set() with a wrong key, type or value throws, and the scenario stays as it was") {
+    particles::Scenario cloth = particles::Scenario::load(scenarioPath("cloth"));
+    const std::pair<const char*, const char*> bad[] = {
+        {"simulation.dtt", "0.1"}, {"dt", "fast"}, {"dt", "-1"}, {"integrator", "rk5"}, {"forces[99].ks", "1"}, {"", "1"}};
+    for (const auto& [path, value] : bad) {
+      CAPTURE(path);
+      CAPTURE(value);
+      CHECK_THROWS_AS(cloth.set(path, value), particles::Error);
+      CHECK(cloth.dt() == 0.01);
+      CHECK(cloth.integrator() == "rk4");
+    }
+    try {
+      cloth.set("integrator", "rk5");
+    } catch (const particles::ScenarioError& e) {
+      CHECK(e.keyPath() == "simulation.integrator");
+      CHECK(std::string(e.what()).find("rk4") != std::string::npos);  // the names it knows
+    }
+    // The scenario still steps with its own settings.
+    particles::Simulation sim(cloth);
+    sim.step(2);
+    CHECK(sim.time() == 0.02);
+  }
+}
+
+TEST_CASE("api: a bad argument is an ArgumentError naming the call and the value, never a crash") {
+  particles::Scenario swing = particles::Scenario::fromText(kSwingScenario, "swing.yaml");
+  particles::Simulation sim(swing);
+  CHECK_THROWS_WITH_AS(sim.step(-1), doctest::Contains("Simulation::step"), particles::ArgumentError);
+  CHECK_THROWS_AS(sim.step(2'000'000'000), particles::ArgumentError);
+  CHECK_THROWS_AS(sim.advance(std::nan("")), particles::ArgumentError);
+  CHECK_THROWS_AS(sim.advance(std::numeric_limits<double>::infinity()), particles::ArgumentError);
+  CHECK_THROWS_AS(sim.advance(1e300), particles::ArgumentError);
+  CHECK_THROWS_AS(sim.advance(-1.0), particles::ArgumentError);
+  CHECK_THROWS_WITH_AS((void)sim.position(2), doctest::Contains("out of range 0 to 1"), particles::ArgumentError);
+  CHECK_THROWS_AS((void)sim.velocity(-1), particles::ArgumentError);
+  CHECK_THROWS_WITH_AS((void)sim.body(0), doctest::Contains("has none"), particles::ArgumentError);
+  CHECK_THROWS_WITH_AS((void)sim.particleIndex("bobb"), doctest::Contains("did you mean 'bob'"),
+                       particles::ArgumentError);
+  CHECK_THROWS_AS((void)sim.bodyIndex("bob"), particles::ArgumentError);
+  CHECK_THROWS_AS(sim.setPosition(1, {std::nan(""), 0.0}), particles::ArgumentError);
+  CHECK_THROWS_AS(sim.setVelocity(5, {0.0, 0.0}), particles::ArgumentError);
+  CHECK_THROWS_AS(sim.setThreads(0), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::Simulation(swing, 100000), particles::ArgumentError);
+  // Nothing above changed the simulation.
+  CHECK(sim.steps() == 0);
+  CHECK(sim.time() == 0.0);
+  CHECK(sim.position(1).x == 1.0);
+
+  // A moved-from object says so.
+  particles::Simulation moved = std::move(sim);
+  CHECK_THROWS_WITH_AS(sim.step(), doctest::Contains("moved from"), particles::ArgumentError);
+  CHECK_NOTHROW(moved.step());
+  particles::Scenario taken = std::move(swing);
+  CHECK_THROWS_AS(swing.set("dt", 0.1), particles::ArgumentError);
+}
+
+TEST_CASE("api: positions and velocities are views of the state itself, which stepping updates in place") {
+  particles::Simulation sim(particles::Scenario::load(scenarioPath("cloth")));
+  const std::span<const double> x = sim.positions();
+  const std::span<const double> v = sim.velocities();
+  REQUIRE(x.size() == 2 * 625);
+  REQUIRE(v.size() == 2 * 625);
+  const double* before = x.data();
+  const int corner = sim.particleIndex("cloth[24][24]");
+  const double y0 = x[2 * size_t(corner) + 1];
+  sim.step(10);
+  CHECK(sim.positions().data() == before);  // no copy, and no new buffer after steps
+  CHECK(x[2 * size_t(corner) + 1] != y0);   // the old span sees the new state
+  CHECK(x[2 * size_t(corner)] == sim.position(corner).x);
+  CHECK(v[2 * size_t(corner) + 1] == sim.velocity(corner).y);
+
+  sim.setPosition(corner, {0.25, -0.5});
+  sim.setVelocity(corner, {1.0, 2.0});
+  CHECK(x[2 * size_t(corner)] == 0.25);
+  CHECK(v[2 * size_t(corner) + 1] == 2.0);
+  CHECK(sim.particleNames().size() == 625);
+  CHECK(sim.particleNames()[size_t(corner)] == "cloth[24][24]");
+
+  // Rigid bodies: the chain's links, as their names say.
+  particles::Simulation chain(particles::Scenario::load(scenarioPath("rigid_chain")));
+  REQUIRE(chain.bodyCount() > 0);
+  const std::vector<particles::BodyState> bodies = chain.bodies();
+  CHECK(bodies.size() == size_t(chain.bodyCount()));
+  const int link = chain.bodyIndex(chain.bodyNames()[0]);
+  CHECK(chain.body(link).x == bodies[size_t(link)].x);
+  const particles::Energy e = chain.energy();
+  CHECK(e.total == doctest::Approx(e.kinetic + e.potential));
+  CHECK(chain.constraintError() >= 0.0);
+}
+
+// Issue 41, "one truth": the API steps the command line's way. Each scenario for a short while,
+// on 1 and 2 threads, against `particles run --trace`'s last rows, every number to the bit.
+TEST_CASE("api: stepping gives the bits of particles run --trace, for the demos and the stiff cloth, on 1 and 2 threads") {
+  const std::pair<const char*, const char*> runs[] = {
+      {"cloth", "0.5"}, {"soft_body", "3"}, {"rigid_chain", "0.3"}, {"cloth_stiff", "0.5"}};
+  Scratch scratch;
+  for (const auto& [name, duration] : runs) {
+    for (int threads : {1, 2}) {
+      CAPTURE(name);
+      CAPTURE(threads);
+      const Result r = scratch.run(std::string("run ") + scenarioPath(name) + " --quiet --trace trace.csv --duration " +
+                                   duration + " --threads " + std::to_string(threads));
+      REQUIRE_MESSAGE(r.code == 0, r.err);
+      const auto rows = lastRows(slurp(scratch.dir / "trace.csv"));
+
+      particles::Scenario scenario = particles::Scenario::load(scenarioPath(name));
+      scenario.set("duration", duration);
+      particles::Simulation sim(scenario, threads);
+      sim.step(scenario.steps());
+      const std::vector<std::string> names = sim.particleNames(), bodyNames = sim.bodyNames();
+      REQUIRE(rows.size() == names.size() + bodyNames.size());
+      int mismatches = 0;
+      for (int i = 0; i < sim.particleCount(); ++i) {
+        const TraceRow& row = rows.at(names[size_t(i)]);
+        const particles::Point p = sim.position(i), u = sim.velocity(i);
+        mismatches += !(row.x == p.x && row.y == p.y && row.vx == u.x && row.vy == u.y);
+      }
+      for (int j = 0; j < sim.bodyCount(); ++j) {
+        const TraceRow& row = rows.at(bodyNames[size_t(j)]);
+        const particles::BodyState b = sim.body(j);
+        mismatches += !(row.x == b.x && row.y == b.y && row.angle == b.angle && row.omega == b.omega);
+      }
+      CHECK(mismatches == 0);
+    }
+  }
+}
+
+TEST_CASE("api: a blow-up is a SimulationError with the step, time, integrator and dt, at the last good state") {
+  particles::Simulation sim(particles::Scenario::fromText(kExplodingScenario, "explodes.yaml"));
+  try {
+    sim.advance(100.0);
+    FAIL("no exception");
+  } catch (const particles::SimulationError& e) {
+    CHECK(e.integrator() == "euler");
+    CHECK(e.dt() == 0.5);
+    CHECK(e.step() >= 1);
+    CHECK(std::string(e.what()).find("simulation exploded at step " + std::to_string(e.step())) != std::string::npos);
+  }
+  CHECK(std::isfinite(sim.position(1).x));
+  CHECK(sim.time() < 100.0);
+}
+
+TEST_CASE("api: a Simulation driven by two threads at once refuses the second's call") {
+  particles::Simulation sim(particles::Scenario::load(scenarioPath("cloth")));
+  std::atomic<bool> stepping{false}, done{false};
+  int refused = 0;
+  std::thread worker([&] {
+    stepping = true;
+    for (;;) {  // the other thread's call may come first: then this one is refused, and tries again
+      try {
+        sim.step(400);  // long enough for the other thread to try
+        break;
+      } catch (const particles::Error&) {
+      }
+    }
+    done = true;
+  });
+  while (!stepping) std::this_thread::yield();
+  while (!done && refused == 0) {
+    try {
+      sim.step(0);
+    } catch (const particles::Error& e) {
+      CHECK(std::string(e.what()).find("in use by another thread") != std::string::npos);
+      ++refused;
+    }
+  }
+  worker.join();
+  CHECK(refused == 1);
+  CHECK(sim.steps() == 400);
+}
+
+TEST_CASE("api: version() is the headers' version") {
+  CHECK(std::string(particles::version()) == PARTICLES_VERSION_STRING);
+  CHECK(std::string(PARTICLES_VERSION_STRING) == std::to_string(PARTICLES_VERSION_MAJOR) + "." +
+                                                      std::to_string(PARTICLES_VERSION_MINOR) + "." +
+                                                      std::to_string(PARTICLES_VERSION_PATCH));
+}
