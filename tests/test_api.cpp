@@ -1,5 +1,6 @@
 // The public C++ API (include/particles/, issue 41): what a program that embeds particles sees.
-// Every case goes through the public headers alone, as a user's program would.
+// Every case calls the public headers alone, as a user's program would; reading a PNG back to
+// compare it uses the renderer's reader.
 #include <doctest/doctest.h>
 
 #include <atomic>
@@ -13,6 +14,7 @@
 #include <particles/particles.hpp>
 
 #include "cli_support.hpp"
+#include "render/png_io.hpp"
 #include "source_tree.hpp"
 
 using namespace particles::test;
@@ -285,4 +287,57 @@ TEST_CASE("api: version() is the headers' version") {
   CHECK(std::string(PARTICLES_VERSION_STRING) == std::to_string(PARTICLES_VERSION_MAJOR) + "." +
                                                       std::to_string(PARTICLES_VERSION_MINOR) + "." +
                                                       std::to_string(PARTICLES_VERSION_PATCH));
+}
+
+// Issue 41, "one truth": a frame drawn through the API is the frame `particles render --at` writes,
+// byte for byte, for the three demos at a time each, in the golden checks' size.
+TEST_CASE("api: render() draws the pixels of particles render --at, and Image::savePng writes them") {
+  const std::pair<const char*, const char*> frames[] = {{"cloth", "1.5"}, {"soft_body", "12"}, {"rigid_chain", "1"}};
+  Scratch scratch;
+  particles::Renderer renderer({.width = 320, .height = 180, .theme = "light", .msaa = 4});
+  for (const auto& [name, time] : frames) {
+    CAPTURE(name);
+    const Result r = scratch.run(std::string("render ") + scenarioPath(name) + " -o cli.png --size 320x180 --theme light " +
+                                 "--msaa 4 --quiet --at " + time);
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    const particles::render::Image expected = particles::render::readPng(scratch.dir / "cli.png");
+
+    particles::Simulation sim(particles::Scenario::load(scenarioPath(name)));
+    sim.advance(std::strtod(time, nullptr));
+    const particles::Image frame = renderer.render(sim);
+    REQUIRE(frame.width == 320);
+    REQUIRE(frame.height == 180);
+    CHECK(frame.rgba == expected.rgba);
+
+    frame.savePng((scratch.dir / "api.png").string());
+    CHECK(particles::render::readPng(scratch.dir / "api.png").rgba == expected.rgba);
+  }
+  CHECK(renderer.glDescription().find("llvmpipe") != std::string::npos);
+
+  // Without a size, the scenario's own.
+  particles::Renderer bySceneSize({.msaa = 1});
+  particles::Simulation swing(particles::Scenario::fromText(kSwingScenario, "swing.yaml"));
+  const particles::Image small = bySceneSize.render(swing);
+  CHECK(small.width == 160);
+  CHECK(small.height == 120);
+  CHECK(small.rgba.size() == size_t(160 * 120 * 4));
+}
+
+TEST_CASE("api: bad render settings and images are ArgumentErrors naming what each takes") {
+  CHECK_THROWS_WITH_AS(particles::Renderer({.theme = "sepia"}), doctest::Contains("dark or light"),
+                       particles::ArgumentError);
+  CHECK_THROWS_WITH_AS(particles::Renderer({.msaa = 3}), doctest::Contains("msaa"), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::Renderer({.width = 320}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::Renderer({.width = -5, .height = 10}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::Renderer({.width = 100000, .height = 10}), particles::Error);
+  CHECK_THROWS_AS(particles::Renderer({.raster = "dots"}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::Renderer({.gl = "vulkan"}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::Renderer({.background = "none"}), particles::ArgumentError);
+
+  Scratch scratch;
+  particles::Image wrong{4, 4, std::vector<std::uint8_t>(10)};
+  CHECK_THROWS_AS(wrong.savePng((scratch.dir / "x.png").string()), particles::ArgumentError);
+  particles::Image fine{2, 2, std::vector<std::uint8_t>(16, 200)};
+  CHECK_THROWS_AS(fine.savePng((scratch.dir / "no" / "such" / "x.png").string()), particles::OutputError);
+  CHECK(scratch.files().empty());  // nothing half-written
 }

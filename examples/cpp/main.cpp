@@ -1,6 +1,8 @@
-// Loads a scenario (the cloth by default), steps it for half a simulated second and prints a
-// particle, its energy and the library's version: the smallest program built against an installed
-// particles (CMakeLists.txt here; or `c++ -std=c++20 main.cpp $(pkg-config --cflags --libs particles)`).
+// Loads a scenario (the cloth by default), steps it for half a simulated second, prints a particle,
+// its energy and the library's version, and saves the frame as a PNG when given a path: the
+// smallest program built against an installed particles (CMakeLists.txt here; or
+// `c++ -std=c++20 main.cpp $(pkg-config --cflags --libs particles)`).
+//   cloth_example [SCENARIO [FRAME.png]]
 #include <cstdio>
 #include <string>
 
@@ -19,6 +21,12 @@ int main(int argc, char** argv) {
     std::printf("particles %s: '%s' at t = %.3f s after %ld steps of %s\n", particles::version(), cloth.name().c_str(),
                 sim.time(), sim.steps(), sim.integrator().c_str());
     std::printf("%s at (%.17g, %.17g); energy %.6g J\n", sim.particleNames().back().c_str(), p.x, p.y, e.total);
+    if (argc > 2) {
+      particles::Renderer renderer({.width = 640, .height = 360});
+      const particles::Image frame = renderer.render(sim);
+      frame.savePng(argv[2]);
+      std::printf("frame %dx%d saved to %s\n", frame.width, frame.height, argv[2]);
+    }
     return 0;
   } catch (const particles::ScenarioError& e) {
     std::fprintf(stderr, "%s\n", e.what());  // FILE:LINE:COLUMN: error: KEY: why

@@ -101,6 +101,7 @@ class PARTICLES_API Simulation {
 
  private:
   std::unique_ptr<Impl> impl_;
+  friend class Renderer;  // draws the state
 };
 
 }  // namespace particles

@@ -5,7 +5,7 @@
 #   - libparticles.so's SONAME is libparticles.so.MAJOR and it exports particles:: names alone;
 #   - the installed headers include only the standard library and each other (a consumer needs
 #     nothing but the package: the example is compiled with no other include folder);
-#   - both builds print the same, and the particle they print is the one `particles run --trace`
+#   - both builds print the same and save the same frame (a PNG), and the particle they print is the one `particles run --trace`
 #     writes at the same time, to the bit (one truth for the command line and the library).
 # usage: package_test.sh BUILD_DIR SOURCE_DIR PARTICLES_BINARY
 set -euo pipefail
@@ -44,7 +44,7 @@ for name in 'particles::Simulation::step(long)' 'particles::Scenario::load(' 'ty
 done
 # The installed headers: only <particles/…> and the standard library's.
 bad_includes=$(grep -h -E '^\s*#\s*include' "$prefix"/include/particles/*.hpp | grep -v -E '<particles/[a-z_]+\.hpp>' |
-  grep -v -E '<(memory|span|string|string_view|vector|stdexcept|utility)>' || true)
+  grep -v -E '<(cstdint|memory|span|string|string_view|vector|stdexcept|utility)>' || true)
 if [ -n "$bad_includes" ]; then
   echo "the installed headers include more than the standard library: $bad_includes" >&2
   exit 1
@@ -54,13 +54,17 @@ cd "$source"
 # find_package(particles), as examples/cpp/CMakeLists.txt does.
 cmake -S examples/cpp -B "$work/cmake-build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
 cmake --build "$work/cmake-build" >/dev/null
-"$work/cmake-build/cloth_example" scenarios/cloth.yaml >"$work/cmake.out"
+"$work/cmake-build/cloth_example" scenarios/cloth.yaml "$work/cmake.png" >"$work/cmake.out"
 
 # pkg-config, by hand. Its output is words for the compiler's command line, split where it puts spaces.
 read -r -a flags < <(PKG_CONFIG_PATH="$libdir/pkgconfig" pkg-config --cflags --libs particles)
 c++ -std=c++20 examples/cpp/main.cpp "${flags[@]}" -o "$work/pkg-config-example"
-LD_LIBRARY_PATH="$libdir" "$work/pkg-config-example" scenarios/cloth.yaml >"$work/pkg-config.out"
+LD_LIBRARY_PATH="$libdir" "$work/pkg-config-example" scenarios/cloth.yaml "$work/pkg-config.png" >"$work/pkg-config.out"
+sed -i 's|saved to .*|saved|' "$work/cmake.out" "$work/pkg-config.out"
 cmp "$work/cmake.out" "$work/pkg-config.out" || { echo "the two builds print differently" >&2; exit 1; }
+cmp "$work/cmake.png" "$work/pkg-config.png" || { echo "the two builds save different frames" >&2; exit 1; }
+[ "$(head -c 8 "$work/cmake.png" | od -An -tx1 | tr -d ' \n')" = 89504e470d0a1a0a ] ||
+  { echo "the example's frame is not a PNG" >&2; exit 1; }
 
 # The particle printed against the command line's trace at the same time.
 "$program" run scenarios/cloth.yaml --dt 0.005 --duration 0.5 --threads 2 --quiet \

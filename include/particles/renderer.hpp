@@ -1,0 +1,65 @@
+#pragma once
+// Draws a simulation's current state off screen (no display, no GPU unless asked), as
+// `particles render --at` draws a frame: the same options, the same pixels.
+//
+//   particles::Renderer renderer({.width = 640, .height = 360, .theme = "light"});
+//   particles::Image frame = renderer.render(sim);    // RGBA, row by row from the top
+//   frame.savePng("cloth.png");                        // written whole or not at all
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <particles/export.hpp>
+
+namespace particles {
+
+class Simulation;
+
+// An RGBA image, 8 bits a channel, rows from the top, no padding: width × height × 4 bytes.
+struct PARTICLES_API Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba;
+
+  // Writes it as a PNG (with its alpha channel when `alpha`), under a temporary name renamed into
+  // place: the file is whole or absent. Throws OutputError naming the path.
+  void savePng(const std::string& path, bool alpha = false) const;
+};
+
+// The options of `particles render` that set a frame's look; the names are the command line's.
+struct RenderSettings {
+  int width = 0, height = 0;         // px; 0 and 0: the scenario's render.size
+  std::string theme = "dark";        // dark or light
+  int msaa = 4;                      // samples per pixel: 1 (off), 2, 4, 8 or 16
+  std::string background = "theme";  // theme, or transparent (alpha = coverage)
+  std::string raster = "auto";       // auto, triangles or tiles
+  std::string gl = "auto";           // the GL backend: auto (EGL, else OSMesa), egl or osmesa
+  bool gpu = false;                  // a hardware EGL device instead of llvmpipe
+};
+
+class PARTICLES_API Renderer {
+ public:
+  // Checks the settings (ArgumentError naming the option and what it takes); the GL context is
+  // made at the first render(), and again when the frame size changes.
+  explicit Renderer(const RenderSettings& settings = {});
+  Renderer(Renderer&& other) noexcept;
+  Renderer& operator=(Renderer&& other) noexcept;
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+  ~Renderer();
+
+  // The simulation's state now, seen through its scenario's view. Throws Error when the GL context
+  // cannot be made (naming the failing call).
+  Image render(const Simulation& simulation);
+  // What draws the frames, once one was drawn: "egl, software device: llvmpipe (…), OpenGL 4.5 …".
+  std::string glDescription() const;
+
+  struct Impl;  // the library's own, opaque here
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace particles

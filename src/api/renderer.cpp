@@ -1,0 +1,107 @@
+// particles::Renderer and particles::Image: see include/particles/renderer.hpp.
+#include <particles/renderer.hpp>
+
+#include <fmt/format.h>
+
+#include <optional>
+
+#include "api/guarded_call.hpp"
+#include "api/simulation_impl.hpp"
+#include "render/gl_backend.hpp"
+#include "render/png_io.hpp"
+#include "render/renderer.hpp"
+
+namespace particles {
+
+namespace {
+
+// Sets one look option through the command line's own row (render/render_options.hpp), so that a
+// setting means here what it means to `particles render`.
+void readLook(render::RenderOptions& look, std::string_view flag, std::string_view setting, const std::string& text) {
+  const render::LookOption& row = render::lookOption(flag);
+  if (!row.read(text, look)) {
+    throw ArgumentError(fmt::format("Renderer: {} (as {}) takes {}, not '{}'", setting, flag, row.expected, text));
+  }
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  render::RenderOptions look;  // the size is set per frame
+  bool sizeGiven = false;
+  render::GlRequest gl;
+  std::optional<render::Renderer> renderer;  // made at the first frame, again for a new size
+};
+
+Renderer::Renderer(const RenderSettings& settings) {
+  impl_ = api::guardedCall("Renderer", [&] {
+    auto impl = std::make_unique<Impl>();
+    if ((settings.width == 0) != (settings.height == 0)) {
+      throw ArgumentError(fmt::format("Renderer: give both width and height, or neither (the scenario's size); got {}x{}",
+                                      settings.width, settings.height));
+    }
+    impl->sizeGiven = settings.width != 0;
+    if (impl->sizeGiven) readLook(impl->look, "--size", "width and height", fmt::format("{}x{}", settings.width, settings.height));
+    readLook(impl->look, "--msaa", "msaa", fmt::format("{}", settings.msaa));
+    readLook(impl->look, "--theme", "theme", settings.theme);
+    readLook(impl->look, "--background", "background", settings.background);
+    readLook(impl->look, "--raster", "raster", settings.raster);
+    const std::optional<render::GlBackend> backend = render::glBackendFromName(settings.gl);
+    if (!backend) {
+      throw ArgumentError(fmt::format("Renderer: gl takes {}, not '{}'", fmt::join(render::glBackendNames(), ", "),
+                                      settings.gl));
+    }
+    render::validate(impl->look);  // the size's range, as well as the rest
+    impl->gl.backend = *backend;
+    impl->gl.gpu = settings.gpu;
+    render::validate(impl->gl);
+    return impl;
+  });
+}
+Renderer::Renderer(Renderer&& other) noexcept = default;
+Renderer& Renderer::operator=(Renderer&& other) noexcept = default;
+Renderer::~Renderer() = default;
+
+Image Renderer::render(const Simulation& simulation) {
+  return api::guardedCall("Renderer::render", [&] {
+    if (!impl_) throw ArgumentError("Renderer::render: this Renderer was moved from");
+    if (!simulation.impl_) throw ArgumentError("Renderer::render: the Simulation was moved from");
+    Simulation::Impl& sim = *simulation.impl_;
+    ExclusiveUse use(sim.busy, "Renderer::render");
+    const scenario::RenderSettings& view = sim.scenario.render;
+    if (!impl_->sizeGiven) {
+      impl_->look.width = view.width;
+      impl_->look.height = view.height;
+    }
+    if (!impl_->renderer || impl_->renderer->options().width != impl_->look.width ||
+        impl_->renderer->options().height != impl_->look.height) {
+      impl_->renderer.reset();
+      render::validate(impl_->look);
+      impl_->renderer.emplace(impl_->look, impl_->gl);
+    }
+    const render::Image& frame =
+        impl_->renderer->render(sim.system().draw(), render::Camera{view.viewCenter, view.viewHeight});
+    return Image{frame.width, frame.height, frame.rgba};
+  });
+}
+
+std::string Renderer::glDescription() const {
+  if (!impl_ || !impl_->renderer) return {};
+  return render::describe(impl_->renderer->gl());
+}
+
+void Image::savePng(const std::string& path, bool alpha) const {
+  api::guardedCall("Image::savePng", [&] {
+    if (width < 1 || height < 1 || rgba.size() != size_t(width) * size_t(height) * 4) {
+      throw ArgumentError(fmt::format("Image::savePng: a {}x{} image needs {} bytes of RGBA, it has {}", width, height,
+                                      size_t(std::max(width, 0)) * size_t(std::max(height, 0)) * 4, rgba.size()));
+    }
+    render::Image image(width, height);
+    image.rgba = rgba;
+    render::PngOptions png;
+    png.alpha = alpha;
+    render::writePng(path, image, png);
+  });
+}
+
+}  // namespace particles

@@ -1,0 +1,67 @@
+#pragma once
+// What a particles::Simulation holds (include/particles/simulation.hpp): its own loaded scenario
+// (the System it steps), the stepper, and the names of --trace. Shared by simulation.cpp and
+// renderer.cpp.
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <particles/errors.hpp>
+#include <particles/simulation.hpp>
+
+#include "core/solver.hpp"
+#include "scenario/scenario.hpp"
+
+namespace particles {
+
+struct Simulation::Impl {
+  scenario::Scenario scenario;
+  Stepper stepper;
+  std::atomic<bool> busy{false};
+  // The names of --trace, made on first use (a million-particle cloth has a million of them).
+  std::optional<std::vector<std::string>> particleNames, bodyNames;
+
+  explicit Impl(scenario::Scenario loaded)
+      : scenario(std::move(loaded)),
+        stepper(scenario.system, scenario.simulation.integrator, scenario.simulation.dt) {}
+
+  System& system() { return scenario.system; }
+  const System& system() const { return scenario.system; }
+
+  const std::vector<std::string>& names(bool bodies) {
+    auto& cache = bodies ? bodyNames : particleNames;
+    if (!cache) {
+      const Model& model = system().model();
+      const int first = bodies ? model.layout.numParticles : 0;
+      const int count = bodies ? model.layout.numBodies : model.layout.numParticles;
+      cache.emplace();
+      cache->reserve(size_t(count));
+      for (int p = first; p < first + count; ++p) cache->push_back(scenario::pointName(model, p));
+    }
+    return *cache;
+  }
+};
+
+// Refuses a second thread's call while one is under way (include/particles/simulation.hpp).
+class ExclusiveUse {
+ public:
+  ExclusiveUse(std::atomic<bool>& busy, std::string_view call) : busy_(busy) {
+    if (busy_.exchange(true)) {
+      throw Error(fmt::format("{}: this Simulation is in use by another thread's call; a Simulation is driven by "
+                              "one thread at a time",
+                              call));
+    }
+  }
+  ~ExclusiveUse() { busy_.store(false); }
+  ExclusiveUse(const ExclusiveUse&) = delete;
+  ExclusiveUse& operator=(const ExclusiveUse&) = delete;
+
+ private:
+  std::atomic<bool>& busy_;
+};
+
+}  // namespace particles
