@@ -3,6 +3,7 @@
 // compare it uses the renderer's reader.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
@@ -15,6 +16,7 @@
 
 #include "cli_support.hpp"
 #include "render/png_io.hpp"
+#include "support/video_probe.hpp"
 #include "source_tree.hpp"
 
 using namespace particles::test;
@@ -340,4 +342,65 @@ TEST_CASE("api: bad render settings and images are ArgumentErrors naming what ea
   particles::Image fine{2, 2, std::vector<std::uint8_t>(16, 200)};
   CHECK_THROWS_AS(fine.savePng((scratch.dir / "no" / "such" / "x.png").string()), particles::OutputError);
   CHECK(scratch.files().empty());  // nothing half-written
+}
+
+TEST_CASE("api: VideoWriter writes MP4, WebM and GIF from frames, whole or not at all") {
+  Scratch scratch;
+  particles::Simulation sim(particles::Scenario::load(scenarioPath("cloth")));
+  particles::Renderer renderer({.width = 160, .height = 90, .msaa = 1});
+  for (const char* name : {"cloth.mp4", "cloth.webm", "cloth.gif"}) {
+    CAPTURE(name);
+    const fs::path path = scratch.dir / name;
+    particles::VideoWriter video(path.string(), {.fps = 10});
+    for (int i = 0; i < 5; ++i) {
+      video.write(renderer.render(sim));
+      sim.advance(0.1);
+    }
+    CHECK(video.frames() == 5);
+    CHECK_FALSE(fs::exists(path));  // under a temporary name until finish()
+    video.finish();
+    const particles::test::VideoInfo info = particles::test::probeVideo(path);
+    CHECK(info.frames == 5);
+    CHECK(info.width == 160);
+    CHECK(info.height == 90);
+  }
+  // Destroyed or aborted before finish(): nothing left, and an existing file untouched.
+  const fs::path kept = scratch.write("kept.mp4", "an earlier video");
+  {
+    particles::VideoWriter video(kept.string(), {.fps = 10});
+    video.write(renderer.render(sim));
+  }
+  CHECK(slurp(kept) == "an earlier video");
+  {
+    particles::VideoWriter video((scratch.dir / "aborted.mp4").string());
+    video.write(renderer.render(sim));
+    video.abort();
+  }
+  CHECK_FALSE(fs::exists(scratch.dir / "aborted.mp4"));
+  std::vector<std::string> files = scratch.files();
+  std::sort(files.begin(), files.end());
+  CHECK(files == std::vector<std::string>{"cloth.gif", "cloth.mp4", "cloth.webm", "kept.mp4"});
+}
+
+TEST_CASE("api: a bad video path, setting or frame is an ArgumentError") {
+  Scratch scratch;
+  const std::string mp4 = (scratch.dir / "v.mp4").string();
+  CHECK_THROWS_AS(particles::VideoWriter((scratch.dir / "v.avi").string()), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::VideoWriter((scratch.dir / "v.png").string()), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::VideoWriter(mp4, {.fps = 0}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::VideoWriter(mp4, {.crf = 99}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::VideoWriter(mp4, {.preset = "warp"}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::VideoWriter(mp4, {.keyintSeconds = std::nan("")}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::VideoWriter(mp4, {.alpha = true}), particles::ArgumentError);
+
+  particles::VideoWriter video(mp4, {.fps = 10});
+  CHECK_THROWS_AS(video.finish(), particles::ArgumentError);  // no frame yet
+  CHECK_THROWS_AS(video.write(particles::Image{4, 4, std::vector<std::uint8_t>(3)}), particles::ArgumentError);
+  CHECK_THROWS_AS(video.write(particles::Image{5, 4, std::vector<std::uint8_t>(80)}), particles::ArgumentError);  // odd side
+  video.write(particles::Image{4, 4, std::vector<std::uint8_t>(64, 100)});
+  CHECK_THROWS_WITH_AS(video.write(particles::Image{8, 4, std::vector<std::uint8_t>(128, 100)}),
+                       doctest::Contains("like the first"), particles::ArgumentError);
+  video.finish();
+  CHECK(fs::exists(mp4));
+  CHECK_THROWS_AS(video.write(particles::Image{4, 4, std::vector<std::uint8_t>(64, 100)}), particles::ArgumentError);
 }

@@ -5,3 +5,4 @@
 #include <particles/scenario.hpp>
 #include <particles/simulation.hpp>
 #include <particles/version.hpp>
+#include <particles/video_writer.hpp>

@@ -1,0 +1,57 @@
+#pragma once
+// Frames to a video: MP4 (H.264), WebM (VP9) or GIF, by the path's extension, written as
+// `particles render -o` writes them: under a temporary name, moved into place by finish(). A
+// writer destroyed, or stopped by abort(), before finish() leaves nothing, and an existing file of
+// that name untouched.
+//
+//   particles::VideoWriter video("cloth.mp4", {.fps = 30});
+//   for (int i = 0; i < 60; ++i) { sim.advance(1.0 / 30); video.write(renderer.render(sim)); }
+//   video.finish();
+
+#include <memory>
+#include <string>
+
+#include <particles/export.hpp>
+#include <particles/renderer.hpp>
+
+namespace particles {
+
+struct VideoSettings {
+  int fps = 60;                  // frames per second of the video, 1 to 1000
+  int crf = -1;                  // quality (the encoder's constant rate factor); −1: the format's default
+  std::string preset = "medium"; // MP4's x264 preset: ultrafast … placebo
+  double keyintSeconds = 2.0;    // the longest time between keyframes, s
+  bool alpha = false;            // keep the frames' alpha (WebM only): frames drawn over a transparent background
+  // The encoders' own report on stderr (x264's settings and statistics). libav's log level is the
+  // process's: a writer made with `verbose` turns it on for every writer, and one without off.
+  bool verbose = false;
+};
+
+class PARTICLES_API VideoWriter {
+ public:
+  // Checks the path's format and the settings (ArgumentError naming what is wrong); the file is
+  // opened at the first frame, whose size every frame must then have (MP4 and WebM: even sides).
+  VideoWriter(const std::string& path, const VideoSettings& settings = {});
+  VideoWriter(VideoWriter&& other) noexcept;
+  VideoWriter& operator=(VideoWriter&& other) noexcept;
+  VideoWriter(const VideoWriter&) = delete;
+  VideoWriter& operator=(const VideoWriter&) = delete;
+  // Without finish(): as abort().
+  ~VideoWriter();
+
+  // Queues one frame for the encoder (copied). Throws ArgumentError for a frame of another size or
+  // malformed, OutputError when the file cannot be written (the writer is then aborted).
+  void write(const Image& frame);
+  // Encodes what is queued and moves the video into place. Throws OutputError.
+  void finish();
+  // Stops and removes everything written so far. Never throws; does nothing after finish().
+  void abort() noexcept;
+  long frames() const;  // frames written so far
+
+  struct Impl;  // the library's own, opaque here
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace particles

@@ -1,0 +1,110 @@
+// particles::VideoWriter: see include/particles/video_writer.hpp. The render command's writers
+// (render/frame_writer.hpp), opened at the first frame with its size.
+#include <particles/video_writer.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "api/guarded_call.hpp"
+#include "render/frame_writer.hpp"
+#include "render/output_formats.hpp"
+
+namespace particles {
+
+struct VideoWriter::Impl {
+  std::string path;
+  render::FrameWriterOptions options;  // the size is the first frame's
+  std::unique_ptr<render::FrameWriter> writer;
+  bool finished = false;
+};
+
+VideoWriter::VideoWriter(const std::string& path, const VideoSettings& settings) {
+  impl_ = api::guardedCall("VideoWriter", [&] {
+    const render::OutputFormat& format = render::outputFormatOf(path);
+    if (format.oneFrameAt || format.kind == render::OutputKind::pngSequence) {
+      throw ArgumentError(fmt::format("VideoWriter: {} is not a video: give a .mp4, .webm or .gif path "
+                                      "(one frame: Image::savePng)",
+                                      path));
+    }
+    if (settings.fps < render::kMinFps || settings.fps > render::kMaxFps) {
+      throw ArgumentError(fmt::format("VideoWriter: fps must be {} to {}, got {}", render::kMinFps, render::kMaxFps,
+                                      settings.fps));
+    }
+    if (!render::isX264Preset(settings.preset)) {
+      throw ArgumentError(fmt::format("VideoWriter: preset must be one of {}, not '{}'",
+                                      fmt::join(render::kX264Presets, ", "), settings.preset));
+    }
+    if (!(settings.keyintSeconds > 0.0 && settings.keyintSeconds <= render::kMaxKeyintSeconds)) {
+      throw ArgumentError(fmt::format("VideoWriter: keyintSeconds must be above 0 and at most {}, got {}",
+                                      render::kMaxKeyintSeconds, settings.keyintSeconds));
+    }
+    if (settings.alpha && !format.keepsAlpha) {
+      throw ArgumentError(fmt::format("VideoWriter: {} cannot keep alpha: {}", format.name, format.alphaNote));
+    }
+    if (settings.crf != -1) {
+      if (!format.crf || settings.crf < format.crf->lowest || settings.crf > format.crf->highest) {
+        throw ArgumentError(format.crf ? fmt::format("VideoWriter: crf for {} must be {} to {} (or −1, the default {}), "
+                                                     "got {}",
+                                                     format.name, format.crf->lowest, format.crf->highest,
+                                                     format.crf->byDefault, settings.crf)
+                                       : fmt::format("VideoWriter: {} has no quality setting: leave crf at −1",
+                                                     format.name));
+      }
+    }
+    render::setLibavVerbose(settings.verbose);
+    auto impl = std::make_unique<Impl>();
+    impl->path = path;
+    impl->options.video.fps = settings.fps;
+    if (settings.crf != -1) impl->options.video.crf = settings.crf;
+    impl->options.video.preset = settings.preset;
+    impl->options.video.keyintSeconds = settings.keyintSeconds;
+    impl->options.alpha = settings.alpha;
+    return impl;
+  });
+}
+VideoWriter::VideoWriter(VideoWriter&& other) noexcept = default;
+VideoWriter& VideoWriter::operator=(VideoWriter&& other) noexcept = default;
+VideoWriter::~VideoWriter() = default;  // an unfinished FrameWriter removes what it wrote
+
+void VideoWriter::write(const Image& frame) {
+  api::guardedCall("VideoWriter::write", [&] {
+    if (!impl_) throw ArgumentError("VideoWriter::write: this VideoWriter was moved from");
+    if (impl_->finished) throw ArgumentError("VideoWriter::write: the video is finished");
+    if (frame.width < 1 || frame.height < 1 || frame.rgba.size() != size_t(frame.width) * size_t(frame.height) * 4) {
+      throw ArgumentError(fmt::format("VideoWriter::write: a {}x{} frame needs {} bytes of RGBA, it has {}",
+                                      frame.width, frame.height,
+                                      size_t(std::max(frame.width, 0)) * size_t(std::max(frame.height, 0)) * 4,
+                                      frame.rgba.size()));
+    }
+    if (!impl_->writer) {
+      impl_->options.width = frame.width;
+      impl_->options.height = frame.height;
+      impl_->writer = render::openFrameWriter(impl_->path, impl_->options);
+    } else if (frame.width != impl_->options.width || frame.height != impl_->options.height) {
+      throw ArgumentError(fmt::format("VideoWriter::write: every frame must be {}x{} like the first, this one is {}x{}",
+                                      impl_->options.width, impl_->options.height, frame.width, frame.height));
+    }
+    render::Image image(frame.width, frame.height);
+    image.rgba = frame.rgba;
+    impl_->writer->write(image);
+  });
+}
+
+void VideoWriter::finish() {
+  api::guardedCall("VideoWriter::finish", [&] {
+    if (!impl_) throw ArgumentError("VideoWriter::finish: this VideoWriter was moved from");
+    if (impl_->finished) return;
+    if (!impl_->writer) throw ArgumentError(fmt::format("VideoWriter::finish: no frame was written to {}", impl_->path));
+    impl_->writer->finish();
+    impl_->finished = true;
+  });
+}
+
+void VideoWriter::abort() noexcept {
+  if (impl_ && impl_->writer && !impl_->finished) impl_->writer->abort();
+}
+
+long VideoWriter::frames() const { return impl_ && impl_->writer ? impl_->writer->framesWritten() : 0; }
+
+}  // namespace particles
