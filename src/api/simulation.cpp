@@ -10,15 +10,13 @@
 #include "api/scenario_impl.hpp"
 #include "api/simulation_impl.hpp"
 #include "core/solver.hpp"
+#include "core/worker_pool.hpp"
 #include "input/closest_name.hpp"
 #include "scenario/runner.hpp"
 
 namespace particles {
 
 namespace {
-
-// The thread counts setThreads accepts: the command line's --threads range.
-constexpr int kMaxThreads = 1024;
 
 void checkThreads(std::string_view call, int threads) {
   if (threads < 1 || threads > kMaxThreads) {

@@ -54,6 +54,10 @@
 
 namespace particles {
 
+// The most threads a simulation may be given: the command line's --threads and PARTICLES_THREADS,
+// the library's Simulation(…, threads) and setThreads.
+inline constexpr int kMaxThreads = 1024;
+
 class WorkerPool;
 
 namespace detail {
