@@ -204,15 +204,16 @@ class OwnedContext {
     }
   }
 
- private:
-  EGLDisplay display_;
-  EGLContext context_ = EGL_NO_CONTEXT;
-
+  // Unbinds the context if it is this thread's.
   void release() {
     if (eglGetCurrentContext() == context_) {
       eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     }
   }
+
+ private:
+  EGLDisplay display_;
+  EGLContext context_ = EGL_NO_CONTEXT;
 };
 
 // The frame is drawn upside down into a framebuffer object (flipsY), the row order in which Mesa
@@ -229,6 +230,7 @@ constexpr std::size_t kReadStripBytes = std::size_t(32) << 20;
 class EglContext final : public GlContext {
  public:
   EglContext(bool gpu, int width, int height);
+  void releaseFromThread() override { context_->release(); }
 
  private:
   std::unique_ptr<OwnedContext> context_;

@@ -57,6 +57,9 @@ class GlContext {
   // Waits until GL has drawn everything and returns the image. Throws RenderError if GL reported an
   // error since beginFrame.
   const Image& finishFrame();
+  // Unbinds the context from this thread, where a backend binds a context to one thread at a time
+  // (EGL): another thread may then draw with it. Between frames only.
+  virtual void releaseFromThread() {}
 
  protected:
   // The backend calls reserveFrame first, then makes its context current, calls loadFunctions and

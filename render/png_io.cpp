@@ -6,10 +6,12 @@
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <new>
 #include <span>
 #include <string>
 #include <vector>
@@ -236,6 +238,22 @@ void writePngDirect(const std::filesystem::path& path, const Image& image, const
   FilePtr file(std::fopen(path.c_str(), "wb"));
   if (!file) throw OutputError("cannot open " + path.string() + " for writing: " + std::strerror(errno));
   writePngStream(std::move(file), path, image, options);
+}
+
+std::vector<std::uint8_t> encodePng(const Image& image, const PngOptions& options) {
+  validatePngInput(image, options);
+  // open_memstream grows its buffer as libpng writes and sets buffer and size at fclose; the
+  // buffer is freed after the stream is closed, on failure too (declared before it).
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  const std::unique_ptr<char*, void (*)(char**)> freeBuffer(&buffer, [](char** b) { std::free(*b); });
+  FilePtr file(open_memstream(&buffer, &size));
+  if (!file) {
+    if (errno == ENOMEM) throw std::bad_alloc();
+    throw OutputError(std::string("open_memstream failed: ") + std::strerror(errno));
+  }
+  writePngStream(std::move(file), "the PNG in memory", image, options);
+  return std::vector<std::uint8_t>(buffer, buffer + size);
 }
 
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options) {

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "render/image.hpp"
 
@@ -27,6 +28,10 @@ struct PngOptions {
 // an existing one is replaced only then, a device or FIFO is written in place, a directory is
 // refused. Throws OutputError naming the failing call; no file is left on failure.
 void writePng(const std::filesystem::path& path, const Image& image, const PngOptions& options = {});
+
+// The PNG file's bytes, in memory (a notebook's inline image, a web server's reply). Throws
+// OutputError when libpng fails, std::bad_alloc when the memory runs out.
+std::vector<std::uint8_t> encodePng(const Image& image, const PngOptions& options = {});
 
 // Writes to exactly `path`, no temporary name (for writers that manage their own temporaries).
 void writePngDirect(const std::filesystem::path& path, const Image& image, const PngOptions& options);

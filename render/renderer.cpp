@@ -61,6 +61,8 @@ const RenderOptions& Renderer::options() const {
 int Renderer::samples() const {
   return impl_->options.msaa;
 }
+void Renderer::releaseFromThread() { impl_->context->releaseFromThread(); }
+
 const GlInfo& Renderer::gl() const {
   return impl_->context->info();
 }

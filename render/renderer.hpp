@@ -46,6 +46,8 @@ class Renderer {
   // Draws the frame. The image is owned by the renderer and valid until the next call.
   // Throws RenderError if GL reports an error.
   const Image& render(const Drawing& frame, const Camera& camera);
+  // Lets another thread draw the next frame (GlContext::releaseFromThread).
+  void releaseFromThread();
 
   const RenderOptions& options() const;
   int samples() const;       // samples per pixel (options().msaa)

@@ -325,6 +325,56 @@ TEST_CASE("api: render() draws the pixels of particles render --at, and Image::s
   CHECK(small.rgba.size() == size_t(160 * 120 * 4));
 }
 
+TEST_CASE("api: encodePng gives the bytes savePng writes, and a Renderer draws from any thread") {
+  Scratch scratch;
+  particles::Simulation sim(particles::Scenario::load(scenarioPath("cloth")));
+  particles::Renderer renderer({.width = 64, .height = 48, .msaa = 1});
+  const particles::Image frame = renderer.render(sim);
+  frame.savePng((scratch.dir / "frame.png").string());
+  const std::string saved = slurp(scratch.dir / "frame.png");
+  CHECK(frame.encodePng() == std::vector<std::uint8_t>(saved.begin(), saved.end()));
+  CHECK(frame.encodePng(true) != frame.encodePng(false));
+  const particles::Image empty{2, 2, std::vector<std::uint8_t>()};
+  CHECK_THROWS_AS(empty.encodePng(), particles::ArgumentError);
+  // EGL binds a context to one thread at a time: the API lets it go after each frame.
+  particles::Image fromThread;
+  std::thread([&] { fromThread = renderer.render(sim); }).join();
+  CHECK(fromThread.rgba == frame.rgba);
+  CHECK(renderer.render(sim).rgba == frame.rgba);
+}
+
+TEST_CASE("api: keepGoing stops step and advance at a whole step, and the steps are the same bits") {
+  const particles::Scenario cloth = particles::Scenario::load(scenarioPath("cloth"));
+  particles::Simulation plain(cloth), asked(cloth);
+  plain.advance(0.3);
+  int calls = 0;
+  CHECK(asked.advance(0.3, [&] { return ++calls > 0; }));
+  CHECK(calls == 30);
+  CHECK(asked.steps() == plain.steps());
+  CHECK(std::equal(asked.positions().begin(), asked.positions().end(), plain.positions().begin()));
+  CHECK_FALSE(asked.step(100, [&, left = 7]() mutable { return left-- > 0; }));
+  CHECK(asked.steps() == 37);
+  CHECK_FALSE(asked.advance(1.0, [] { return false; }));
+  CHECK(asked.steps() == 37);
+  // An exception the callback throws passes through as it is, at a whole step.
+  struct Stop {};
+  CHECK_THROWS_AS(asked.step(10, [] () -> bool { throw Stop{}; }), Stop);
+  CHECK(asked.steps() == 37);
+  CHECK_THROWS_AS(asked.step(-1, [] { return true; }), particles::ArgumentError);
+}
+
+TEST_CASE("api: defaultThreads() reads PARTICLES_THREADS as the command line does") {
+  const char* before = std::getenv("PARTICLES_THREADS");
+  const std::string saved = before ? before : "";
+  ::setenv("PARTICLES_THREADS", "3", 1);
+  CHECK(particles::defaultThreads() == 3);
+  ::setenv("PARTICLES_THREADS", "0", 1);
+  CHECK_THROWS_WITH_AS(particles::defaultThreads(), doctest::Contains("PARTICLES_THREADS"), particles::ArgumentError);
+  ::unsetenv("PARTICLES_THREADS");
+  CHECK(particles::defaultThreads() >= 1);
+  if (before) ::setenv("PARTICLES_THREADS", saved.c_str(), 1);
+}
+
 TEST_CASE("api: bad render settings and images are ArgumentErrors naming what each takes") {
   CHECK_THROWS_WITH_AS(particles::Renderer({.theme = "sepia"}), doctest::Contains("dark or light"),
                        particles::ArgumentError);

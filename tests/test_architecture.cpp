@@ -126,6 +126,21 @@ TEST_CASE("the public headers include only each other and the standard library")
   CHECK(checked >= 8);
 }
 
+// The Python module is built on the public API alone, as any user's program (issue 41): its files
+// include the public headers, pybind11, the standard library and each other, never a room.
+TEST_CASE("the Python module includes only the public headers, pybind11 and the standard library") {
+  const std::regex allowedAngled(R"(^(particles/[a-z_]+\.hpp|pybind11/[a-z0-9_/]+\.h|[a-z_]+)$)");
+  const std::regex allowedQuoted(R"(^[a-z_]+\.hpp$)");  // python/src's own
+  int checked = 0;
+  for (const Include& inc : includesUnder(kCheckout / "python/src")) {
+    ++checked;
+    CAPTURE(inc.file.string());
+    CAPTURE(inc.target);
+    CHECK(std::regex_match(inc.target, inc.angled ? allowedAngled : allowedQuoted));
+  }
+  CHECK(checked >= 10);
+}
+
 // CTest takes a test's name from doctest_discover_tests as a list, so a ';' in a TEST_CASE name
 // splits it: the pieces match no test case, run none and pass. Nine tests once passed that way.
 TEST_CASE("every test case's name can be run by CTest: none holds a semicolon") {

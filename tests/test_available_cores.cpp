@@ -6,11 +6,11 @@
 
 #include <optional>
 
-#include "app/available_cores.hpp"
+#include "input/available_cores.hpp"
 
-using particles::app::availableCores;
-using particles::app::coresOfCfsQuota;
-using particles::app::coresOfCpuMax;
+using particles::input::availableCores;
+using particles::input::coresOfCfsQuota;
+using particles::input::coresOfCpuMax;
 
 TEST_CASE("available cores: cgroup v2 cpu.max in whole CPUs, rounded up") {
   CHECK(coresOfCpuMax("200000 100000\n") == std::optional<int>(2));

@@ -13,7 +13,7 @@
 #include <set>
 #include <sstream>
 
-#include "app/available_cores.hpp"
+#include "input/available_cores.hpp"
 #include "cli_support.hpp"
 #include "support/video_probe.hpp"
 #include "source_tree.hpp"
@@ -618,7 +618,7 @@ TEST_CASE("sweep: the longest jobs start first, each with its share of the cores
   Scratch s;
   writeLoggingProgram(s);
   s.write("unequal.yaml", kUnequalSweep);
-  const int cores = particles::app::availableCores();
+  const int cores = particles::input::availableCores();
   const std::string program = (s.dir / "logging-particles").string();
   const std::string exe = (s.dir / "real-particles").string();
   const std::vector<std::string> sweep = {exe, "sweep", "unequal.yaml", "-o", "out", "--program", program, "--force"};

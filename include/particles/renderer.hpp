@@ -26,6 +26,8 @@ struct PARTICLES_API Image {
   // Writes it as a PNG (with its alpha channel when `alpha`), under a temporary name renamed into
   // place: the file is whole or absent. Throws OutputError naming the path.
   void savePng(const std::string& path, bool alpha = false) const;
+  // The same PNG file's bytes, in memory (a notebook's inline image, a web server's reply).
+  std::vector<std::uint8_t> encodePng(bool alpha = false) const;
 };
 
 // The options of `particles render` that set a frame's look; the names are the command line's.

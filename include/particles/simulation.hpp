@@ -11,6 +11,7 @@
 // thread's call is under way throws particles::Error (it never races). Reading while another
 // thread steps is not checked; do not.
 
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -40,6 +41,11 @@ struct Energy {
   double total = 0.0;      // J
 };
 
+// The thread count `particles run` takes without --threads: the environment variable
+// PARTICLES_THREADS when set, else the CPUs this process may use (its affinity mask and cgroup
+// quota). Throws ArgumentError for a PARTICLES_THREADS that is not a whole number from 1 to 1024.
+PARTICLES_API int defaultThreads();
+
 class PARTICLES_API Simulation {
  public:
   // A new system built from the scenario as it is now (later set()s on it do not reach this
@@ -58,6 +64,13 @@ class PARTICLES_API Simulation {
   void step(long n = 1);
   // Steps until time() is the last multiple of dt at or before time() + seconds (finite, ≥ 0).
   void advance(double seconds);
+  // The same, asking keepGoing() before each step: when it returns false the call stops there, at
+  // a whole step, and returns false (true when every step was taken). For a caller that must be
+  // able to stop a long call: a GUI's cancel button, Python's Ctrl-C. The steps taken are the
+  // same bits as without it. An exception keepGoing throws passes through as it is.
+  using KeepGoing = std::function<bool()>;
+  bool step(long n, const KeepGoing& keepGoing);
+  bool advance(double seconds, const KeepGoing& keepGoing);
   double time() const;       // s: t₀ + k·dt after k steps, computed afresh (no drift from summing)
   long steps() const;        // steps taken since the simulation was made
   double dt() const;         // s

@@ -3,8 +3,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <atomic>
 #include <optional>
 
+#include "api/exclusive_use.hpp"
 #include "api/guarded_call.hpp"
 #include "api/simulation_impl.hpp"
 #include "render/gl_backend.hpp"
@@ -31,6 +34,7 @@ struct Renderer::Impl {
   bool sizeGiven = false;
   render::GlRequest gl;
   std::optional<render::Renderer> renderer;  // made at the first frame, again for a new size
+  std::atomic<bool> busy{false};              // a frame is being drawn (ExclusiveUse)
 };
 
 Renderer::Renderer(const RenderSettings& settings) {
@@ -67,6 +71,7 @@ Image Renderer::render(const Simulation& simulation) {
     if (!impl_) throw ArgumentError("Renderer::render: this Renderer was moved from");
     if (!simulation.impl_) throw ArgumentError("Renderer::render: the Simulation was moved from");
     Simulation::Impl& sim = *simulation.impl_;
+    ExclusiveUse drawing(impl_->busy, "Renderer::render", "Renderer");
     ExclusiveUse use(sim.busy, "Renderer::render");
     const scenario::RenderSettings& view = sim.scenario.render;
     if (!impl_->sizeGiven) {
@@ -81,7 +86,11 @@ Image Renderer::render(const Simulation& simulation) {
     }
     const render::Image& frame =
         impl_->renderer->render(sim.system().draw(), render::Camera{view.viewCenter, view.viewHeight});
-    return Image{frame.width, frame.height, frame.rgba};
+    Image image{frame.width, frame.height, frame.rgba};
+    // A program may draw each frame on another thread (a Python thread pool): EGL binds a context
+    // to one thread at a time.
+    impl_->renderer->releaseFromThread();
+    return image;
   });
 }
 
@@ -90,17 +99,35 @@ std::string Renderer::glDescription() const {
   return render::describe(impl_->renderer->gl());
 }
 
+namespace {
+
+// The public image as the render room's, after checking its size against its bytes.
+render::Image checkedImage(const Image& image, std::string_view call) {
+  if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * size_t(image.height) * 4) {
+    throw ArgumentError(fmt::format("{}: a {}x{} image needs {} bytes of RGBA, it has {}", call, image.width,
+                                    image.height, size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) * 4,
+                                    image.rgba.size()));
+  }
+  render::Image out(image.width, image.height);
+  out.rgba = image.rgba;
+  return out;
+}
+
+}  // namespace
+
 void Image::savePng(const std::string& path, bool alpha) const {
   api::guardedCall("Image::savePng", [&] {
-    if (width < 1 || height < 1 || rgba.size() != size_t(width) * size_t(height) * 4) {
-      throw ArgumentError(fmt::format("Image::savePng: a {}x{} image needs {} bytes of RGBA, it has {}", width, height,
-                                      size_t(std::max(width, 0)) * size_t(std::max(height, 0)) * 4, rgba.size()));
-    }
-    render::Image image(width, height);
-    image.rgba = rgba;
     render::PngOptions png;
     png.alpha = alpha;
-    render::writePng(path, image, png);
+    render::writePng(path, checkedImage(*this, "Image::savePng"), png);
+  });
+}
+
+std::vector<std::uint8_t> Image::encodePng(bool alpha) const {
+  return api::guardedCall("Image::encodePng", [&] {
+    render::PngOptions png;
+    png.alpha = alpha;
+    return render::encodePng(checkedImage(*this, "Image::encodePng"), png);
   });
 }
 

@@ -5,13 +5,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 
+#include "api/exclusive_use.hpp"
 #include "api/guarded_call.hpp"
 #include "api/scenario_impl.hpp"
 #include "api/simulation_impl.hpp"
 #include "core/solver.hpp"
 #include "core/worker_pool.hpp"
 #include "input/closest_name.hpp"
+#include "input/default_threads.hpp"
 #include "scenario/runner.hpp"
 
 namespace particles {
@@ -52,6 +55,16 @@ void checkFinite(std::string_view call, Point p) {
 
 }  // namespace
 
+int defaultThreads() {
+  return api::guardedCall("defaultThreads", [] {
+    try {
+      return input::defaultThreads(kMaxThreads);
+    } catch (const input::BadThreadCount& e) {
+      throw ArgumentError(e.what());
+    }
+  });
+}
+
 Simulation::Simulation(const Scenario& scenario, int threads) {
   impl_ = api::guardedCall("Simulation", [&] {
     checkThreads("Simulation", threads);
@@ -65,20 +78,63 @@ Simulation::Simulation(Simulation&& other) noexcept = default;
 Simulation& Simulation::operator=(Simulation&& other) noexcept = default;
 Simulation::~Simulation() = default;
 
-void Simulation::step(long n) {
-  api::guardedCall("Simulation::step", [&] {
+void Simulation::step(long n) { step(n, KeepGoing()); }
+void Simulation::advance(double seconds) { advance(seconds, KeepGoing()); }
+
+namespace {
+
+// Asks the caller's keepGoing before each step; an exception it throws is kept, to pass through
+// the API boundary as it is (guardedCall would make it a particles::Error).
+class StopCheck {
+ public:
+  explicit StopCheck(const Simulation::KeepGoing& keepGoing) : keepGoing_(keepGoing) {}
+  bool keepGoing() {
+    if (!keepGoing_) return true;
+    try {
+      return keepGoing_();
+    } catch (...) {
+      thrown_ = std::current_exception();
+      return false;
+    }
+  }
+  void rethrowTheCallers() const {
+    if (thrown_) std::rethrow_exception(thrown_);
+  }
+
+ private:
+  const Simulation::KeepGoing& keepGoing_;
+  std::exception_ptr thrown_;
+};
+
+// Takes steps until `target` steps were taken since the start; false when told to stop first.
+bool stepTo(Stepper& stepper, long target, StopCheck& check) {
+  while (stepper.steps() < target) {
+    if (!check.keepGoing()) return false;
+    stepper.step();
+  }
+  return true;
+}
+
+}  // namespace
+
+bool Simulation::step(long n, const KeepGoing& keepGoing) {
+  StopCheck check(keepGoing);
+  const bool done = api::guardedCall("Simulation::step", [&] {
     Impl& impl = implOf(impl_, "step");
     if (n < 0) throw ArgumentError(fmt::format("Simulation::step: expected a number of steps ≥ 0, got {}", n));
     if (n > scenario::kMaxSteps) {
       throw ArgumentError(fmt::format("Simulation::step: {} steps is more than {} at once", n, scenario::kMaxSteps));
     }
     ExclusiveUse use(impl.busy, "Simulation::step");
-    for (long k = 0; k < n; ++k) impl.stepper.step();
+    return stepTo(impl.stepper, impl.stepper.steps() + n, check);
   });
+  check.rethrowTheCallers();
+  return done;
 }
 
-void Simulation::advance(double seconds) {
-  api::guardedCall("Simulation::advance", [&] {
+bool Simulation::advance(double seconds, const KeepGoing& keepGoing) {
+  StopCheck check(keepGoing);
+  const bool done = api::guardedCall("Simulation::advance", [&] {
     Impl& impl = implOf(impl_, "advance");
     const double dt = impl.scenario.simulation.dt;
     if (!std::isfinite(seconds) || seconds < 0.0) {
@@ -89,8 +145,10 @@ void Simulation::advance(double seconds) {
                                       scenario::kMaxSteps, dt));
     }
     ExclusiveUse use(impl.busy, "Simulation::advance");
-    impl.stepper.advanceTo(impl.system().time() + seconds);
+    return stepTo(impl.stepper, impl.stepper.stepsAt(impl.system().time() + seconds), check);
   });
+  check.rethrowTheCallers();
+  return done;
 }
 
 double Simulation::time() const { return implOf(impl_, "time").system().time(); }

@@ -46,22 +46,5 @@ struct Simulation::Impl {
   }
 };
 
-// Refuses a second thread's call while one is under way (include/particles/simulation.hpp).
-class ExclusiveUse {
- public:
-  ExclusiveUse(std::atomic<bool>& busy, std::string_view call) : busy_(busy) {
-    if (busy_.exchange(true)) {
-      throw Error(fmt::format("{}: this Simulation is in use by another thread's call; a Simulation is driven by "
-                              "one thread at a time",
-                              call));
-    }
-  }
-  ~ExclusiveUse() { busy_.store(false); }
-  ExclusiveUse(const ExclusiveUse&) = delete;
-  ExclusiveUse& operator=(const ExclusiveUse&) = delete;
-
- private:
-  std::atomic<bool>& busy_;
-};
 
 }  // namespace particles

@@ -4,8 +4,10 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <cmath>
 
+#include "api/exclusive_use.hpp"
 #include "api/guarded_call.hpp"
 #include "render/frame_writer.hpp"
 #include "render/output_formats.hpp"
@@ -17,6 +19,7 @@ struct VideoWriter::Impl {
   render::FrameWriterOptions options;  // the size is the first frame's
   std::unique_ptr<render::FrameWriter> writer;
   bool finished = false;
+  std::atomic<bool> busy{false};  // a call is writing (ExclusiveUse)
 };
 
 VideoWriter::VideoWriter(const std::string& path, const VideoSettings& settings) {
@@ -70,6 +73,7 @@ VideoWriter::~VideoWriter() = default;  // an unfinished FrameWriter removes wha
 void VideoWriter::write(const Image& frame) {
   api::guardedCall("VideoWriter::write", [&] {
     if (!impl_) throw ArgumentError("VideoWriter::write: this VideoWriter was moved from");
+    ExclusiveUse use(impl_->busy, "VideoWriter::write", "VideoWriter");
     if (impl_->finished) throw ArgumentError("VideoWriter::write: the video is finished");
     if (frame.width < 1 || frame.height < 1 || frame.rgba.size() != size_t(frame.width) * size_t(frame.height) * 4) {
       throw ArgumentError(fmt::format("VideoWriter::write: a {}x{} frame needs {} bytes of RGBA, it has {}",
@@ -94,6 +98,7 @@ void VideoWriter::write(const Image& frame) {
 void VideoWriter::finish() {
   api::guardedCall("VideoWriter::finish", [&] {
     if (!impl_) throw ArgumentError("VideoWriter::finish: this VideoWriter was moved from");
+    ExclusiveUse use(impl_->busy, "VideoWriter::finish", "VideoWriter");
     if (impl_->finished) return;
     if (!impl_->writer) throw ArgumentError(fmt::format("VideoWriter::finish: no frame was written to {}", impl_->path));
     impl_->writer->finish();

@@ -10,7 +10,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "app/available_cores.hpp"
+#include "input/available_cores.hpp"
 #include "app/cli_support.hpp"
 #include "app/gl_options.hpp"
 #include "golden/check.hpp"
@@ -125,7 +125,7 @@ golden::CheckOptions checkOptionsOf(const GoldenRunOptions& o) {
   golden::CheckOptions c;
   c.manifestGiven = o.manifest;
   c.gl = glRequestOf(o.gl, false);
-  c.jobs = o.jobs > 0 ? o.jobs : std::max(1, availableCores() / 2);
+  c.jobs = o.jobs > 0 ? o.jobs : std::max(1, input::availableCores() / 2);
   c.maxInputMiB = o.maxInputMiB;
   c.program = programPath();
   return c;

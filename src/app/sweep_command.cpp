@@ -19,7 +19,7 @@
 #include <fstream>
 #include <map>
 
-#include "app/available_cores.hpp"
+#include "input/available_cores.hpp"
 #include "app/cli_support.hpp"
 #include "app/exit_codes.hpp"
 #include "app/gather_command.hpp"
@@ -348,7 +348,7 @@ int sweepCommand(const SweepOptions& o) {
 
   if (!o.emit.empty()) return emitJobLists(plan, o);
 
-  const int cores = availableCores();
+  const int cores = input::availableCores();
   const Workers workers{.parallel = o.jobs > 0 ? o.jobs : cores, .cores = threadsGiven.empty() ? cores : 0};
   if (!o.quiet) {
     fmt::print(stderr, "{}: {} ({}), {} at once, longest first, threads: {} → {}\n", o.spec,

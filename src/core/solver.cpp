@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/worker_pool.hpp"
@@ -87,8 +88,10 @@ void Solver::doStep(System& system, double dt) {
   ++runSteps_;
 }
 
+long Stepper::stepsAt(double t) const { return std::max(steps(), long(std::floor((t - t0_) / dt_ + 1e-9))); }
+
 void Stepper::advanceTo(double t) {
-  const long target = long(std::floor((t - t0_) / dt_ + 1e-9));
+  const long target = stepsAt(t);
   while (steps() < target) step();
 }
 

@@ -71,6 +71,8 @@ class Stepper {
   // Steps until the time is the last multiple of dt at or before t (a time within 1e-9 of a step
   // counts as reached).
   void advanceTo(double t);
+  // The step count at which advanceTo(t) stops: steps() when t is not ahead.
+  long stepsAt(double t) const;
   long steps() const { return solver_.steps(); }
   double elapsed() const { return system_.time() - t0_; }
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string_view>
 
-namespace particles::app {
+namespace particles::input {
 
 // The CPUs of the affinity mask, capped by the quotas of the process's cgroup and its ancestors
 // (v2: cpu.max; v1: cpu.cfs_quota_us over cpu.cfs_period_us), rounded up; at least 1.
@@ -18,4 +18,4 @@ std::optional<int> coresOfCpuMax(std::string_view text);
 // The same from cgroup v1's cpu.cfs_quota_us (-1: no limit) and cpu.cfs_period_us.
 std::optional<int> coresOfCfsQuota(std::string_view quota, std::string_view period);
 
-}  // namespace particles::app
+}  // namespace particles::input

@@ -1,4 +1,4 @@
-#include "app/available_cores.hpp"
+#include "input/available_cores.hpp"
 
 #include <sched.h>
 
@@ -11,7 +11,7 @@
 
 #include "input/text_file.hpp"
 
-namespace particles::app {
+namespace particles::input {
 
 namespace {
 
@@ -125,4 +125,4 @@ int availableCores() {
   return std::max(1, quota ? std::min(cores, *quota) : cores);
 }
 
-}  // namespace particles::app
+}  // namespace particles::input
