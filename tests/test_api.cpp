@@ -375,6 +375,26 @@ TEST_CASE("api: defaultThreads() reads PARTICLES_THREADS as the command line doe
   if (before) ::setenv("PARTICLES_THREADS", saved.c_str(), 1);
 }
 
+// Issue 41: golden::check is `particles golden check`: the same function (golden/check_report.hpp).
+TEST_CASE("api: golden::check checks a manifest into its report, and refuses bad options and folders") {
+  Scratch scratch;
+  const std::string manifest = (std::filesystem::path(kSource) / "golden" / "golden.yaml").string();
+  const particles::golden::Report report =
+      particles::golden::check(manifest, {.output = (scratch.dir / "report").string(), .only = {"cloth_t0.5"}, .jobs = 1});
+  CHECK(report.allPassed());
+  REQUIRE(report.frames.size() == 1);
+  CHECK(report.frames[0].outcome == "passed");
+  CHECK(report.frames[0].pixels == 320 * 240);
+  CHECK(report.html == (scratch.dir / "report" / "report.html").string());
+  CHECK(slurp(scratch.dir / "report" / "results.json").find("cloth_t0.5") != std::string::npos);
+  CHECK(report.summary.find("1 passed") != std::string::npos);
+  CHECK_THROWS_WITH_AS(particles::golden::check(manifest, {.output = (scratch.dir / "r2").string(), .shard = "2"}),
+                       doctest::Contains("K/N"), particles::ArgumentError);
+  CHECK_THROWS_WITH_AS(particles::golden::check(manifest, {.output = (scratch.dir / "r2").string(), .only = {"nope"}}),
+                       doctest::Contains("nope"), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::golden::check((scratch.dir / "none.yaml").string()), particles::ScenarioError);
+}
+
 TEST_CASE("api: bad render settings and images are ArgumentErrors naming what each takes") {
   CHECK_THROWS_WITH_AS(particles::Renderer({.theme = "sepia"}), doctest::Contains("dark or light"),
                        particles::ArgumentError);

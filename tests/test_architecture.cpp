@@ -35,7 +35,7 @@ const std::vector<Room>& rooms() {
       {"render", kCheckout / "render", {"core", "output"}},
       {"plot", kCheckout / "plot", {"output", "input"}},
       {"golden", kCheckout / "src/golden", {"core", "scenario", "render", "output", "input"}},
-      {"api", kCheckout / "src/api", {"core", "scenario", "render", "input", "output"}},
+      {"api", kCheckout / "src/api", {"core", "scenario", "render", "input", "output", "golden"}},
       {"app", kCheckout / "src/app", {"core", "scenario", "render", "plot", "output", "input", "golden"}},
       // What only the tests use (particles_test_support): no room above may include it.
       {"support", kCheckout / "tests/support", {"core", "render", "output"}},

@@ -1,6 +1,7 @@
 #pragma once
 // Everything particles offers a C++ program (docs/api.md): include this, link particles::particles.
 #include <particles/errors.hpp>
+#include <particles/golden.hpp>
 #include <particles/renderer.hpp>
 #include <particles/scenario.hpp>
 #include <particles/simulation.hpp>

@@ -45,6 +45,7 @@ __all__ = [
     "VideoWriter",
     "__version__",
     "default_threads",
+    "golden",
 ]
 
 
@@ -71,3 +72,5 @@ class Frame(_np.ndarray):
 
 
 _particles._set_frame_type(Frame)
+
+from . import golden  # noqa: E402  (particles.golden.check)

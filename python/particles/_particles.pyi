@@ -152,3 +152,50 @@ class VideoWriter:
 def _set_frame_type(type: type) -> None: ...
 def _encode_png(frame: npt.ArrayLike, alpha: bool = False) -> bytes: ...
 def _save_png(frame: npt.ArrayLike, path: PathLike, alpha: bool = False) -> None: ...
+
+class FrameCheck:
+    name: str
+    scenario: str
+    time: str
+    control: bool
+    outcome: str  # passed, failed, missing or error
+    message: str
+    differing: int
+    pixels: int
+    largest: int
+    actual: str
+    expected: str
+    diff: str
+    reproduce: list[str]
+
+class StateCheck:
+    name: str
+    scenario: str
+    times: list[str]
+    outcome: str
+    message: str
+    values: int
+    point: str
+    quantity: str
+    expected: float
+    actual: float
+    difference: float
+    tolerance: float
+    reproduce: list[str]
+
+class GoldenReport:
+    frames: list[FrameCheck]
+    states: list[StateCheck]
+    passed: int
+    failed: int
+    missing: int
+    errors: int
+    bad_reference: bool
+    html: str
+    summary: str
+    @property
+    def all_passed(self) -> bool: ...
+    def __bool__(self) -> bool: ...
+
+def _golden_check(manifest: str, output: str, only: list[str], shard: str, gl: str, raster: str,
+                  threshold: Optional[int], max_share: Optional[float], jobs: int) -> GoldenReport: ...

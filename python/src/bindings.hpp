@@ -2,7 +2,8 @@
 // The Python module particles._particles (pybind11), built on the public C++ API alone
 // (include/particles/): what Python sees of it is described in python/particles/_particles.pyi and
 // docs/api.md. One file per part: module.cpp (the module, errors, Scenario), simulation.cpp
-// (Simulation and its numpy views), rendering.cpp (Renderer, frames, VideoWriter).
+// (Simulation and its numpy views), rendering.cpp (Renderer, frames, VideoWriter), golden.cpp
+// (golden checks).
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -23,6 +24,7 @@ void bindErrors(py::module_& module);
 void bindScenario(py::module_& module);
 void bindSimulation(py::module_& module);
 void bindRendering(py::module_& module);
+void bindGolden(py::module_& module);
 
 // The look a frame is drawn with, as Python passes it (render's keyword arguments).
 struct RenderKey {

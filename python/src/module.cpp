@@ -216,4 +216,5 @@ PYBIND11_MODULE(_particles, module) {
   bindScenario(module);
   bindSimulation(module);
   bindRendering(module);
+  bindGolden(module);
 }

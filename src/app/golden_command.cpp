@@ -2,21 +2,17 @@
 #include "app/golden_command.hpp"
 
 #include <fmt/format.h>
-#include <unistd.h>
 
 #include <algorithm>
-#include <charconv>
 #include <filesystem>
-#include <set>
 #include <stdexcept>
 
-#include "input/available_cores.hpp"
 #include "app/cli_support.hpp"
 #include "app/gl_options.hpp"
 #include "golden/check.hpp"
+#include "golden/check_report.hpp"
 #include "golden/references.hpp"
 #include "golden/results.hpp"
-#include "output/confined_folder.hpp"
 #include "output/distinct_files.hpp"
 #include "output/output_error.hpp"
 #include "output/printable_text.hpp"
@@ -116,150 +112,24 @@ std::string programPath() {
 }
 
 scenario::GoldenManifest loadManifest(const GoldenRunOptions& o) {
-  scenario::GoldenManifest m = scenario::loadGoldenManifestFile(o.manifest, o.maxInputMiB);
-  golden::checkRenderSettings(m);
-  return m;
+  return golden::loadManifest(o.manifest, o.maxInputMiB);
 }
 
 golden::CheckOptions checkOptionsOf(const GoldenRunOptions& o) {
   golden::CheckOptions c;
   c.manifestGiven = o.manifest;
   c.gl = glRequestOf(o.gl, false);
-  c.jobs = o.jobs > 0 ? o.jobs : std::max(1, input::availableCores() / 2);
+  c.jobs = o.jobs > 0 ? o.jobs : golden::defaultJobs();
   c.maxInputMiB = o.maxInputMiB;
   c.program = programPath();
   return c;
 }
 
-// K/N as written; its range is runCheck's to check.
-std::optional<std::pair<int, int>> shardOf(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  int k = 0, n = 0;
-  const char* end = text.data() + text.size();
-  auto [p, ec] = std::from_chars(text.data(), end, k);
-  if (ec == std::errc() && p < end && *p == '/') {
-    auto [q, ec2] = std::from_chars(p + 1, end, n);
-    if (ec2 == std::errc() && q == end) return std::pair{k, n};
-  }
-  throw InputError(fmt::format("--shard {}: expected K/N with 1 ≤ K ≤ N, e.g. 1/2", text));
-}
-
-// The files an earlier report in `folder` consists of: its three pages, the files its results.json
-// lists, and the folders they are in. Everything in the folder must be one of those, or the
-// folder is no report of ours and is refused (InputError, exit 2), left as it is.
-std::vector<std::string> earlierReport(const fs::path& folder, std::uintmax_t maxInputMiB) {
-  const std::string shown = output::printableText(folder.string());
-  golden::GoldenResults earlier;
-  try {
-    earlier = golden::readResults(folder, maxInputMiB);
-  } catch (const std::exception& e) {
-    throw InputError(
-        fmt::format("-o {}: a folder that holds something other than a golden report ({}); choose "
-                    "another or empty it (it is replaced whole)",
-                    shown, e.what()));
-  }
-  // frames/ and states/ are made by every check, kept files or none.
-  std::set<std::string> files = golden::reportFiles(earlier), folders = {"frames", "states"};
-  for (const std::string& file : files) {
-    for (fs::path up = fs::path(file).parent_path(); !up.empty(); up = up.parent_path()) folders.insert(up.string());
-  }
-  std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(folder, ec); !ec && it != fs::recursive_directory_iterator();
-       it.increment(ec)) {
-    const std::string relative = it->path().lexically_relative(folder).generic_string();
-    const fs::file_type type = it->symlink_status(ec).type();
-    const bool listed = type == fs::file_type::regular     ? files.count(relative) > 0
-                        : type == fs::file_type::directory ? folders.count(relative) > 0
-                                                           : false;
-    if (!listed) {
-      throw InputError(
-          fmt::format("-o {}: it holds {}, which is not part of the golden report there; choose another "
-                      "folder or remove it (only a folder that is entirely an earlier report is replaced)",
-                      shown, output::printableText(relative)));
-    }
-  }
-  if (ec) throw InputError(fmt::format("-o {}: cannot list it: {}", shown, ec.message()));
-  std::vector<std::string> all(files.begin(), files.end());
-  all.insert(all.end(), folders.begin(), folders.end());
-  return all;
-}
-
-// The report folder: made new, or replacing a folder that is entirely an earlier report (its
-// results.json reads back as one, and it holds only what that report lists); anything else is
-// refused, not overwritten. That it holds nothing the command reads is the rule of its files
-// (goldenFiles, and reportFolderHoldsNoInput for what the manifest names). Returns the earlier
-// report's files and folders, the only things `publish` removes.
-std::vector<std::string> checkReportFolder(const fs::path& folder, std::uintmax_t maxInputMiB) {
-  std::error_code ec;
-  const fs::file_status st = fs::symlink_status(folder, ec);
-  if (st.type() == fs::file_type::not_found) return {};
-  const std::string shown = output::printableText(folder.string());
-  if (st.type() == fs::file_type::symlink) {
-    throw InputError(fmt::format("-o {}: a symbolic link; give the folder itself (it is replaced whole)", shown));
-  }
-  if (st.type() != fs::file_type::directory) {
-    throw InputError(fmt::format("-o {}: not a folder; the report is a folder", shown));
-  }
-  if (fs::is_empty(folder, ec)) return {};
-  return earlierReport(folder, maxInputMiB);
-}
 
 // The report folder as one of the command's files: an output replaced whole, so that no input may
 // lie beneath it (output/distinct_files.hpp).
 output::NamedFile reportFolder(const std::string& folder) {
   return {"-o", folder, true};
-}
-
-// What the manifest names that `golden check` reads besides the manifest itself (which the
-// command line names: goldenFiles): the references' folder and the scenarios. None may lie in
-// the report folder, which is replaced whole.
-void reportFolderHoldsNoInput(const std::string& folder, const scenario::GoldenManifest& manifest) {
-  std::vector<output::NamedFile> inputs = {
-      {"the references", manifest.references.empty() ? fs::path(".") : manifest.references}};
-  for (const auto* entries : {&manifest.frames, &manifest.states}) {
-    for (const scenario::GoldenEntry& e : *entries) inputs.push_back({"the scenario", e.scenario});
-  }
-  output::requireDistinctFiles({reportFolder(folder)}, inputs);
-}
-
-// The folder the report folder goes in, made when it is not there (a build tree's golden/).
-void makeParent(const fs::path& folder) {
-  const fs::path parent = fs::absolute(folder).parent_path();
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", parent.string(), ec.message()));
-}
-
-// Moves the staged report into place: the earlier one out of the way first, then its files removed
-// (`earlier`, from checkReportFolder), one by one through its folder's descriptor. Whatever else
-// appeared there meanwhile is left, in FOLDER.previous-PID, and said so.
-void publish(output::StagingDirectory& staged, const fs::path& folder, std::vector<std::string> earlier) {
-  std::error_code ec;
-  fs::path previous;
-  if (fs::exists(fs::symlink_status(folder, ec))) {
-    previous = folder;
-    previous += fmt::format(".previous-{}", ::getpid());
-    fs::rename(folder, previous, ec);
-    if (ec) throw output::OutputError(fmt::format("cannot replace {}: {}", folder.string(), ec.message()));
-  }
-  fs::rename(staged.path(), folder, ec);
-  if (ec) {
-    if (!previous.empty()) fs::rename(previous, folder);
-    throw output::OutputError(fmt::format("cannot write {}: {}", folder.string(), ec.message()));
-  }
-  if (previous.empty()) return;
-  // Deepest first: a folder's files before the folder.
-  std::sort(earlier.begin(), earlier.end(), [](const std::string& a, const std::string& b) { return a > b; });
-  try {
-    const output::ConfinedFolder old(previous);
-    for (const std::string& entry : earlier) old.remove(entry);
-  } catch (const std::exception&) {
-    // Left below, said so.
-  }
-  if (!fs::remove(previous, ec)) {
-    fmt::print(stderr, "note: left {}: it holds files that were not part of the earlier report\n",
-               output::printableText(previous.string()));
-  }
 }
 
 // One line of what a command prints, with the control characters of names and messages from files
@@ -293,29 +163,26 @@ golden::CheckRun runChecks(const scenario::GoldenManifest& manifest, const fs::p
 
 int goldenCheck(const GoldenCheckOptions& o) {
   const scenario::GoldenManifest manifest = loadManifest(o.run);
-  golden::CheckOptions c = checkOptionsOf(o.run);
-  c.shard = shardOf(o.shard);
-  c.only = o.only;
-  if (!o.raster.empty()) c.overrides.raster = render::rasterFromName(o.raster);
-  c.overrides.threshold = o.threshold;
-  c.overrides.maxShare = o.maxShare;
-  const fs::path folder = o.output;
-  golden::requireReferencesInPlace(manifest, false);
-  std::vector<std::string> earlier = checkReportFolder(folder, o.run.maxInputMiB);
-  reportFolderHoldsNoInput(o.output, manifest);
-  makeParent(folder);
-  output::StagingDirectory staged(folder);
-  const auto start = std::chrono::steady_clock::now();
-  golden::CheckRun run = runChecks(manifest, staged.path(), c, o.run.quiet);
-  golden::RunFacts& facts = run.results.runs.front();
-  facts.manifest = o.run.manifest;
-  facts.program = fmt::format("particles {}", PARTICLES_VERSION);
-  if (const char* threads = std::getenv("LP_NUM_THREADS")) facts.lpNumThreads = threads;
-  facts.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  golden::writeReport(staged.path(), run.results);
-  publish(staged, folder, std::move(earlier));
+  golden::ReportRequest request;
+  request.manifestFile = o.run.manifest;
+  request.folder = o.output;
+  request.program = fmt::format("particles {}", PARTICLES_VERSION);
+  request.check = checkOptionsOf(o.run);
+  request.check.only = o.only;
+  if (!o.raster.empty()) request.check.overrides.raster = render::rasterFromName(o.raster);
+  request.check.overrides.threshold = o.threshold;
+  request.check.overrides.maxShare = o.maxShare;
+  Progress progress(!o.run.quiet, "checks");
+  request.check.progress = [&](long done, long total, const std::string& name) { progress.update(done, total, name); };
+  golden::CheckRun run;
+  try {
+    request.check.shard = golden::shardFromText(o.shard, "--shard");
+    run = golden::checkIntoReport(manifest, request);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
   if (!o.run.quiet) printFailures(run.results);
-  printLine(golden::summaryLine(run.results, folder));
+  printLine(golden::summaryLine(run.results, request.folder));
   if (run.badReference) return kBadInput;
   return run.results.allPassed() ? kOk : kSimulationFailed;
 }
@@ -375,8 +242,13 @@ int goldenUpdate(const GoldenUpdateOptions& o) {
 int goldenReport(const GoldenReportOptions& o) {
   const fs::path folder = o.output;
   std::vector<fs::path> inputs(o.folders.begin(), o.folders.end());
-  std::vector<std::string> earlier = checkReportFolder(folder, o.maxInputMiB);
-  makeParent(folder);
+  std::vector<std::string> earlier;
+  try {
+    earlier = golden::checkReportFolder(folder, o.maxInputMiB, "-o");
+  } catch (const std::invalid_argument& e) {
+    throw InputError(e.what());
+  }
+  golden::makeParent(folder);
   output::StagingDirectory staged(folder);
   golden::GoldenResults merged;
   try {
@@ -385,7 +257,7 @@ int goldenReport(const GoldenReportOptions& o) {
     throw InputError(e.what());
   }
   golden::writeReport(staged.path(), merged);
-  publish(staged, folder, std::move(earlier));
+  golden::publish(staged, folder, std::move(earlier));
   if (!o.quiet) printFailures(merged);
   printLine(golden::summaryLine(merged, folder));
   return merged.allPassed() ? kOk : kSimulationFailed;

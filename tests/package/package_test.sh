@@ -33,10 +33,14 @@ if [ -n "$others" ]; then
   echo "$others" | head -20 >&2
   exit 1
 fi
-# The rooms' namespaces (particles::scenario::, particles::render::, …) stay inside.
-if grep -q -E 'particles::[a-z_]+::' <<<"$exported"; then
+# The rooms' namespaces (particles::scenario::, particles::render::, …) stay inside. The golden
+# room's namespace is also the API's particles::golden (include/particles/golden.hpp): its check()
+# and the types of its options and report are the only particles::golden:: names let out.
+rooms=$(grep -E 'particles::[a-z_]+::' <<<"$exported" |
+  grep -v -E 'particles::golden::(check\(|Options|Report|FrameCheck|StateCheck)\b' || true)
+if [ -n "$rooms" ]; then
   echo "libparticles.so exports the rooms' names:" >&2
-  grep -E 'particles::[a-z_]+::' <<<"$exported" | head -20 >&2
+  echo "$rooms" | head -20 >&2
   exit 1
 fi
 for name in 'particles::Simulation::step(long)' 'particles::Scenario::load(' 'typeinfo for particles::ScenarioError'; do
@@ -44,7 +48,7 @@ for name in 'particles::Simulation::step(long)' 'particles::Scenario::load(' 'ty
 done
 # The installed headers: only <particles/…> and the standard library's.
 bad_includes=$(grep -h -E '^\s*#\s*include' "$prefix"/include/particles/*.hpp | grep -v -E '<particles/[a-z_]+\.hpp>' |
-  grep -v -E '<(cstdint|memory|span|string|string_view|vector|stdexcept|utility)>' || true)
+  grep -v -E '<(cstdint|functional|memory|optional|span|string|string_view|vector|stdexcept|utility)>' || true)
 if [ -n "$bad_includes" ]; then
   echo "the installed headers include more than the standard library: $bad_includes" >&2
   exit 1

@@ -1,0 +1,71 @@
+#pragma once
+// Golden regression checks (golden/README.md): a manifest's frames and states against their
+// references, into a report folder, as `particles golden check` does: the same function runs both.
+//
+//   particles::golden::Report r = particles::golden::check("golden/golden.yaml", {.output = "golden-report"});
+//   if (!r.allPassed()) std::cerr << r.summary << "\n";   // open r.html in a browser
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <particles/export.hpp>
+
+namespace particles::golden {
+
+// What `particles golden check` takes besides the manifest; the names are its options'.
+struct Options {
+  std::string output = "golden-report";  // the report folder (-o): replaced whole when the check is done
+  std::vector<std::string> only{};       // --only: these frames and states; empty: all
+  std::string shard{};                   // --shard K/N: the K-th of N near-equal parts; empty: all
+  std::string gl = "auto";               // --gl: auto (EGL, else OSMesa), egl or osmesa
+  std::string raster{};                  // --raster for entries without their own; empty: the manifest's
+  std::optional<int> threshold{};        // --threshold for entries without their own (0 … 255)
+  std::optional<double> maxShare{};      // --max-share for entries without their own (0 … 1)
+  int jobs = 0;                          // --jobs: entries checked at once; 0: half the CPUs, at least 1
+  // After each check (on the checking threads): how many are done of how many, and its name.
+  std::function<void(long done, long total, const std::string& name)> progress{};
+};
+
+// One frame's result. outcome: "passed", "failed", "missing" (no reference yet) or "error" (it
+// could not be checked: the scenario did not load, the simulation blew up, the reference is not
+// a PNG). Paths are relative to the report folder; empty when not kept.
+struct FrameCheck {
+  std::string name, scenario, time;  // as the manifest writes them
+  bool control = false;              // `expect: differ`: passes when the frame differs
+  std::string outcome, message;      // message: one line, empty when passed
+  long differing = 0, pixels = 0;    // pixels beyond the threshold, of width × height
+  int largest = 0;                   // the largest channel difference, 0 … 255
+  std::string actual, expected, diff;
+  std::vector<std::string> reproduce;  // shell commands that reproduce the result
+};
+
+// One state's result: the first value beyond its tolerance when it failed.
+struct StateCheck {
+  std::string name, scenario;
+  std::vector<std::string> times;
+  std::string outcome, message;
+  long values = 0;                     // values compared
+  std::string point, quantity;         // the first beyond tolerance (or the largest): cloth[3][4], vx
+  double expected = 0.0, actual = 0.0, difference = 0.0, tolerance = 0.0;
+  std::vector<std::string> reproduce;
+};
+
+struct Report {
+  std::vector<FrameCheck> frames;  // in manifest order
+  std::vector<StateCheck> states;
+  long passed = 0, failed = 0, missing = 0, errors = 0;
+  bool badReference = false;  // a reference that is not a usable file (the command's exit 2)
+  std::string html;           // report.html's path
+  std::string summary;        // the line `particles golden check` prints last
+  bool allPassed() const { return failed == 0 && missing == 0 && errors == 0 && !badReference; }
+};
+
+// Checks the manifest into options.output. Throws ScenarioError for a manifest that cannot be
+// used, ArgumentError for bad options or a report folder that may not be replaced (it holds
+// something other than an earlier report, or one of the check's inputs), OutputError when the
+// report cannot be written. A failing frame is a result, not an exception.
+PARTICLES_API Report check(const std::string& manifest, const Options& options = {});
+
+}  // namespace particles::golden

@@ -1,0 +1,187 @@
+#include "golden/check_report.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cstdlib>
+#include <set>
+
+#include "golden/references.hpp"
+#include "input/available_cores.hpp"
+#include "golden/results.hpp"
+#include "output/confined_folder.hpp"
+#include "output/distinct_files.hpp"
+#include "output/output_error.hpp"
+#include "output/printable_text.hpp"
+
+namespace particles::golden {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The files an earlier report in `folder` consists of: its three pages, the files its results.json
+// lists, and the folders they are in. Everything in the folder must be one of those, or the
+// folder is no report of ours and is refused (ReportFolderError), left as it is.
+std::vector<std::string> earlierReport(const fs::path& folder, std::uintmax_t maxInputMiB,
+                                       const std::string& folderName) {
+  const std::string shown = output::printableText(folder.string());
+  golden::GoldenResults earlier;
+  try {
+    earlier = golden::readResults(folder, maxInputMiB);
+  } catch (const std::exception& e) {
+    throw ReportFolderError(
+        fmt::format("{} {}: a folder that holds something other than a golden report ({}); choose "
+                    "another or empty it (it is replaced whole)",
+                    folderName, shown, e.what()));
+  }
+  // frames/ and states/ are made by every check, kept files or none.
+  std::set<std::string> files = golden::reportFiles(earlier), folders = {"frames", "states"};
+  for (const std::string& file : files) {
+    for (fs::path up = fs::path(file).parent_path(); !up.empty(); up = up.parent_path()) folders.insert(up.string());
+  }
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(folder, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    const std::string relative = it->path().lexically_relative(folder).generic_string();
+    const fs::file_type type = it->symlink_status(ec).type();
+    const bool listed = type == fs::file_type::regular     ? files.count(relative) > 0
+                        : type == fs::file_type::directory ? folders.count(relative) > 0
+                                                           : false;
+    if (!listed) {
+      throw ReportFolderError(
+          fmt::format("{} {}: it holds {}, which is not part of the golden report there; choose another "
+                      "folder or remove it (only a folder that is entirely an earlier report is replaced)",
+                      folderName, shown, output::printableText(relative)));
+    }
+  }
+  if (ec) throw ReportFolderError(fmt::format("{} {}: cannot list it: {}", folderName, shown, ec.message()));
+  std::vector<std::string> all(files.begin(), files.end());
+  all.insert(all.end(), folders.begin(), folders.end());
+  return all;
+}
+
+
+}  // namespace
+
+// The report folder: made new, or replacing a folder that is entirely an earlier report (its
+// results.json reads back as one, and it holds only what that report lists); anything else is
+// refused, not overwritten. That it holds nothing the command reads is the rule of its files
+// (goldenFiles, and reportFolderHoldsNoInput for what the manifest names). Returns the earlier
+// report's files and folders, the only things `publish` removes.
+std::vector<std::string> checkReportFolder(const fs::path& folder, std::uintmax_t maxInputMiB,
+                                           const std::string& folderName) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(folder, ec);
+  if (st.type() == fs::file_type::not_found) return {};
+  const std::string shown = output::printableText(folder.string());
+  if (st.type() == fs::file_type::symlink) {
+    throw ReportFolderError(fmt::format("{} {}: a symbolic link; give the folder itself (it is replaced whole)", folderName, shown));
+  }
+  if (st.type() != fs::file_type::directory) {
+    throw ReportFolderError(fmt::format("{} {}: not a folder; the report is a folder", folderName, shown));
+  }
+  if (fs::is_empty(folder, ec)) return {};
+  return earlierReport(folder, maxInputMiB, folderName);
+}
+
+
+// What the manifest names that `golden check` reads besides the manifest itself (which the
+// command line names: goldenFiles): the references' folder and the scenarios. None may lie in
+// the report folder, which is replaced whole.
+void reportFolderHoldsNoInput(const std::filesystem::path& folder, const std::string& folderName,
+                              const std::filesystem::path& manifestFile, const scenario::GoldenManifest& manifest) {
+  std::vector<output::NamedFile> inputs = {
+      {"the manifest", manifestFile},
+      {"the references", manifest.references.empty() ? fs::path(".") : manifest.references}};
+  for (const auto* entries : {&manifest.frames, &manifest.states}) {
+    for (const scenario::GoldenEntry& e : *entries) inputs.push_back({"the scenario", e.scenario});
+  }
+  output::requireDistinctFiles({{folderName, folder, true}}, inputs);
+}
+
+
+// The folder the report folder goes in, made when it is not there (a build tree's golden/).
+void makeParent(const fs::path& folder) {
+  const fs::path parent = fs::absolute(folder).parent_path();
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", parent.string(), ec.message()));
+}
+
+
+// Moves the staged report into place: the earlier one out of the way first, then its files removed
+// (`earlier`, from checkReportFolder), one by one through its folder's descriptor. Whatever else
+// appeared there meanwhile is left, in FOLDER.previous-PID, and said so.
+void publish(output::StagingDirectory& staged, const fs::path& folder, std::vector<std::string> earlier) {
+  std::error_code ec;
+  fs::path previous;
+  if (fs::exists(fs::symlink_status(folder, ec))) {
+    previous = folder;
+    previous += fmt::format(".previous-{}", ::getpid());
+    fs::rename(folder, previous, ec);
+    if (ec) throw output::OutputError(fmt::format("cannot replace {}: {}", folder.string(), ec.message()));
+  }
+  fs::rename(staged.path(), folder, ec);
+  if (ec) {
+    if (!previous.empty()) fs::rename(previous, folder);
+    throw output::OutputError(fmt::format("cannot write {}: {}", folder.string(), ec.message()));
+  }
+  if (previous.empty()) return;
+  // Deepest first: a folder's files before the folder.
+  std::sort(earlier.begin(), earlier.end(), [](const std::string& a, const std::string& b) { return a > b; });
+  try {
+    const output::ConfinedFolder old(previous);
+    for (const std::string& entry : earlier) old.remove(entry);
+  } catch (const std::exception&) {
+    // Left below, said so.
+  }
+  if (!fs::remove(previous, ec)) {
+    fmt::print(stderr, "note: left {}: it holds files that were not part of the earlier report\n",
+               output::printableText(previous.string()));
+  }
+}
+
+std::optional<std::pair<int, int>> shardFromText(const std::string& text, const std::string& optionName) {
+  if (text.empty()) return std::nullopt;
+  int k = 0, n = 0;
+  const char* end = text.data() + text.size();
+  auto [p, ec] = std::from_chars(text.data(), end, k);
+  if (ec == std::errc() && p < end && *p == '/') {
+    auto [q, ec2] = std::from_chars(p + 1, end, n);
+    if (ec2 == std::errc() && q == end) return std::pair{k, n};
+  }
+  throw std::invalid_argument(fmt::format("{} {}: expected K/N with 1 ≤ K ≤ N, e.g. 1/2", optionName,
+                                          output::printableText(text)));
+}
+
+int defaultJobs() { return std::max(1, input::availableCores() / 2); }
+
+scenario::GoldenManifest loadManifest(const fs::path& file, std::uintmax_t maxInputMiB) {
+  scenario::GoldenManifest manifest = scenario::loadGoldenManifestFile(file, maxInputMiB);
+  checkRenderSettings(manifest);
+  return manifest;
+}
+
+CheckRun checkIntoReport(const scenario::GoldenManifest& manifest, const ReportRequest& request) {
+  requireReferencesInPlace(manifest, false);
+  std::vector<std::string> earlier = checkReportFolder(request.folder, request.check.maxInputMiB, request.folderName);
+  reportFolderHoldsNoInput(request.folder, request.folderName, request.manifestFile, manifest);
+  makeParent(request.folder);
+  output::StagingDirectory staged(request.folder);
+  const auto start = std::chrono::steady_clock::now();
+  CheckRun run = runCheck(manifest, staged.path(), request.check);
+  RunFacts& facts = run.results.runs.front();
+  facts.manifest = request.check.manifestGiven;
+  facts.program = request.program;
+  if (const char* threads = std::getenv("LP_NUM_THREADS")) facts.lpNumThreads = threads;
+  facts.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  writeReport(staged.path(), run.results);
+  publish(staged, request.folder, std::move(earlier));
+  return run;
+}
+
+}  // namespace particles::golden
