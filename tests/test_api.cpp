@@ -375,6 +375,29 @@ TEST_CASE("api: defaultThreads() reads PARTICLES_THREADS as the command line doe
   if (before) ::setenv("PARTICLES_THREADS", saved.c_str(), 1);
 }
 
+// Issue 41, "move the mouse target": a mouse taken over is the scripted mouse held at that target.
+TEST_CASE("api: setMouseTarget holds the scenario's mouse at a target, the bits of the same script") {
+  particles::Scenario cloth = particles::Scenario::load(scenarioPath("cloth"));
+  particles::Simulation moved(cloth);
+  particles::Scenario held = cloth;
+  held.set("mouse[0].from", 0.0).set("mouse[0].to", 1e9).set("mouse[0].path", "[[1, -1]]");
+  particles::Simulation scripted(held);
+  CHECK(moved.mouseCount() == 1);
+  CHECK_FALSE(moved.mouseTarget().has_value());
+  moved.setMouseTarget({1.0, -1.0});
+  REQUIRE(moved.mouseTarget().has_value());
+  CHECK(moved.mouseTarget()->x == 1.0);
+  moved.advance(1.0);
+  scripted.advance(1.0);
+  CHECK(std::equal(moved.positions().begin(), moved.positions().end(), scripted.positions().begin()));
+  moved.releaseMouse();
+  CHECK_FALSE(moved.mouseTarget().has_value());
+  CHECK_THROWS_WITH_AS(moved.setMouseTarget({0, 0}, 1), doctest::Contains("out of range"), particles::ArgumentError);
+  CHECK_THROWS_WITH_AS(moved.setMouseTarget({std::nan(""), 0}), doctest::Contains("finite"), particles::ArgumentError);
+  particles::Simulation lone(particles::Scenario::fromText(kSwingScenario, "swing.yaml"));
+  CHECK_THROWS_WITH_AS(lone.releaseMouse(), doctest::Contains("has none"), particles::ArgumentError);
+}
+
 // Issue 41: golden::check is `particles golden check`: the same function (golden/check_report.hpp).
 TEST_CASE("api: golden::check checks a manifest into its report, and refuses bad options and folders") {
   Scratch scratch;

@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -109,6 +110,16 @@ class PARTICLES_API Simulation {
   // projected: the next step's constraint forces pull it back). Finite values only.
   void setPosition(int particle, Point position);
   void setVelocity(int particle, Point velocity);
+
+  // The scenario's mice (its `mouse` section, in order): springs that pull a grabbed point towards
+  // a target along a scripted path. setMouseTarget takes one over: from now on it holds its point
+  // at `target` (finite), its path and time window replaced, until releaseMouse lets go. A
+  // scenario without one can be given one with Scenario::set("mouse", "[{grab: ..., ...}]").
+  int mouseCount() const;
+  void setMouseTarget(Point target, int mouse = 0);
+  void releaseMouse(int mouse = 0);
+  // Where the mouse pulls now; nothing while it holds no point (outside its window, released).
+  std::optional<Point> mouseTarget(int mouse = 0) const;
 
   struct Impl;  // the library's own, opaque here
 

@@ -223,6 +223,29 @@ view keeps the state's memory alive: after close() it still reads the last state
             s.setVelocity(particleOf(s, p), pointOf(v, "Simulation.set_velocity"));
           },
           "particle"_a, "velocity"_a, "Sets a particle's velocity (vx, vy), m/s.")
+      .def_property_readonly(
+          "mouse_count", [](const SimulationHandle& h) { return h.get("mouse_count")->mouseCount(); },
+          "How many mice the scenario has (its `mouse` section).")
+      .def(
+          "set_mouse_target",
+          [](SimulationHandle& h, const py::handle& xy, int mouse) {
+            h.get("set_mouse_target")->setMouseTarget(pointOf(xy, "Simulation.set_mouse_target"), mouse);
+          },
+          "xy"_a, "mouse"_a = 0,
+          R"doc(Takes over a mouse of the scenario: from now on it pulls its grabbed point towards
+(x, y), its scripted path and time window replaced, until release_mouse(). A scenario without a
+mouse can be given one: Scenario.set("mouse", "[{grab: 'cloth[24][12]', from: 0, to: 1, path: [[0, 0]], ks: 2}]").)doc")
+      .def(
+          "release_mouse", [](SimulationHandle& h, int mouse) { h.get("release_mouse")->releaseMouse(mouse); },
+          "mouse"_a = 0, "Lets the mouse go: it pulls no more.")
+      .def(
+          "mouse_target",
+          [](const SimulationHandle& h, int mouse) -> py::object {
+            const std::optional<Point> at = h.get("mouse_target")->mouseTarget(mouse);
+            if (!at) return py::none();
+            return tupleOf(*at);
+          },
+          "mouse"_a = 0, "Where the mouse pulls now, (x, y); None while it holds no point.")
       .def("energy", [](const SimulationHandle& h) { return h.get("energy")->energy(); }, "The energy now (Energy).")
       .def(
           "constraint_error", [](const SimulationHandle& h) { return h.get("constraint_error")->constraintError(); },

@@ -11,6 +11,7 @@
 #include "api/guarded_call.hpp"
 #include "api/scenario_impl.hpp"
 #include "api/simulation_impl.hpp"
+#include "core/forces/mouse_spring_force.hpp"
 #include "core/solver.hpp"
 #include "core/worker_pool.hpp"
 #include "input/closest_name.hpp"
@@ -266,6 +267,46 @@ int Simulation::particleIndex(std::string_view name) const {
 int Simulation::bodyIndex(std::string_view name) const {
   return api::guardedCall("Simulation::bodyIndex",
                           [&] { return indexOf(implOf(impl_, "bodyIndex"), "bodyIndex", "body", true, name); });
+}
+
+namespace {
+
+MouseSpringForce& mouseOf(Simulation::Impl& impl, std::string_view call, int mouse) {
+  const std::vector<MouseSpringForce*> mice = impl.system().mice();
+  checkIndex(call, "mouse", mouse, int(mice.size()));
+  return *mice[size_t(mouse)];
+}
+
+}  // namespace
+
+int Simulation::mouseCount() const { return int(implOf(impl_, "mouseCount").system().mice().size()); }
+
+void Simulation::setMouseTarget(Point target, int mouse) {
+  api::guardedCall("Simulation::setMouseTarget", [&] {
+    Impl& impl = implOf(impl_, "setMouseTarget");
+    checkFinite("setMouseTarget", target);
+    ExclusiveUse use(impl.busy, "Simulation::setMouseTarget");
+    mouseOf(impl, "setMouseTarget", mouse).holdAt(Vec2(target.x, target.y), impl.system().time());
+  });
+}
+
+void Simulation::releaseMouse(int mouse) {
+  api::guardedCall("Simulation::releaseMouse", [&] {
+    Impl& impl = implOf(impl_, "releaseMouse");
+    ExclusiveUse use(impl.busy, "Simulation::releaseMouse");
+    mouseOf(impl, "releaseMouse", mouse).release(impl.system().time());
+  });
+}
+
+std::optional<Point> Simulation::mouseTarget(int mouse) const {
+  return api::guardedCall("Simulation::mouseTarget", [&]() -> std::optional<Point> {
+    Impl& impl = implOf(impl_, "mouseTarget");
+    const MouseSpringForce& m = mouseOf(impl, "mouseTarget", mouse);
+    const double t = impl.system().time();
+    if (!m.activeAt(t)) return std::nullopt;
+    const Vec2 at = m.target(t);
+    return Point{at.x(), at.y()};
+  });
 }
 
 void Simulation::setPosition(int particle, Point position) {

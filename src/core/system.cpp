@@ -1,5 +1,7 @@
 #include "core/system.hpp"
 
+#include "core/forces/mouse_spring_force.hpp"
+
 #include <algorithm>
 #include <span>
 #include <stdexcept>
@@ -140,6 +142,14 @@ EnergyReport System::energy(const Eigen::VectorXd& y, double t) const {
   }
   if (!colliders_.empty()) add("collision", collisionPotential(model_, s, colliders_));
   return report;
+}
+
+std::vector<MouseSpringForce*> System::mice() {
+  std::vector<MouseSpringForce*> out;
+  for (const auto& force : forces_) {
+    if (auto* mouse = dynamic_cast<MouseSpringForce*>(force.get())) out.push_back(mouse);
+  }
+  return out;
 }
 
 Drawing System::draw() const {

@@ -20,6 +20,8 @@
 
 namespace particles {
 
+class MouseSpringForce;
+
 struct ParticleSpec {
   Vec2 pos = Vec2::Zero();
   Vec2 vel = Vec2::Zero();
@@ -106,6 +108,8 @@ class System {
   const ConstraintSolveStats& lastConstraintSolve() const { return lastSolve_; }
 
   const std::vector<std::unique_ptr<Force>>& forces() const { return forces_; }
+  // The scripted mice (the `mouse` section's, in order), for a program that moves them.
+  std::vector<MouseSpringForce*> mice();
   const ConstraintList& constraints() const { return constraints_; }
   const ColliderList& colliders() const { return colliders_; }
 

@@ -280,3 +280,37 @@ def test_the_type_stubs_name_every_class_method_and_property():
         for attr in vars(obj):
             if not attr.startswith("_"):
                 assert attr in stubbed[name], f"{name}.{attr}"
+
+
+def test_moving_the_mouse_is_the_scripted_mouse_held_at_that_target():
+    cloth = particles.Scenario.load(scenario_path("cloth"))
+    moved = particles.Simulation(cloth, threads=1)
+    scripted = particles.Simulation(cloth.copy().set("mouse[0].from", 0).set("mouse[0].to", 1e9)
+                                    .set("mouse[0].path", "[[1, -1]]"), threads=1)
+    assert moved.mouse_count == 1 and moved.mouse_target() is None  # its window opens at t = 1.5
+    moved.set_mouse_target((1, -1))
+    assert moved.mouse_target() == (1.0, -1.0)
+    moved.advance(1.0)
+    scripted.advance(1.0)
+    assert np.array_equal(moved.positions, scripted.positions) and np.array_equal(moved.velocities, scripted.velocities)
+    moved.set_mouse_target([0.5, -1.2])  # moves on from where it is
+    moved.advance(0.5)
+    assert moved.position("cloth[24][12]") != scripted.position("cloth[24][12]")
+    moved.release_mouse()
+    assert moved.mouse_target() is None
+    before = moved.energy().potential
+    with pytest.raises(particles.ArgumentError, match="out of range"):
+        moved.set_mouse_target((0, 0), mouse=1)
+    with pytest.raises(particles.ArgumentError, match="finite"):
+        moved.set_mouse_target((math.nan, 0))
+    assert moved.energy().potential == before
+    given = particles.Simulation(particles.Scenario.from_text(
+        "name: swing\nsimulation: {integrator: rk4, dt: 0.01}\nparticles:\n  - {name: bob, pos: [1, 0]}\n"
+        "mouse:\n  - {grab: bob, from: 0, to: 1, path: [[0, 0]], ks: 5}\n"))
+    given.set_mouse_target((2.0, 0.0))
+    given.advance(0.5)
+    assert given.position("bob")[0] > 1.0
+    none = particles.Simulation(particles.Scenario.from_text(
+        "name: lone\nsimulation: {integrator: rk4, dt: 0.01}\nparticles:\n  - {name: bob, pos: [1, 0]}\n"))
+    with pytest.raises(particles.ArgumentError, match="has none"):
+        none.set_mouse_target((0, 0))

@@ -60,6 +60,9 @@ def run_sequence(seed, tmp_path):
         "set_position": lambda: sim.set_position(any_value(rng), any_value(rng)),
         "set_velocity": lambda: sim.set_velocity(rng.choice([0, 1, -1, 10**9, "cloth[0][0]", "x"]), any_value(rng)),
         "index": lambda: sim.index(rng.choice(TEXTS)),
+        "mouse": lambda: (sim.set_mouse_target(any_value(rng), mouse=rng.choice([0, 0, 1, -1])) if rng.random() < 0.7
+                          else sim.release_mouse(rng.choice([0, 1]))),
+        "mouse_target": lambda: sim.mouse_target(rng.choice([0, 1, -1])),
         "body_index": lambda: sim.body_index(rng.choice(TEXTS)),
         "threads": lambda: setattr(sim, "threads", rng.choice([1, 2, 0, 1025, None, "x"])),
         "read": lambda: (sim.energy(), sim.bodies, sim.names, sim.constraint_error(), sim.penetration(), sim.t),

@@ -1,6 +1,7 @@
 #include "core/forces/mouse_spring_force.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -29,6 +30,18 @@ Vec2 MouseSpringForce::target(double t) const {
   const double segment = cumulativeLength_[i] - cumulativeLength_[i - 1];
   const double w = segment > 0.0 ? (u - cumulativeLength_[i - 1]) / segment : 0.0;
   return (1.0 - w) * script_.path[i - 1] + w * script_.path[i];
+}
+
+void MouseSpringForce::holdAt(Vec2 target, double from) {
+  script_.path = {target};
+  script_.from = from;
+  script_.to = std::numeric_limits<double>::infinity();
+  cumulativeLength_ = {0.0};
+}
+
+void MouseSpringForce::release(double at) {
+  script_.to = std::min(script_.to, at);
+  script_.from = std::min(script_.from, script_.to);
 }
 
 void MouseSpringForce::apply(const Model&, const StateView& s, double t, ForceAccumulator& acc) const {

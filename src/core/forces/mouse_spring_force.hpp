@@ -29,6 +29,11 @@ class MouseSpringForce final : public Force {
   bool activeAt(double t) const { return t >= script_.from && t < script_.to; }
   // m(t): the target point at time t (clamped to the path's ends outside [from, to]).
   Vec2 target(double t) const;
+  // A program moving the mouse (the library's Simulation::setMouseTarget): from `from` on, the
+  // spring holds its point at `target`, the script's path and window replaced, until release.
+  void holdAt(Vec2 target, double from);
+  // Lets go at `at`: inactive from then on.
+  void release(double at);
 
   std::string_view kind() const override { return "mouse"; }
   bool isTimeDependent() const override { return true; }
