@@ -69,6 +69,12 @@ TEST_CASE("api: a scenario loads with its settings, and set() takes --set's key 
   CHECK(cloth.particleCount() == 625);
   CHECK(cloth.bodyCount() == 0);
   CHECK(cloth.validate().find("ok: 'cloth'") != std::string::npos);
+  {
+    Scratch scratch;  // one text for both: scenario::checkSummary
+    const Result r = scratch.run("check " + scenarioPath("cloth"));
+    REQUIRE(r.code == 0);
+    CHECK(r.out == cloth.validate() + "\n");
+  }
 
   cloth.set("dt", 0.005).set("integrator", "midpoint").set("simulation.duration", "2");
   CHECK(cloth.dt() == 0.005);

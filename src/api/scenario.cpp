@@ -3,22 +3,19 @@
 
 #include <fmt/format.h>
 
-#include <array>
 #include <utility>
 
 #include "api/guarded_call.hpp"
 #include "api/scenario_impl.hpp"
+#include "scenario/summary.hpp"
 
 namespace particles {
 
 namespace {
 
-// set()'s shorthands: the simulation's keys, as the command line's --integrator, --dt, --duration
-// and --implicit-solver (app/cli_support.cpp).
-constexpr std::array<std::string_view, 4> kSimulationShorthands = {"integrator", "dt", "duration", "implicit_solver"};
-
+// set()'s shorthands, the command line's --integrator, --dt, --duration and --implicit-solver.
 std::string keyPathOf(std::string_view path) {
-  for (std::string_view shorthand : kSimulationShorthands) {
+  for (std::string_view shorthand : scenario::kSimulationShorthands) {
     if (path == shorthand) return fmt::format("simulation.{}", shorthand);
   }
   return std::string(path);
@@ -83,12 +80,7 @@ const scenario::Scenario& loadedOf(const std::unique_ptr<Scenario::Impl>& impl, 
 std::string Scenario::validate() const {
   return api::guardedCall("Scenario::validate", [&] {
     const scenario::Scenario& s = loadedOf(impl_, "validate");
-    const auto& sim = s.simulation;
-    return fmt::format("{}: ok: '{}' with {} particles, {} rigid bodies, {} springs, {} constraints and {} colliders; "
-                       "{}, dt {} s, duration {} s ({} steps)",
-                       s.file, s.name, s.system.layout().numParticles, s.system.layout().numBodies,
-                       scenario::springCount(s.system), s.system.constraints().size(), s.system.colliders().size(),
-                       integratorName(sim.integrator), sim.dt, sim.duration, sim.steps());
+    return scenario::checkSummary(s, s.file);
   });
 }
 

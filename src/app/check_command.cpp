@@ -21,11 +21,7 @@ void addCheckOptions(CLI::App& command, CheckOptions& o) {
 int checkCommand(const CheckOptions& o) {
   const CommonOptions& common = o.common;
   const scenario::Scenario s = loadScenario(common);
-  if (!common.quiet) {
-    const auto& sim = s.simulation;
-    fmt::print("{}: ok: '{}' with {}; {}, dt {} s, duration {} s ({})\n", common.scenario, s.name, contents(s),
-               integratorName(sim.integrator), sim.dt, sim.duration, plural(size_t(sim.steps()), "step", "steps"));
-  }
+  if (!common.quiet) fmt::print("{}\n", scenario::checkSummary(s, common.scenario));
   return kOk;
 }
 

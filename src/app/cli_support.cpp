@@ -17,9 +17,12 @@ namespace particles::app {
 std::vector<scenario::Override> overridesOf(const CommonOptions& o) {
   std::vector<scenario::Override> out;
   for (const std::string& s : o.sets) out.push_back(scenario::parseOverride(s));
-  const std::pair<const std::optional<std::string>*, const char*> shorthands[] = {
-      {&o.integrator, "integrator"}, {&o.dt, "dt"}, {&o.duration, "duration"}, {&o.implicitSolver, "implicit_solver"}};
-  for (const auto& [value, key] : shorthands) {
+  // In scenario::kSimulationShorthands' order: the options that stand for those keys.
+  const std::optional<std::string>* values[] = {&o.integrator, &o.dt, &o.duration, &o.implicitSolver};
+  static_assert(std::size(values) == scenario::kSimulationShorthands.size());
+  for (size_t i = 0; i < std::size(values); ++i) {
+    const std::optional<std::string>* value = values[i];
+    const std::string_view key = scenario::kSimulationShorthands[i];
     if (!*value) continue;
     std::string option = fmt::format("--{}", key);
     std::replace(option.begin(), option.end(), '_', '-');
@@ -85,20 +88,6 @@ void requireFigurePath(const std::string& option, const std::string& path) {
     throw InputError(fmt::format("{} {}: a figure is .svg, .png or .pdf, not '{}'", option, path,
                                  std::filesystem::path(path).extension().string()));
   }
-}
-
-std::string plural(size_t n, const char* one, const char* many) {
-  return fmt::format("{} {}", n, n == 1 ? one : many);
-}
-
-std::string contents(const scenario::Scenario& s) {
-  const System& sys = s.system;
-  return fmt::format("{}, {}, {}, {}, {}, {}", plural(size_t(sys.layout().numParticles), "particle", "particles"),
-                     plural(size_t(sys.layout().numBodies), "rigid body", "rigid bodies"),
-                     plural(scenario::springCount(sys), "spring", "springs"),
-                     plural(sys.constraints().size(), "constraint", "constraints"),
-                     plural(sys.colliders().size(), "collider", "colliders"),
-                     plural(scenario::mouseScriptCount(sys), "mouse script", "mouse scripts"));
 }
 
 Progress::Progress(bool enabled, std::string unit)

@@ -14,6 +14,7 @@
 #include "core/integrators.hpp"
 #include "input/text_file.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/summary.hpp"
 
 namespace particles::app {
 
@@ -52,12 +53,11 @@ scenario::Scenario loadScenario(const CommonOptions& o);
 // a typo is found before the work whose result the figure shows, not after.
 void requireFigurePath(const std::string& option, const std::string& path);
 
-std::string plural(size_t n, const char* one, const char* many);
+using scenario::plural;    // "3 jobs" (scenario/summary.hpp)
+using scenario::contents;  // "625 particles, 0 rigid bodies, …" for messages
 
 // --max-input MIB, from 1 MiB to 1 TiB, its default shown: every command that reads files takes it.
 void addMaxInputOption(CLI::App& command, std::uintmax_t& mebibytes, const std::string& what);
-// "625 particles, 0 rigid bodies, 1200 springs, …" for messages.
-std::string contents(const scenario::Scenario& s);
 
 // Progress on stderr — done/total, rate and ETA — only for a person watching a terminal (never
 // when stderr is a file or a pipe, as in CI), at most ten times a second.
