@@ -59,15 +59,17 @@ Point pointOf(const py::handle& value, const char* what) {
 
 py::tuple tupleOf(Point p) { return py::make_tuple(p.x, p.y); }
 
+// A thread count: None is default_threads(); the C++ call checks the range and says it (a count
+// beyond int's is out of it anyway).
 int threadsOf(const py::object& threads, const char* call) {
   if (threads.is_none()) return defaultThreads();
   if (!py::isinstance<py::int_>(threads) || py::isinstance<py::bool_>(threads)) {
-    throw ArgumentError(std::string(call) + ": threads is a whole number from 1 to 1024, or None");
+    throw ArgumentError(std::string(call) + ": threads is a whole number, or None for default_threads()");
   }
-  const long long count = threads.cast<long long>();
-  if (count < 1 || count > 1024) {
-    throw ArgumentError(std::string(call) + ": threads must be 1 to 1024, got " + std::to_string(count));
-  }
+  int overflow = 0;
+  const long long count = PyLong_AsLongLongAndOverflow(threads.ptr(), &overflow);
+  if (overflow > 0 || count > INT_MAX) return INT_MAX;
+  if (overflow < 0 || count < INT_MIN) return INT_MIN;
   return int(count);
 }
 

@@ -47,7 +47,9 @@ ReportRequest requestOf(const std::string& manifest, const Options& o) {
   if (o.maxShare && !(*o.maxShare >= 0.0 && *o.maxShare <= 1.0)) {
     throw ArgumentError(fmt::format("golden::check: maxShare must be 0 to 1, got {}", *o.maxShare));
   }
-  if (o.jobs < 0 || o.jobs > 256) throw ArgumentError(fmt::format("golden::check: jobs must be 0 (automatic) to 256, got {}", o.jobs));
+  if (o.jobs < 0 || o.jobs > kMaxJobs) {
+    throw ArgumentError(fmt::format("golden::check: jobs must be 0 (automatic) to {}, got {}", kMaxJobs, o.jobs));
+  }
   request.check.overrides.threshold = o.threshold;
   request.check.overrides.maxShare = o.maxShare;
   request.check.jobs = o.jobs > 0 ? o.jobs : defaultJobs();

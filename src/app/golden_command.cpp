@@ -31,7 +31,7 @@ void addRunOptions(CLI::App& command, GoldenRunOptions& o) {
   command
       .add_option("-j,--jobs", o.jobs,
                   "Entries simulated at once (default: half the CPUs this process may use, at least 1)")
-      ->check(CLI::Range(1, 256));
+      ->check(CLI::Range(1, golden::kMaxJobs));
   command
       .add_option("--gl", o.gl,
                   fmt::format("GL backend: auto (EGL, else OSMesa), egl or osmesa (default: ${}, else auto)",

@@ -45,6 +45,9 @@ struct CheckOverrides {
   std::string text() const;  // the same joined by spaces
 };
 
+// The most entries a check runs at once (--jobs): each has a GL context and a frame's buffers.
+inline constexpr int kMaxJobs = 256;
+
 struct CheckOptions {
   std::string manifestGiven;                 // the manifest as given on the command line, for commands
   std::optional<std::pair<int, int>> shard;  // K, N: the K-th of N near-equal blocks of the checks, 1 ≤ K ≤ N

@@ -197,6 +197,7 @@ def test_a_second_thread_driving_the_same_simulation_is_refused():
     worker = threading.Thread(target=long_advance)
     worker.start()
     started.wait()
+    time.sleep(0.2)  # the worker's advance has the simulation by now: refused is this thread's call
     refused = None
     deadline = time.monotonic() + 60
     while refused is None and worker.is_alive() and time.monotonic() < deadline:
