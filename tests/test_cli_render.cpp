@@ -1,10 +1,12 @@
 // `particles render`, `stability` and `plot` end to end: outputs decoded and checked, bad input
 // and unwritable outputs, interruption, and that a failure leaves no file behind.
 #include <doctest/doctest.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iterator>
 #include <string>
 #include <utility>
@@ -42,6 +44,34 @@ TEST_CASE("cli render: an MP4 with fps × duration H.264 frames") {
   const auto big = particles::test::probeVideo(s.dir / "big.mp4");
   CHECK(big.width == 320);
   CHECK(big.frames == 20);
+}
+
+namespace {
+
+// x264's thread count, from the options it writes into the first frame ("… threads=3 …").
+int x264Threads(const std::string& mp4) {
+  const size_t at = mp4.find(" threads=");
+  if (at == std::string::npos) return -1;
+  return std::atoi(mp4.c_str() + at + 9);
+}
+
+}  // namespace
+
+// Issue 42: a thread count the user gives caps x264; without one x264 picks its own (about 1.5 per
+// CPU, at least 1), which encodes faster than one per CPU.
+TEST_CASE("cli render: --threads and PARTICLES_THREADS cap x264's threads, without them x264 chooses") {
+  Scratch s;
+  s.write("s.yaml", kSwing);
+  REQUIRE(s.run("render s.yaml -o capped.mp4 --quiet --threads 1").code == 0);
+  CHECK(x264Threads(slurp(s.dir / "capped.mp4")) == 1);
+  REQUIRE(s.run("render s.yaml -o env.mp4 --quiet", "PARTICLES_THREADS=1").code == 0);
+  CHECK(x264Threads(slurp(s.dir / "env.mp4")) == 1);
+  REQUIRE(s.run("render s.yaml -o own.mp4 --quiet", "-u PARTICLES_THREADS").code == 0);
+  const int own = x264Threads(slurp(s.dir / "own.mp4"));
+  cpu_set_t cpus;  // the CPUs x264 counts: this process's affinity mask
+  REQUIRE(sched_getaffinity(0, sizeof cpus, &cpus) == 0);
+  CHECK(own >= 1);
+  if (CPU_COUNT(&cpus) >= 2) CHECK(own > 1);
 }
 
 TEST_CASE("cli render: a PNG sequence, one PNG at --at, and per-frame stats") {

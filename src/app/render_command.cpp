@@ -224,8 +224,11 @@ int renderCommand(const RenderCommandOptions& options) {
   job.camera = {s.render.viewCenter, s.render.viewHeight};
   job.look = look;
   job.gl = gl;
-  // --threads is the whole command's: the simulation's (loadScenario), llvmpipe's and the encoder's.
-  job.threads = threadCountOf(common.threads);
+  // --threads (or PARTICLES_THREADS) is the whole command's cap: the simulation's (loadScenario),
+  // llvmpipe's and the encoder's. Without one, the simulation takes the CPUs and llvmpipe and x264
+  // choose their own counts (x264 about 1.5 threads per CPU, its frame threads overlapping), which
+  // encode faster than x264 held to one thread per CPU (bench/README.md, issue 42).
+  job.threads = threadCountGiven(common.threads) ? threadCountOf(common.threads) : 0;
   job.video.crf = options.crf;
   job.video.keyintSeconds = options.keyint;
   job.video.preset = options.preset;

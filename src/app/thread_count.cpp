@@ -1,5 +1,7 @@
 #include "app/thread_count.hpp"
 
+#include <cstdlib>
+
 #include "app/exit_codes.hpp"
 #include "input/default_threads.hpp"
 
@@ -12,6 +14,12 @@ int threadCountOf(int option) {
   } catch (const input::BadThreadCount& e) {
     throw InputError(e.what());
   }
+}
+
+bool threadCountGiven(int option) {
+  if (option > 0) return true;
+  const char* environment = std::getenv(kThreadsEnvironmentVariable);
+  return environment != nullptr && *environment != '\0';
 }
 
 }  // namespace particles::app

@@ -15,4 +15,9 @@ using particles::kMaxThreads;  // core/worker_pool.hpp
 // PARTICLES_THREADS that is not a whole number from 1 to kMaxThreads.
 int threadCountOf(int option);
 
+// Whether the user named a thread count (--threads, or PARTICLES_THREADS set): a hard cap on every
+// thread the command starts. Without one, the libraries that pick their own counts (x264, llvmpipe)
+// keep them (render_command.cpp).
+bool threadCountGiven(int option);
+
 }  // namespace particles::app
