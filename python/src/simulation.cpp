@@ -29,16 +29,21 @@ py::array stateView(const SharedSimulation& simulation, std::span<const double> 
   return view;
 }
 
+// A Python int as a C++ int for a call that checks its range: one beyond int's range becomes
+// INT_MAX or INT_MIN, which is out of every range such a call takes.
+int clampedToInt(const py::handle& value) {
+  int overflow = 0;
+  const long long n = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if (overflow > 0 || n > INT_MAX) return INT_MAX;
+  if (overflow < 0 || n < INT_MIN) return INT_MIN;
+  return int(n);
+}
+
 // A particle named by its index or its name (the --trace names).
 int particleOf(const Simulation& simulation, const py::handle& particle) {
   if (py::isinstance<py::str>(particle)) return simulation.particleIndex(particle.cast<std::string>());
   if (py::isinstance<py::int_>(particle) && !py::isinstance<py::bool_>(particle)) {
-    // The C++ call checks the range and says it; an index beyond int's is out of range anyway.
-    int overflow = 0;
-    const long long index = PyLong_AsLongLongAndOverflow(particle.ptr(), &overflow);
-    if (overflow > 0 || index > INT_MAX) return INT_MAX;
-    if (overflow < 0 || index < 0) return -1;
-    return int(index);
+    return clampedToInt(particle);  // the C++ call checks the range and says it
   }
   throw ArgumentError("a particle is named by its index (int) or its name (str), not " +
                       py::str(py::type::handle_of(particle).attr("__name__")).cast<std::string>());
@@ -59,18 +64,13 @@ Point pointOf(const py::handle& value, const char* what) {
 
 py::tuple tupleOf(Point p) { return py::make_tuple(p.x, p.y); }
 
-// A thread count: None is default_threads(); the C++ call checks the range and says it (a count
-// beyond int's is out of it anyway).
+// A thread count: None is default_threads(); the C++ call checks the range and says it.
 int threadsOf(const py::object& threads, const char* call) {
   if (threads.is_none()) return defaultThreads();
   if (!py::isinstance<py::int_>(threads) || py::isinstance<py::bool_>(threads)) {
     throw ArgumentError(std::string(call) + ": threads is a whole number, or None for default_threads()");
   }
-  int overflow = 0;
-  const long long count = PyLong_AsLongLongAndOverflow(threads.ptr(), &overflow);
-  if (overflow > 0 || count > INT_MAX) return INT_MAX;
-  if (overflow < 0 || count < INT_MIN) return INT_MIN;
-  return int(count);
+  return clampedToInt(threads);
 }
 
 // Runs a stepping call with the GIL released, stopping at Ctrl-C (InterruptCheck).
