@@ -43,6 +43,7 @@ double tickLabelWidth(const Canvas& canvas, const AxisTicks& ticks);
 
 // Layout constants shared by the charts, in pixels.
 inline constexpr double kOuterPadPx = 20;  // figure edge to the nearest text
+inline constexpr double kRightMarginPx = 32;  // plot area to the figure's right edge
 inline constexpr double kTickLengthPx = 6;
 inline constexpr double kMinorTickLengthPx = 3;
 inline constexpr double kTickLabelGapPx = 6;   // tick end to its label

@@ -15,7 +15,6 @@ namespace particles::plot {
 
 namespace {
 
-constexpr double kRightMarginPx = 32;
 constexpr double kDotRadiusPx = 5;
 constexpr double kDiamondPx = 7;  // half diagonal of a reference's open diamond
 constexpr double kCapPx = 6;      // half height of a reference range's end caps

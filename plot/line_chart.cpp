@@ -19,10 +19,9 @@ namespace particles::plot {
 namespace {
 
 constexpr double kPanelGapPx = 28;
-constexpr double kRightMarginPx = 32;
 constexpr double kLineWidthPx = 2;
-constexpr double kDotRadiusPx = 2.5;     // an isolated point, with no neighbour to draw a line to
-constexpr double kMarkerRadiusPx = 3.5;  // each point of a series with markers
+constexpr double kIsolatedPointRadiusPx = 2.5;  // a point with no neighbour to draw a line to
+constexpr double kMarkerRadiusPx = 3.5;        // each point of a series with markers
 constexpr double kLegendInsetPx = 10;
 constexpr double kLegendRowPx = 20;
 constexpr double kLegendSwatchPx = 26;
@@ -166,7 +165,7 @@ void drawSeries(const Canvas& canvas, std::size_t index, const std::vector<std::
     if (run.size() != 1 && !markers) continue;
     for (const Point& p : run) {
       cairo_new_sub_path(cr);
-      cairo_arc(cr, p.x, p.y, markers ? kMarkerRadiusPx : kDotRadiusPx, 0, 2 * std::numbers::pi);
+      cairo_arc(cr, p.x, p.y, markers ? kMarkerRadiusPx : kIsolatedPointRadiusPx, 0, 2 * std::numbers::pi);
     }
     anyDot = true;
   }

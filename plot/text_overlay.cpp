@@ -13,12 +13,6 @@ namespace particles::plot {
 
 namespace {
 
-void check(cairo_status_t status, const char* call) {
-  if (status != CAIRO_STATUS_SUCCESS) {
-    throw FigureError(std::string("text overlay: ") + call + ": " + cairo_status_to_string(status));
-  }
-}
-
 }  // namespace
 
 void drawTextOverlay(std::uint8_t* rgba, int width, int height, const std::vector<std::string>& lines,
@@ -40,7 +34,7 @@ void drawTextOverlay(std::uint8_t* rgba, int width, int height, const std::vecto
       cairo_text_extents(cr.get(), line.c_str(), &extents);
       textWidth = std::max(textWidth, extents.x_advance);
     }
-    check(cairo_status(cr.get()), "cairo_text_extents");
+    checkCairo(cairo_status(cr.get()), "text overlay", "cairo_text_extents");
   }
   const int panelW = std::min(width, int(std::ceil(textWidth + 2 * pad)));
   const int panelH = std::min(height, int(std::ceil(lines.size() * lineHeight + 2 * pad - (lineHeight - style.sizePx))));
@@ -48,7 +42,7 @@ void drawTextOverlay(std::uint8_t* rgba, int width, int height, const std::vecto
 
   SurfacePtr surface(
       cairo_image_surface_create(CAIRO_FORMAT_ARGB32, panelW, panelH));
-  check(cairo_surface_status(surface.get()), "cairo_image_surface_create");
+  checkCairo(cairo_surface_status(surface.get()), "text overlay", "cairo_image_surface_create");
   {
     ContextPtr cr(cairo_create(surface.get()));
     const double bg = style.darkBackground ? 0.0 : 1.0, fg = style.darkBackground ? 0.92 : 0.1;
@@ -61,7 +55,7 @@ void drawTextOverlay(std::uint8_t* rgba, int width, int height, const std::vecto
       cairo_move_to(cr.get(), pad, pad + style.sizePx * 0.8 + double(i) * lineHeight);
       cairo_show_text(cr.get(), lines[i].c_str());
     }
-    check(cairo_status(cr.get()), "cairo_show_text");
+    checkCairo(cairo_status(cr.get()), "text overlay", "cairo_show_text");
   }
   cairo_surface_flush(surface.get());
 

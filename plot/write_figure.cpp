@@ -41,12 +41,6 @@ cairo_status_t appendBytes(void* closure, const unsigned char* data, unsigned in
   }
 }
 
-void check(cairo_status_t status, const char* call) {
-  if (status != CAIRO_STATUS_SUCCESS) {
-    throw FigureError(std::string("cannot draw figure: ") + call + ": " + cairo_status_to_string(status));
-  }
-}
-
 void validate(const Figure& figure) {
   if (figure.widthPx < 200 || figure.heightPx < 150 || figure.widthPx > 20000 || figure.heightPx > 20000) {
     throw FigureError("figure size " + std::to_string(figure.widthPx) + "x" + std::to_string(figure.heightPx) +
@@ -93,7 +87,7 @@ void draw(cairo_t* cr, const FontFace& font, const Figure& figure) {
         }
       },
       figure.chart);
-  check(cairo_status(cr), "drawing");
+  checkCairo(cairo_status(cr), "cannot draw figure", "drawing");
 }
 
 std::string escapeXml(const std::string& s) {
@@ -180,7 +174,7 @@ std::vector<std::uint8_t> renderFigure(const Figure& figure, ImageFormat format)
   std::vector<std::uint8_t> bytes;
   if (format == ImageFormat::Svg) {
     SurfacePtr surface(cairo_svg_surface_create_for_stream(appendBytes, &bytes, figure.widthPx, figure.heightPx));
-    check(cairo_surface_status(surface.get()), "cairo_svg_surface_create_for_stream");
+    checkCairo(cairo_surface_status(surface.get()), "cannot draw figure", "cairo_svg_surface_create_for_stream");
     // Sizes in px, as the PNG: without this cairo declares points and the SVG shows 4/3 larger.
     cairo_svg_surface_set_document_unit(surface.get(), CAIRO_SVG_UNIT_PX);
     {
@@ -188,7 +182,7 @@ std::vector<std::uint8_t> renderFigure(const Figure& figure, ImageFormat format)
       draw(cr.get(), font, figure);
     }
     cairo_surface_finish(surface.get());  // writes the document
-    check(cairo_surface_status(surface.get()), "cairo_surface_finish (SVG)");
+    checkCairo(cairo_surface_status(surface.get()), "cannot draw figure", "cairo_surface_finish (SVG)");
     return normaliseSvg(bytes, figure.title);
   }
   if (format == ImageFormat::Pdf) {
@@ -197,7 +191,7 @@ std::vector<std::uint8_t> renderFigure(const Figure& figure, ImageFormat format)
     constexpr double kPointsPerPx = 72.0 / 96.0;
     SurfacePtr surface(cairo_pdf_surface_create_for_stream(appendBytes, &bytes, figure.widthPx * kPointsPerPx,
                                                            figure.heightPx * kPointsPerPx));
-    check(cairo_surface_status(surface.get()), "cairo_pdf_surface_create_for_stream");
+    checkCairo(cairo_surface_status(surface.get()), "cannot draw figure", "cairo_pdf_surface_create_for_stream");
     // cairo stamps the current time as the creation date: a fixed one keeps the same figure the
     // same bytes (as for SVG and PNG), and the title and creator go in the document information.
     cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "2000-01-01T00:00:00Z");
@@ -211,18 +205,19 @@ std::vector<std::uint8_t> renderFigure(const Figure& figure, ImageFormat format)
       draw(cr.get(), font, figure);
     }
     cairo_surface_finish(surface.get());
-    check(cairo_surface_status(surface.get()), "cairo_surface_finish (PDF)");
+    checkCairo(cairo_surface_status(surface.get()), "cannot draw figure", "cairo_surface_finish (PDF)");
     return bytes;
   }
   // RGB24: the figure is opaque, and a PNG without alpha is smaller and shows the same everywhere.
   SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, figure.widthPx, figure.heightPx));
-  check(cairo_surface_status(surface.get()), "cairo_image_surface_create");
+  checkCairo(cairo_surface_status(surface.get()), "cannot draw figure", "cairo_image_surface_create");
   {
     ContextPtr cr(cairo_create(surface.get()));
     draw(cr.get(), font, figure);
   }
   cairo_surface_flush(surface.get());
-  check(cairo_surface_write_to_png_stream(surface.get(), appendBytes, &bytes), "cairo_surface_write_to_png_stream");
+  checkCairo(cairo_surface_write_to_png_stream(surface.get(), appendBytes, &bytes), "cannot draw figure",
+             "cairo_surface_write_to_png_stream");
   return bytes;
 }
 

@@ -186,7 +186,7 @@ struct GifWriter::Passes {
 
 namespace {
 
-void validate(const FrameWriterOptions& o) {
+void validateGifOptions(const FrameWriterOptions& o) {
   if (o.video.fps < 1)
     throw std::invalid_argument("GIF frame rate " + std::to_string(o.video.fps) + " is not positive");
   checkFps(outputFormat(OutputKind::gif), o.video.fps);
@@ -196,15 +196,15 @@ void validate(const FrameWriterOptions& o) {
   }
 }
 
-const std::filesystem::path& validated(const std::filesystem::path& path, const FrameWriterOptions& options) {
-  validate(options);  // before the output is opened, as Mp4Writer does
+const std::filesystem::path& validatedGifPath(const std::filesystem::path& path, const FrameWriterOptions& options) {
+  validateGifOptions(options);  // before the output is opened, as Mp4Writer does
   return path;
 }
 
 }  // namespace
 
 GifWriter::GifWriter(const std::filesystem::path& path, const FrameWriterOptions& options)
-    : SingleFileWriter(validated(path, options), options.width, options.height, "the GIF") {
+    : SingleFileWriter(validatedGifPath(path, options), options.width, options.height, "the GIF") {
   auto p = std::make_unique<Passes>();
   p->width = options.width;
   p->height = options.height;

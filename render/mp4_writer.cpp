@@ -11,7 +11,7 @@ namespace particles::render {
 
 namespace {
 
-void validate(const FrameWriterOptions& o) {
+void validateMp4Options(const FrameWriterOptions& o) {
   validateYuvVideo(outputFormat(OutputKind::mp4), o);
   crfOf(outputFormat(OutputKind::mp4), o.video.crf);
   if (!isX264Preset(o.video.preset)) {
@@ -27,15 +27,15 @@ void validate(const FrameWriterOptions& o) {
 
 // The options are checked before the output is opened: opening a FIFO waits for its reader, and
 // bad options would then be reported only once one came.
-const std::filesystem::path& validated(const std::filesystem::path& path, const FrameWriterOptions& options) {
-  validate(options);
+const std::filesystem::path& validatedMp4Path(const std::filesystem::path& path, const FrameWriterOptions& options) {
+  validateMp4Options(options);
   return path;
 }
 
 }  // namespace
 
 Mp4Writer::Mp4Writer(const std::filesystem::path& path, const FrameWriterOptions& options)
-    : YuvVideoWriter(validated(path, options), options) {
+    : YuvVideoWriter(validatedMp4Path(path, options), options) {
   std::unique_ptr<VideoEncoder> video = makeEncoder("mp4", "libx264", false);
   // x264's keyint: the longest run between keyframes. Its min-keyint (libav's keyint_min, default
   // 25) is clamped by x264 to half of it plus one.

@@ -11,7 +11,7 @@ namespace particles::render {
 namespace {
 
 // FLIP_Y is defined before this text.
-constexpr const char* kVertexShader = R"(
+constexpr const char* kTileVertexShader = R"(
 uniform vec2 imageSize;
 in vec2 position;  // a corner of a run of tiles, in image pixels (x right, y down)
 void main() {
@@ -22,7 +22,7 @@ void main() {
 
 // SAMPLE_COUNT, SAMPLES (samplePatternGlsl), FLIP_Y, TILE and FAR are defined before this text.
 // Records: render/tile_bins.hpp.
-constexpr const char* kFragmentShader = R"(
+constexpr const char* kTileFragmentShader = R"(
 uniform samplerBuffer shapes;
 uniform usamplerBuffer tiles;
 uniform usamplerBuffer items;
@@ -101,7 +101,7 @@ TileProgram::TileProgram(const GlFunctions& gl, int samples, int width, int heig
                              std::to_string(kFarPx) + "\n#define KIND_ANNULUS " + std::to_string(kAnnulusKind) + "\n" +
                              samplePatternGlsl(samples);
   const std::string flip = std::string("#version 330\n#define FLIP_Y ") + (flipY ? "true" : "false") + "\n";
-  program_ = linkProgram(gl, flip + kVertexShader, header + kFragmentShader);
+  program_ = linkProgram(gl, flip + kTileVertexShader, header + kTileFragmentShader);
   positionAttr_ = gl.glGetAttribLocation(program_, "position");
   gl.glUseProgram(program_);
   gl.glGenBuffers(3, buffers_);

@@ -15,20 +15,20 @@ namespace {
 constexpr int kVp9Threads = 4;
 constexpr int kVp9CpuUsed = 4;
 
-void validate(const FrameWriterOptions& o) {
+void validateWebmOptions(const FrameWriterOptions& o) {
   validateYuvVideo(outputFormat(OutputKind::webm), o);
   crfOf(outputFormat(OutputKind::webm), o.video.crf);
 }
 
-const std::filesystem::path& validated(const std::filesystem::path& path, const FrameWriterOptions& options) {
-  validate(options);  // before the output is opened, as Mp4Writer does
+const std::filesystem::path& validatedWebmPath(const std::filesystem::path& path, const FrameWriterOptions& options) {
+  validateWebmOptions(options);  // before the output is opened, as Mp4Writer does
   return path;
 }
 
 }  // namespace
 
 WebmWriter::WebmWriter(const std::filesystem::path& path, const FrameWriterOptions& options)
-    : YuvVideoWriter(validated(path, options), options) {
+    : YuvVideoWriter(validatedWebmPath(path, options), options) {
   std::unique_ptr<VideoEncoder> video = makeEncoder("webm", "libvpx-vp9", options.alpha);
   AVCodecContext* c = video->codec();
   c->gop_size = options.video.keyframeInterval();  // libvpx's kf_max_dist

@@ -1,6 +1,6 @@
 #pragma once
 // Which sanitizer the tests are built with: scripts/test runs them under AddressSanitizer +
-// UndefinedBehaviorSanitizer (build-fuzz) and the core's under ThreadSanitizer (build-tsan), each
+// UndefinedBehaviorSanitizer (build-asan) and the core's under ThreadSanitizer (build-tsan), each
 // several times slower than the plain build, so the costliest tests take fewer steps there. GCC
 // says so by a macro, clang by __has_feature.
 

@@ -16,7 +16,7 @@
 #include "render_support.hpp"
 
 namespace fs = std::filesystem;
-using particles::render::Image;
+using RenderImage = particles::render::Image;  // not particles::Image, the public one
 using particles::test::slurp;
 
 using particles::test::contains;
@@ -46,8 +46,8 @@ Run runParticles(const particles::test::ScratchDir& dir, const std::string& args
   return r;
 }
 
-Image grey(int w, int h, std::uint8_t level) {
-  Image img(w, h);
+RenderImage grey(int w, int h, std::uint8_t level) {
+  RenderImage img(w, h);
   for (size_t i = 0; i < img.rgba.size(); ++i) img.rgba[i] = (i % 4 == 3) ? 255 : level;
   return img;
 }
@@ -58,8 +58,8 @@ Image grey(int w, int h, std::uint8_t level) {
 struct Pair {
   particles::test::ScratchDir dir;
   Pair() {
-    const Image expected = grey(10, 10, 50);
-    Image actual = expected;
+    const RenderImage expected = grey(10, 10, 50);
+    RenderImage actual = expected;
     actual.pixel(2, 3)[0] = 250;
     actual.pixel(7, 1)[1] = 0;
     actual.pixel(4, 2)[2] = 90;
@@ -146,7 +146,7 @@ TEST_CASE("compare cli: --diff writes the diff picture, whole or not at all (exi
   CHECK(r.code == 1);  // the comparison's verdict, not the diff's
   CHECK(contains(r.out, "d.png"));
   REQUIRE(fs::exists(p.dir / "d.png"));
-  const Image diff = particles::render::readPng(p.dir / "d.png");
+  const RenderImage diff = particles::render::readPng(p.dir / "d.png");
   CHECK(diff == particles::render::diffImage(particles::render::readPng(p.dir / "expected.png"),
                                              particles::render::readPng(p.dir / "actual.png")));
   CHECK(p.dir.entries() == std::set<std::string>{"actual.png", "d.png", "expected.png"});  // no temporaries

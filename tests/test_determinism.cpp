@@ -3,7 +3,7 @@
 // 4 and 8 threads. The three demos and the stiff cloth through their scripted drags, and the 100²
 // and 316² cloths (several chunks per pass: 19,800 and 199,080 springs) with every integrator,
 // since each integrator reaches the threads through its own code. Also run under ThreadSanitizer
-// (scripts/test's TSan stage, particles_core_tests) and AddressSanitizer (build-fuzz).
+// (scripts/test's TSan stage, particles_core_tests) and AddressSanitizer (build-asan).
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
@@ -35,7 +35,7 @@ namespace {
 // Each compared against one thread. 3 leaves a thread with more chunks than the others; 8 is more
 // threads than the 100² cloth has chunks (3 per pass), so some of them join a job late and find
 // none left. Under the sanitizers (TSan 5–20 times slower; ASan's -O1 with Eigen's assertions,
-// build-fuzz, 30 times on backward Euler) fewer, since a data race needs two threads, not a
+// build-asan, 30 times on backward Euler) fewer, since a data race needs two threads, not a
 // particular number of them: under TSan 3 and 8 on the large cloths, 3 alone on the demos (whose
 // passes are one chunk each today: the 25² stiff cloth took 31 s under ASan with 3 and 8); under
 // ASan, which looks for bad memory, not races, 3 alone everywhere (the net of rods: 81 s with 3 and 8).

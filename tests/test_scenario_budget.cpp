@@ -77,7 +77,7 @@ TEST_CASE("scene budget: gridSpringCount counts exactly the springs addGrid adds
 TEST_CASE("scene budget: each demo loads at limits equal to what it builds and is refused one below") {
   for (const auto& entry : std::filesystem::directory_iterator(kScenarios)) {
     if (entry.path().extension() != ".yaml") continue;
-    // Under ASan + UBSan (build-fuzz) not the million-particle cloth, loaded twice per limit here
+    // Under ASan + UBSan (build-asan) not the million-particle cloth, loaded twice per limit here
     // (all but 0.2 s of this case's 20 s there): the same loader and counts as the other demos; its
     // own test case loads it there once.
     if (particles::test::kUnderAddressSanitizer && entry.path().stem() == "cloth_million") continue;

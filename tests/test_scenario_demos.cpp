@@ -56,7 +56,7 @@ TEST_CASE("demos: every scenario runs its full duration within its bounds") {
     if (stem == kMillion) continue;
     Scenario s = loadScenarioFile(entry.path());
     CHECK(s.name == stem);
-    // Under ASan + UBSan (build-fuzz) a quarter of each run: every scenario's code, and each mouse
+    // Under ASan + UBSan (build-asan) a quarter of each run: every scenario's code, and each mouse
     // script's first grab, in a quarter of the time (87 s there); the whole runs are build/'s.
     if (particles::test::kUnderAddressSanitizer) s.simulation.duration /= 4;
     RunSummary summary;

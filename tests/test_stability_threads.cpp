@@ -38,7 +38,7 @@ const std::string kSmallCloth =
     "mouse:\n"
     "  - {grab: \"cloth[5][3]\", from: 0.2, to: 0.6, path: [[0, -0.2], [0.3, -0.1]], ks: 2}\n";
 
-// The thread counts compared with one thread. Under ASan + UBSan (build-fuzz), which looks for bad
+// The thread counts compared with one thread. Under ASan + UBSan (build-asan), which looks for bad
 // memory, not races, 3 alone: the study's table took 40 s there on 2, 3 and 4 threads.
 const std::vector<int> kStudyThreadCounts = kUnderAddressSanitizer ? std::vector<int>{3} : std::vector<int>{2, 3, 4};
 const std::vector<int> kCliStudyThreadCounts = kUnderAddressSanitizer ? std::vector<int>{1, 3} : std::vector<int>{1, 2, 3, 4};

@@ -69,7 +69,7 @@ void setAll(Scenario& scenario, const py::object& settings) {
   }
 }
 
-std::string describe(const Scenario& scenario) {
+std::string describeScenario(const Scenario& scenario) {
   return "<particles.Scenario '" + scenario.name() + "' from " + scenario.file() + ": " + scenario.integrator() +
          ", dt = " + py::repr(py::float_(scenario.dt())).cast<std::string>() + " s, " +
          py::repr(py::float_(scenario.duration())).cast<std::string>() + " s, " + std::to_string(scenario.particleCount()) +
@@ -202,7 +202,7 @@ ScenarioError and leaves the scenario as it was.)doc")
       .def_property_readonly("fps", &Scenario::fps, "Frames per simulated second when rendered.")
       .def_property_readonly("particle_count", &Scenario::particleCount, "How many particles it has.")
       .def_property_readonly("body_count", &Scenario::bodyCount, "How many rigid bodies it has.")
-      .def("__repr__", &describe);
+      .def("__repr__", &describeScenario);
 }
 
 }  // namespace particles::python

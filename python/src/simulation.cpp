@@ -84,7 +84,7 @@ void stepInterruptibly(const SharedSimulation& simulation, Call&& call) {
   check.raiseIfInterrupted();
 }
 
-std::string describe(const SimulationHandle& handle) {
+std::string describeSimulation(const SimulationHandle& handle) {
   if (!handle.simulation) return "<particles.Simulation, closed>";
   const Simulation& s = *handle.simulation;
   return "<particles.Simulation t = " + py::repr(py::float_(s.time())).cast<std::string>() + " s after " +
@@ -286,7 +286,7 @@ mouse can be given one: Scenario.set("mouse", "[{grab: 'cloth[24][12]', from: 0,
             return false;
           },
           "exc_type"_a, "exc"_a, "traceback"_a)
-      .def("__repr__", &describe);
+      .def("__repr__", &describeSimulation);
 }
 
 }  // namespace particles::python

@@ -13,19 +13,13 @@
 
 #include "output/output_error.hpp"
 #include "output/output_file.hpp"
+#include "output/system_limits.hpp"
 
 namespace particles::output {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// Linux's own limit (MAXSYMLINKS) on links followed while resolving one path.
-constexpr int kMaxLinkHops = 40;
-
-std::string errnoText(int error) {
-  return std::strerror(error);
-}
 
 EntryKind kindOfMode(mode_t mode) {
   if (S_ISREG(mode)) return EntryKind::regular;

@@ -15,15 +15,13 @@
 
 #include "output/output_error.hpp"
 #include "output/partial_names.hpp"
+#include "output/system_limits.hpp"
 
 namespace particles::output {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// Linux's own limit (MAXSYMLINKS) on links followed while resolving one path.
-constexpr int kMaxLinkHops = 40;
 
 // For messages: what a path that is not a regular file is.
 const char* fileKind(mode_t mode) {
@@ -34,10 +32,6 @@ const char* fileKind(mode_t mode) {
   if (S_ISFIFO(mode)) return "a FIFO";
   if (S_ISLNK(mode)) return "a symbolic link";
   return "not a regular file";
-}
-
-std::string errnoText(int error) {
-  return std::strerror(error);
 }
 
 fs::path folderOf(const fs::path& file) {
