@@ -39,6 +39,8 @@ struct RenderSettings {
   std::string raster = "auto";       // auto, triangles or tiles
   std::string gl = "auto";           // the GL backend: auto (EGL, else OSMesa), egl or osmesa
   bool gpu = false;                  // a hardware EGL device instead of llvmpipe
+
+  bool operator==(const RenderSettings&) const = default;
 };
 
 class PARTICLES_API Renderer {

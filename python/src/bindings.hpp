@@ -26,21 +26,11 @@ void bindSimulation(py::module_& module);
 void bindRendering(py::module_& module);
 void bindGolden(py::module_& module);
 
-// The look a frame is drawn with, as Python passes it (render's keyword arguments).
-struct RenderKey {
-  std::optional<std::tuple<int, int>> size;
-  std::string theme, background, raster, gl;
-  int msaa = 4;
-  bool gpu = false;
-  bool operator==(const RenderKey&) const = default;
-  RenderSettings settings() const;
-};
-
 // A Python Simulation: the C++ one, shared with the numpy views of its state (a view keeps the
 // state's memory alive: one may outlive close()), and the renderer of its last render() call.
 struct SimulationHandle {
   std::shared_ptr<Simulation> simulation;  // null after close()
-  std::optional<std::pair<RenderKey, Renderer>> lastRenderer;
+  std::optional<std::pair<RenderSettings, Renderer>> lastRenderer;  // with the settings it was made with
 
   // The simulation, or particles.Error when it was closed. `call` names the method.
   const std::shared_ptr<Simulation>& get(const char* call) const;

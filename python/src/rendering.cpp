@@ -25,17 +25,23 @@ std::string typeName(const py::handle& value) {
   return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
 }
 
-RenderKey keyOf(const py::object& size, std::string theme, int msaa, std::string background, std::string raster,
-                std::string gl, bool gpu) {
-  RenderKey key{std::nullopt, std::move(theme), std::move(background), std::move(raster), std::move(gl), msaa, gpu};
+// render's keyword arguments as the API's settings; size None is the scenario's render.size (0 × 0).
+RenderSettings settingsOf(const py::object& size, std::string theme, int msaa, std::string background,
+                          std::string raster, std::string gl, bool gpu) {
+  RenderSettings settings{.theme = std::move(theme),
+                          .msaa = msaa,
+                          .background = std::move(background),
+                          .raster = std::move(raster),
+                          .gl = std::move(gl),
+                          .gpu = gpu};
   if (!size.is_none()) {
     try {
-      key.size = size.cast<std::tuple<int, int>>();
+      std::tie(settings.width, settings.height) = size.cast<std::tuple<int, int>>();
     } catch (const py::cast_error&) {
       throw ArgumentError("render: size takes (width, height) in pixels, or None (the scenario's render.size)");
     }
   }
-  return key;
+  return settings;
 }
 
 struct VideoHandle {
@@ -49,18 +55,6 @@ VideoWriter& writerOf(VideoHandle& handle, const char* call) {
 }
 
 }  // namespace
-
-RenderSettings RenderKey::settings() const {
-  RenderSettings out;
-  if (size) std::tie(out.width, out.height) = *size;
-  out.theme = theme;
-  out.msaa = msaa;
-  out.background = background;
-  out.raster = raster;
-  out.gl = gl;
-  out.gpu = gpu;
-  return out;
-}
 
 py::object frameOf(Image&& image) {
   auto* pixels = new std::vector<std::uint8_t>(std::move(image.rgba));
@@ -140,8 +134,8 @@ a Renderer of your own can draw several simulations with one GL context.
 )doc")
       .def(py::init([](const py::object& size, std::string theme, int msaa, std::string background, std::string raster,
                        std::string gl, bool gpu) {
-             return Renderer(keyOf(size, std::move(theme), msaa, std::move(background), std::move(raster), std::move(gl), gpu)
-                                 .settings());
+             return Renderer(
+                 settingsOf(size, std::move(theme), msaa, std::move(background), std::move(raster), std::move(gl), gpu));
            }),
            py::kw_only(), "size"_a = py::none(), "theme"_a = "dark", "msaa"_a = 4, "background"_a = "theme",
            "raster"_a = "auto", "gl"_a = "auto", "gpu"_a = false,
@@ -170,14 +164,15 @@ gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)
       [](SimulationHandle& handle, const py::object& size, std::string theme, int msaa, std::string background,
          std::string raster, std::string gl, bool gpu) {
         const std::shared_ptr<Simulation> shared = handle.get("render");
-        RenderKey key = keyOf(size, std::move(theme), msaa, std::move(background), std::move(raster), std::move(gl), gpu);
+        RenderSettings settings =
+            settingsOf(size, std::move(theme), msaa, std::move(background), std::move(raster), std::move(gl), gpu);
         // The renderer is taken out while it draws: a second thread's render() then makes its own,
         // and Renderer::render refuses it while this one holds the simulation.
-        std::optional<std::pair<RenderKey, Renderer>> slot = std::move(handle.lastRenderer);
+        std::optional<std::pair<RenderSettings, Renderer>> slot = std::move(handle.lastRenderer);
         handle.lastRenderer.reset();
-        if (!slot || !(slot->first == key)) {
-          Renderer renderer(key.settings());
-          slot.emplace(std::move(key), std::move(renderer));
+        if (!slot || slot->first != settings) {
+          Renderer renderer(settings);
+          slot.emplace(std::move(settings), std::move(renderer));
         }
         Image image;
         {

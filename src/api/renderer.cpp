@@ -7,6 +7,7 @@
 #include <atomic>
 #include <optional>
 
+#include "api/checked_image.hpp"
 #include "api/exclusive_use.hpp"
 #include "api/guarded_call.hpp"
 #include "api/simulation_impl.hpp"
@@ -99,13 +100,10 @@ std::string Renderer::glDescription() const {
   return render::describe(impl_->renderer->gl());
 }
 
-namespace {
-
-// The public image as the render room's, after checking its size against its bytes.
-render::Image checkedImage(const Image& image, std::string_view call) {
+render::Image api::checkedImage(const Image& image, std::string_view call, std::string_view noun) {
   if (image.width < 1 || image.height < 1 || image.rgba.size() != size_t(image.width) * size_t(image.height) * 4) {
-    throw ArgumentError(fmt::format("{}: a {}x{} image needs {} bytes of RGBA, it has {}", call, image.width,
-                                    image.height, size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) * 4,
+    throw ArgumentError(fmt::format("{}: a {}x{} {} needs {} bytes of RGBA, it has {}", call, image.width, image.height,
+                                    noun, size_t(std::max(image.width, 0)) * size_t(std::max(image.height, 0)) * 4,
                                     image.rgba.size()));
   }
   render::Image out(image.width, image.height);
@@ -113,13 +111,11 @@ render::Image checkedImage(const Image& image, std::string_view call) {
   return out;
 }
 
-}  // namespace
-
 void Image::savePng(const std::string& path, bool alpha) const {
   api::guardedCall("Image::savePng", [&] {
     render::PngOptions png;
     png.alpha = alpha;
-    render::writePng(path, checkedImage(*this, "Image::savePng"), png);
+    render::writePng(path, api::checkedImage(*this, "Image::savePng"), png);
   });
 }
 
@@ -127,7 +123,7 @@ std::vector<std::uint8_t> Image::encodePng(bool alpha) const {
   return api::guardedCall("Image::encodePng", [&] {
     render::PngOptions png;
     png.alpha = alpha;
-    return render::encodePng(checkedImage(*this, "Image::encodePng"), png);
+    return render::encodePng(api::checkedImage(*this, "Image::encodePng"), png);
   });
 }
 

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 
+#include "api/checked_image.hpp"
 #include "api/exclusive_use.hpp"
 #include "api/guarded_call.hpp"
 #include "render/frame_writer.hpp"
@@ -75,12 +76,7 @@ void VideoWriter::write(const Image& frame) {
     if (!impl_) throw ArgumentError("VideoWriter::write: this VideoWriter was moved from");
     ExclusiveUse use(impl_->busy, "VideoWriter::write", "VideoWriter");
     if (impl_->finished) throw ArgumentError("VideoWriter::write: the video is finished");
-    if (frame.width < 1 || frame.height < 1 || frame.rgba.size() != size_t(frame.width) * size_t(frame.height) * 4) {
-      throw ArgumentError(fmt::format("VideoWriter::write: a {}x{} frame needs {} bytes of RGBA, it has {}",
-                                      frame.width, frame.height,
-                                      size_t(std::max(frame.width, 0)) * size_t(std::max(frame.height, 0)) * 4,
-                                      frame.rgba.size()));
-    }
+    const render::Image image = api::checkedImage(frame, "VideoWriter::write", "frame");
     if (!impl_->writer) {
       impl_->options.width = frame.width;
       impl_->options.height = frame.height;
@@ -89,8 +85,6 @@ void VideoWriter::write(const Image& frame) {
       throw ArgumentError(fmt::format("VideoWriter::write: every frame must be {}x{} like the first, this one is {}x{}",
                                       impl_->options.width, impl_->options.height, frame.width, frame.height));
     }
-    render::Image image(frame.width, frame.height);
-    image.rgba = frame.rgba;
     impl_->writer->write(image);
   });
 }
