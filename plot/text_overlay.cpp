@@ -11,10 +11,6 @@
 
 namespace particles::plot {
 
-namespace {
-
-}  // namespace
-
 void drawTextOverlay(std::uint8_t* rgba, int width, int height, const std::vector<std::string>& lines,
                      const OverlayStyle& style) {
   if (lines.empty() || width <= 0 || height <= 0) return;

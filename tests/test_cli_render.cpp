@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <iterator>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -50,9 +51,10 @@ namespace {
 
 // x264's thread count, from the options it writes into the first frame ("… threads=3 …").
 int x264Threads(const std::string& mp4) {
-  const size_t at = mp4.find(" threads=");
+  constexpr std::string_view kOption = " threads=";
+  const size_t at = mp4.find(kOption);
   if (at == std::string::npos) return -1;
-  return std::atoi(mp4.c_str() + at + 9);
+  return std::atoi(mp4.c_str() + at + kOption.size());
 }
 
 }  // namespace

@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
-#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -233,7 +232,7 @@ std::string explicitThreads(const scenario::SweepSpec& spec) {
   if (std::any_of(options.begin(), options.end(), [](const auto& option) { return option.name == "threads"; })) {
     return "the sweep file's";
   }
-  if (const char* environment = std::getenv(kThreadsEnvironmentVariable); environment && *environment) {
+  if (threadCountGiven(0)) {
     threadCountOf(0);  // throws InputError for a value that is not a thread count
     return kThreadsEnvironmentVariable;
   }

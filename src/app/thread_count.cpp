@@ -1,7 +1,5 @@
 #include "app/thread_count.hpp"
 
-#include <cstdlib>
-
 #include "app/exit_codes.hpp"
 #include "input/default_threads.hpp"
 
@@ -17,9 +15,7 @@ int threadCountOf(int option) {
 }
 
 bool threadCountGiven(int option) {
-  if (option > 0) return true;
-  const char* environment = std::getenv(kThreadsEnvironmentVariable);
-  return environment != nullptr && *environment != '\0';
+  return option > 0 || input::threadCountInEnvironment();
 }
 
 }  // namespace particles::app

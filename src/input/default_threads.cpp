@@ -11,10 +11,14 @@
 
 namespace particles::input {
 
-int defaultThreads(int maxThreads) {
+bool threadCountInEnvironment() {
   const char* environment = std::getenv(kThreadsEnvironmentVariable);
-  if (environment == nullptr || *environment == '\0') return std::min(availableCores(), maxThreads);
-  const std::string_view text(environment);
+  return environment != nullptr && *environment != '\0';
+}
+
+int defaultThreads(int maxThreads) {
+  if (!threadCountInEnvironment()) return std::min(availableCores(), maxThreads);
+  const std::string_view text(std::getenv(kThreadsEnvironmentVariable));
   int value = 0;
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (error != std::errc() || end != text.data() + text.size() || value < 1 || value > maxThreads) {

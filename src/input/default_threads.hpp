@@ -16,6 +16,9 @@ class BadThreadCount : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
+// Whether PARTICLES_THREADS is set (to anything but the empty string): a count the user named.
+bool threadCountInEnvironment();
+
 // PARTICLES_THREADS when set (throws BadThreadCount for a value that is not a whole number from 1
 // to maxThreads), else availableCores() capped at maxThreads.
 int defaultThreads(int maxThreads);
