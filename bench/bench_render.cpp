@@ -12,7 +12,9 @@
 
 #include <fmt/format.h>
 
+#include "render/frame_mesh.hpp"
 #include "render/renderer.hpp"
+#include "render/tile_bins.hpp"
 #include "core/drawing.hpp"
 #include "core/system.hpp"
 #include "scenario/scenario.hpp"
@@ -89,6 +91,37 @@ BENCHMARK(BM_RenderLargeCloth)
     ->ArgsProduct({{25, 40, 60, 80, 100, 316}, {1, 2}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
+
+// Building one frame of the 1000² cloth (scenarios/cloth_million.yaml, drawn as `bench/million.sh`
+// renders it: 0.1 px particles) for the tile path, without GL: System::draw, the shapes' records
+// (render/frame_mesh.hpp's buildFrameTiles) and their sort into tiles (TileBins::bin), on a pool of
+// the argument's threads (issue 42: 2 threads ≥ 1.8× one). The cloth is stepped 0.01 s first, so
+// that its springs are strained (coloured) as in a render.
+void BM_BuildFrameMillion(benchmark::State& state) {
+  const int threads = int(state.range(0));
+  scenario::Scenario s =
+      scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/cloth_million.yaml");
+  s.system.setThreads(threads);
+  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(0.01);
+  render::RenderOptions options;
+  options.width = 1280;
+  options.height = 720;
+  options.particleRadius = {0.1, render::Length::Unit::pixels};
+  const render::Theme colors = render::theme(options.themeName);
+  const render::Camera camera{s.render.viewCenter, s.render.viewHeight};
+  render::TileBins bins;
+  Drawing frame;  // reused, as `particles render` does
+  for (auto _ : state) {
+    s.system.draw(frame);
+    bins.reset(options.width, options.height);
+    render::buildFrameTiles(frame, camera, options, colors, bins, s.system.pool());
+    bins.bin(s.system.pool());
+    benchmark::DoNotOptimize(bins.items().data());
+  }
+  state.counters["shapes"] = double(bins.shapes().size());
+  state.counters["listed"] = double(bins.items().size());
+}
+BENCHMARK(BM_BuildFrameMillion)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(BM_Render, cloth, std::string("cloth.yaml"), 2.5)
     ->Arg(1)

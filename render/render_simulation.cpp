@@ -28,8 +28,11 @@ class FramePainter {
     // The copy drawn over, allocated with the frame (render/frame_memory.hpp) and reused.
     if (decorate_) decorated_ = allocateImage(job.look.width, job.look.height, "the frame's decorated copy");
   }
-  const Image& paint(const System& system) {
-    const Image& image = renderer_.render(system.draw(), camera_);
+  // The frame's shapes are built on the system's threads (Renderer::render), which are idle while
+  // it is drawn.
+  const Image& paint(System& system) {
+    system.draw(drawing_);
+    const Image& image = renderer_.render(drawing_, camera_, system.pool());
     if (!decorate_) return image;
     decorated_ = image;  // the renderer's image is reused for the next frame
     decorate_(decorated_, system);
@@ -39,6 +42,7 @@ class FramePainter {
  private:
   Renderer renderer_;
   Camera camera_;
+  Drawing drawing_;  // the frame's, its storage reused from frame to frame
   const std::function<void(Image&, const System&)>& decorate_;
   Image decorated_;
 };

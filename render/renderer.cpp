@@ -67,23 +67,22 @@ const GlInfo& Renderer::gl() const {
   return impl_->context->info();
 }
 
-const Image& Renderer::render(const Drawing& frame, const Camera& camera) {
+const Image& Renderer::render(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
   Impl& m = *impl_;
   // automatic: a frame that cannot reach the threshold goes straight to triangles; one that may
-  // is built as tiles first and decided on the shapes it really has (some may be off-screen).
+  // is built as tiles first and decided on the shapes it really has (degenerate ones dropped).
   const size_t shapes = frameShapeCount(frame);
   bool tiled =
       m.options.raster == Raster::tiles || (m.options.raster == Raster::automatic && shapes >= kTilesFromShapes);
   if (tiled) {
     m.bins.reset(m.options.width, m.options.height);
-    m.bins.reserve(shapes);
-    buildFrameMesh(frame, camera, m.options, m.colors, m.bins);
-    tiled = m.options.raster == Raster::tiles || m.bins.shapes().size() >= kTilesFromShapes;
+    const size_t recorded = buildFrameTiles(frame, camera, m.options, m.colors, m.bins, pool);
+    tiled = m.options.raster == Raster::tiles || recorded >= kTilesFromShapes;
   }
   const bool transparent = m.options.transparentBackground;
   m.context->beginFrame(m.colors.background, transparent);
   if (tiled) {
-    m.bins.bin();
+    m.bins.bin(pool);
     if (!m.tiles) {
       m.tiles = std::make_unique<TileProgram>(m.context->gl(), m.options.msaa, m.options.width, m.options.height,
                                               m.context->flipsY());

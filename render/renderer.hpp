@@ -25,6 +25,7 @@
 #include <memory>
 
 #include "core/drawing.hpp"
+#include "core/worker_pool.hpp"
 #include "render/gl_backend.hpp"
 #include "render/image.hpp"
 #include "render/render_options.hpp"
@@ -44,8 +45,9 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // Draws the frame. The image is owned by the renderer and valid until the next call.
-  // Throws RenderError if GL reports an error.
-  const Image& render(const Drawing& frame, const Camera& camera);
+  // Throws RenderError if GL reports an error. With a pool, a large frame's shapes are built and
+  // binned on its threads (the tile path, render/tile_bins.hpp): the same pixels for every count.
+  const Image& render(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr);
   // Lets another thread draw the next frame (GlContext::releaseFromThread).
   void releaseFromThread();
 

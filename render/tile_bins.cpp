@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace particles::render {
 
@@ -42,21 +45,28 @@ void TileBins::clear() {
   reach_.clear();
 }
 
+void TileBins::slots(size_t shapes) {
+  shapes_.resize(shapes);  // uninitialised: every slot is written by a writer
+  reach_.resize(shapes);
+}
+
+TileBins::SlotWriter TileBins::writer(size_t firstSlot) {
+  return SlotWriter(*this, firstSlot);
+}
+
 // A pixel gets a shape's colour only if its centre lies in the shape grown by kFringePx (the
 // triangle path's rule), so the box of the grown shape bounds its tiles; a box wholly off the
 // image adds nothing (its shape still has a record, never listed).
-void TileBins::addReach(float x0, float y0, float x1, float y1) {
-  if (!(x1 >= 0.0f && y1 >= 0.0f && x0 <= float(width_) && y0 <= float(height_))) {
-    reach_.push_back({0, 0, -1, -1});
-    return;
-  }
-  reach_.push_back({clampTile(x0, tilesX_), clampTile(y0, tilesY_), clampTile(x1, tilesX_), clampTile(y1, tilesY_)});
+TileBins::Reach TileBins::reachOf(float x0, float y0, float x1, float y1) const {
+  if (!(x1 >= 0.0f && y1 >= 0.0f && x0 <= float(width_) && y0 <= float(height_))) return kNoReach;
+  return {clampTile(x0, tilesX_), clampTile(y0, tilesY_), clampTile(x1, tilesX_), clampTile(y1, tilesY_)};
 }
 
-void TileBins::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges) {
+bool TileBins::convexShape(std::span<const P2> corners, Rgb col, unsigned smoothEdges, ShapeRecord& r,
+                           Reach& q) const {
   const ConvexEdges e = convexEdges(corners, smoothEdges);
-  if (!e.valid) return;
-  ShapeRecord r{};
+  if (!e.valid) return false;
+  r = ShapeRecord{};
   for (size_t k = 0; k < 4; ++k) {
     if (k < e.count) {
       const P2 n = e.normal[k];
@@ -69,20 +79,20 @@ void TileBins::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges
   }
   r.texel[3][0] = colorCode(col);
   r.texel[3][1] = float(smoothEdges & ((1u << e.count) - 1u));
-  shapes_.push_back(r);
   float x0 = e.grown[0][0], x1 = x0, y0 = e.grown[0][1], y1 = y0;
   for (size_t i = 1; i < e.count; ++i) {
     x0 = std::min(x0, e.grown[i][0]), x1 = std::max(x1, e.grown[i][0]);
     y0 = std::min(y0, e.grown[i][1]), y1 = std::max(y1, e.grown[i][1]);
   }
-  addReach(x0, y0, x1, y1);
+  q = reachOf(x0, y0, x1, y1);
+  return true;
 }
 
 // The rectangle ShapeSink::line makes, corners a + n, b + n, b − n, a − n, every edge smoothed.
-void TileBins::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
+bool TileBins::lineShape(P2 a, P2 b, float width, Rgb col, bool squareCaps, ShapeRecord& r, Reach& q) const {
   float dx = b[0] - a[0], dy = b[1] - a[1];
   const float len = std::sqrt(dx * dx + dy * dy);
-  if (!(len > 1e-4f)) return;
+  if (!(len > 1e-4f)) return false;
   dx /= len;
   dy /= len;
   const float h = 0.5f * width;
@@ -93,7 +103,7 @@ void TileBins::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
   const float nx = -dy * h, ny = dx * h;
   const P2 corner[4] = {{a[0] + nx, a[1] + ny}, {b[0] + nx, b[1] + ny}, {b[0] - nx, b[1] - ny}, {a[0] - nx, a[1] - ny}};
   const P2 inward[4] = {{dy, -dx}, {-dx, -dy}, {-dy, dx}, {dx, dy}};
-  ShapeRecord r{};
+  r = ShapeRecord{};
   for (int k = 0; k < 4; ++k) {
     r.texel[0][k] = inward[k][0];
     r.texel[1][k] = inward[k][1];
@@ -101,26 +111,83 @@ void TileBins::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
   }
   r.texel[3][0] = colorCode(col);
   r.texel[3][1] = 15.0f;
-  shapes_.push_back(r);
   // The grown rectangle's corners lie within kFringePx·√2 of the rectangle's.
   const float grow = 1.5f * kFringePx;
-  addReach(std::min({corner[0][0], corner[1][0], corner[2][0], corner[3][0]}) - grow,
-           std::min({corner[0][1], corner[1][1], corner[2][1], corner[3][1]}) - grow,
-           std::max({corner[0][0], corner[1][0], corner[2][0], corner[3][0]}) + grow,
-           std::max({corner[0][1], corner[1][1], corner[2][1], corner[3][1]}) + grow);
+  q = reachOf(std::min({corner[0][0], corner[1][0], corner[2][0], corner[3][0]}) - grow,
+              std::min({corner[0][1], corner[1][1], corner[2][1], corner[3][1]}) - grow,
+              std::max({corner[0][0], corner[1][0], corner[2][0], corner[3][0]}) + grow,
+              std::max({corner[0][1], corner[1][1], corner[2][1], corner[3][1]}) + grow);
+  return true;
 }
 
-void TileBins::annulus(P2 c, float inner, float outer, Rgb col) {
-  ShapeRecord r{};
+void TileBins::annulusShape(P2 c, float inner, float outer, Rgb col, ShapeRecord& r, Reach& q) const {
+  r = ShapeRecord{};
   r.texel[0][0] = c[0];
   r.texel[0][1] = c[1];
   r.texel[0][2] = outer;
   r.texel[0][3] = inner;
   r.texel[3][0] = colorCode(col);
   r.texel[3][1] = kAnnulusKind;
-  shapes_.push_back(r);
   const float reach = outer + kFringePx;
-  addReach(c[0] - reach, c[1] - reach, c[0] + reach, c[1] + reach);
+  q = reachOf(c[0] - reach, c[1] - reach, c[0] + reach, c[1] + reach);
+}
+
+void TileBins::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges) {
+  ShapeRecord r;
+  Reach q;
+  if (!convexShape(corners, col, smoothEdges, r, q)) return;
+  shapes_.push_back(r);
+  reach_.push_back(q);
+}
+
+void TileBins::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
+  ShapeRecord r;
+  Reach q;
+  if (!lineShape(a, b, width, col, squareCaps, r, q)) return;
+  shapes_.push_back(r);
+  reach_.push_back(q);
+}
+
+void TileBins::annulus(P2 c, float inner, float outer, Rgb col) {
+  ShapeRecord r;
+  Reach q;
+  annulusShape(c, inner, outer, col, r, q);
+  shapes_.push_back(r);
+  reach_.push_back(q);
+}
+
+void TileBins::SlotWriter::put(bool valid, const ShapeRecord& r, const Reach& q) {
+  if (next_ >= bins_.shapes_.size()) throw std::logic_error("TileBins: a shape beyond the slots made for the frame");
+  if (valid) {
+    bins_.shapes_[next_] = r;
+    bins_.reach_[next_] = q;
+    ++recorded_;
+  } else {
+    bins_.shapes_[next_] = ShapeRecord{};
+    bins_.reach_[next_] = kNoReach;
+  }
+  ++next_;
+}
+
+void TileBins::SlotWriter::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges) {
+  ShapeRecord r;
+  Reach q;
+  const bool valid = bins_.convexShape(corners, col, smoothEdges, r, q);
+  put(valid, r, q);
+}
+
+void TileBins::SlotWriter::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
+  ShapeRecord r;
+  Reach q;
+  const bool valid = bins_.lineShape(a, b, width, col, squareCaps, r, q);
+  put(valid, r, q);
+}
+
+void TileBins::SlotWriter::annulus(P2 c, float inner, float outer, Rgb col) {
+  ShapeRecord r;
+  Reach q;
+  bins_.annulusShape(c, inner, outer, col, r, q);
+  put(true, r, q);
 }
 
 // Whether the shape covers every sample of every pixel of the tile: samples lie within ±0.5 px of
@@ -150,6 +217,27 @@ bool TileBins::coversTile(size_t shape, int tx, int ty) const {
   return true;
 }
 
+// A bound on how thick the shape is: no square wider than this fits in it. An annulus's ring is
+// as thick as its outer minus its inner radius (a disc: its diameter). A convex shape with two
+// edges of exactly opposite normals (a line's sides and ends, ShapeSink::line: the normals are
+// negated, which is exact) lies between them, d_0 + d_2 = c_0 + c_2 apart at every point; other
+// shapes give no bound. A tile is only covered by a shape thicker than its samples' box is wide.
+float TileBins::thickness(size_t shape) const {
+  const ShapeRecord& r = shapes_[shape];
+  if (r.texel[3][1] == kAnnulusKind) {
+    const float outer = r.texel[0][2], inner = r.texel[0][3];
+    return inner > 0.0f ? outer - inner : 2.0f * outer;
+  }
+  float thick = std::numeric_limits<float>::infinity();
+  for (int k = 0; k < 2; ++k) {
+    if (r.texel[0][k] == -r.texel[0][k + 2] && r.texel[1][k] == -r.texel[1][k + 2] &&
+        (r.texel[0][k] != 0.0f || r.texel[1][k] != 0.0f)) {
+      thick = std::min(thick, r.texel[2][k] + r.texel[2][k + 2]);
+    }
+  }
+  return thick;
+}
+
 bool TileBins::reachesTile(size_t shape, int tx, int ty) const {
   const ShapeRecord& r = shapes_[shape];
   // The pixel centres of the tile span [lo, hi] on each axis.
@@ -175,53 +263,139 @@ bool TileBins::reachesTile(size_t shape, int tx, int ty) const {
 }
 
 template <typename Visit>
-void TileBins::forEachReachedTile(Visit&& visit) const {
-  for (size_t s = 0; s < reach_.size(); ++s) {
-    const Reach& q = reach_[s];
-    const bool test = (q.tx1 - q.tx0 + 1) * (q.ty1 - q.ty0 + 1) > kTestedReach;
-    for (int ty = q.ty0; ty <= q.ty1; ++ty) {
-      for (int tx = q.tx0; tx <= q.tx1; ++tx) {
-        if (test && !reachesTile(s, tx, ty)) continue;
-        visit(size_t(ty * tilesX_ + tx), std::uint32_t(s));
-      }
+void TileBins::forEachReachedTile(std::uint32_t shape, int rowBegin, int rowEnd, Visit&& visit) const {
+  const Reach& q = reach_[shape];
+  // The test depends on the whole reach, not on the rows asked for: the same tiles in every band.
+  const bool test = (q.tx1 - q.tx0 + 1) * (q.ty1 - q.ty0 + 1) > kTestedReach;
+  const int last = std::min(q.ty1, rowEnd - 1);
+  for (int ty = std::max(q.ty0, rowBegin); ty <= last; ++ty) {
+    for (int tx = q.tx0; tx <= q.tx1; ++tx) {
+      if (test && !reachesTile(shape, tx, ty)) continue;
+      visit(size_t(ty) * size_t(tilesX_) + size_t(tx));
     }
   }
 }
 
-void TileBins::bin() {
-  // A counting sort by tile, stable (each tile's shapes stay in the order they were added), in
-  // two passes over the shapes' tiles: the first counts, the second places. One pass that kept
-  // (tile, shape) pairs to sort took 8 bytes a pair, a vector of 134 to 268 MB for a
-  // million-particle cloth's frames (issue 28); the second pass repeats only the tile tests of
-  // shapes reaching more than kTestedReach tiles, which are few.
+namespace {
+
+// Tile rows per band of bin()'s work: 8 rows of 4 px tiles are 32 px, 23 bands in a 720 px frame,
+// enough to share out over many threads, few enough that a shape rarely straddles two.
+constexpr int kBandTileRows = 8;
+// See bin(): a shape thinner than this cannot cover a whole tile.
+constexpr float kThinnerThanTilesPx = float(kTileSizePx) - 0.5f;
+// Shapes per chunk of bin()'s first passes (which band each shape goes to).
+constexpr size_t kBinChunk = 16384;
+
+// task(k) for k in [0, count), on the pool if there is one.
+template <typename Task>
+void eachTask(WorkerPool* pool, size_t count, Task&& task) {
+  if (pool == nullptr) {
+    for (size_t k = 0; k < count; ++k) task(k);
+  } else {
+    pool->run(count, task);
+  }
+}
+
+}  // namespace
+
+void TileBins::bin(WorkerPool* pool) {
+  // A counting sort by tile, stable (each tile's shapes stay in the order they were added), done
+  // band by band. First the shapes are sorted by band of tile rows (a shape in each band its rows
+  // meet), by chunks of shapes counting then placing, so each band's list keeps the shapes' order.
+  // Then each band, on its own, counts its tiles' shapes, and after one prefix sum over all tiles
+  // places them: two passes over the shapes' tiles, the second repeating only the tile tests of
+  // shapes reaching more than kTestedReach tiles, which are few. (One pass that kept (tile, shape)
+  // pairs to sort took 8 bytes a pair, a vector of 134 to 268 MB for a million-particle cloth's
+  // frames, issue 28.) Every band and chunk writes only its own counts, lists and tiles: the
+  // result is the same for every thread count, and the same as one serial counting sort.
+  const size_t shapeCount = reach_.size();
+  if (shapeCount > size_t(UINT32_MAX)) throw std::length_error("TileBins: more shapes than a tile list can number");
   const size_t tileCount = size_t(tilesX_) * size_t(tilesY_);
-  tiles_.assign(2 * tileCount, 0);
-  forEachReachedTile([&](size_t tile, std::uint32_t) { ++tiles_[2 * tile + 1]; });
+  const size_t bands = size_t((tilesY_ + kBandTileRows - 1) / kBandTileRows);
+  const size_t chunks = chunkCount(shapeCount, kBinChunk);
+  auto eachBandOf = [&](const Reach& q, auto&& visit) {
+    if (q.tx1 < q.tx0 || q.ty1 < q.ty0) return;
+    for (int b = q.ty0 / kBandTileRows; b <= q.ty1 / kBandTileRows; ++b) visit(size_t(b));
+  };
+
+  chunkBandCounts_.resize(chunks * bands);
+  forChunks(pool, shapeCount, kBinChunk, [&](size_t begin, size_t end) {
+    std::uint32_t* count = &chunkBandCounts_[begin / kBinChunk * bands];
+    std::fill(count, count + bands, 0u);
+    for (size_t s = begin; s < end; ++s) eachBandOf(reach_[s], [&](size_t b) { ++count[b]; });
+  });
+  // Band b's list starts after every earlier band's; within it, chunk c's shapes after earlier chunks'.
+  bandFirst_.assign(bands + 1, 0);
+  for (size_t b = 0; b < bands; ++b) {
+    size_t next = bandFirst_[b];
+    for (size_t c = 0; c < chunks; ++c) {
+      const std::uint32_t count = chunkBandCounts_[c * bands + b];
+      chunkBandCounts_[c * bands + b] = std::uint32_t(next - bandFirst_[b]);
+      next += count;
+    }
+    bandFirst_[b + 1] = next;
+  }
+  bandShapes_.resize(bandFirst_[bands]);
+  forChunks(pool, shapeCount, kBinChunk, [&](size_t begin, size_t end) {
+    std::uint32_t* next = &chunkBandCounts_[begin / kBinChunk * bands];
+    for (size_t s = begin; s < end; ++s) {
+      eachBandOf(reach_[s], [&](size_t b) { bandShapes_[bandFirst_[b] + next[b]++] = std::uint32_t(s); });
+    }
+  });
+
+  auto bandRows = [&](size_t b) {
+    const int first = int(b) * kBandTileRows;
+    return std::pair<int, int>{first, std::min(first + kBandTileRows, tilesY_)};
+  };
+  tiles_.resize(2 * tileCount);
+  eachTask(pool, bands, [&](size_t b) {
+    const auto [rowBegin, rowEnd] = bandRows(b);
+    for (size_t t = size_t(rowBegin) * size_t(tilesX_); t < size_t(rowEnd) * size_t(tilesX_); ++t) tiles_[2 * t + 1] = 0;
+    for (size_t i = bandFirst_[b]; i < bandFirst_[b + 1]; ++i) {
+      forEachReachedTile(bandShapes_[i], rowBegin, rowEnd, [&](size_t tile) { ++tiles_[2 * tile + 1]; });
+    }
+  });
   std::uint32_t first = 0;
   for (size_t t = 0; t < tileCount; ++t) {
     tiles_[2 * t] = first;
     first += tiles_[2 * t + 1];
   }
   items_.resize(first);
-  std::vector<std::uint32_t>& next = scratch_;
-  next.resize(tileCount);
-  for (size_t t = 0; t < tileCount; ++t) next[t] = tiles_[2 * t];
-  forEachReachedTile([&](size_t tile, std::uint32_t shape) { items_[next[tile]++] = shape; });
-
-  // Nothing behind the last shape covering a whole tile shows there: the tile's list starts at it.
-  // (The pass would stop at it or before, from the front; this spares it the walk.)
-  for (int ty = 0; ty < tilesY_; ++ty) {
-    for (int tx = 0; tx < tilesX_; ++tx) {
-      std::uint32_t* range = &tiles_[2 * size_t(ty * tilesX_ + tx)];
-      for (std::uint32_t i = range[1]; i-- > 1;) {
-        if (coversTile(items_[range[0] + i], tx, ty)) {
-          range[0] += i;
-          range[1] -= i;
-          break;
-        }
-      }
+  coverFrom_.resize(tileCount);
+  // The tiles of kTileSizePx whole pixels each way (the rest: the last row or column, when the
+  // image's side is not a multiple of the tile size). A whole tile's samples span a square wider
+  // than kTileSizePx − 1 + 2 · ½ px (coversTile), so a shape thinner than kThinnerThanTilesPx (half a
+  // pixel below that, far beyond float rounding) cannot cover it.
+  const int wholeTilesX = width_ / kTileSizePx, wholeTilesY = height_ / kTileSizePx;
+  eachTask(pool, bands, [&](size_t b) {
+    const auto [rowBegin, rowEnd] = bandRows(b);
+    const size_t tileBegin = size_t(rowBegin) * size_t(tilesX_), tileEnd = size_t(rowEnd) * size_t(tilesX_);
+    // Each tile's next free place in items_, in its count's entry (back to the count below), and
+    // where its list will start: at the last shape covering the whole tile, if one does. Nothing
+    // behind it shows there (the pass would stop at it or before, from the front; this spares it
+    // the walk). The cover is tested as each shape is placed, while its record is in the cache.
+    for (size_t t = tileBegin; t < tileEnd; ++t) {
+      tiles_[2 * t + 1] = tiles_[2 * t];
+      coverFrom_[t] = tiles_[2 * t];
     }
-  }
+    for (size_t i = bandFirst_[b]; i < bandFirst_[b + 1]; ++i) {
+      const std::uint32_t shape = bandShapes_[i];
+      // Thinner than a whole tile: it can only cover the partial tiles of the last row or column.
+      const bool thin = thickness(shape) < kThinnerThanTilesPx;
+      forEachReachedTile(shape, rowBegin, rowEnd, [&](size_t tile) {
+        const std::uint32_t place = tiles_[2 * tile + 1]++;
+        items_[place] = shape;
+        const int tx = int(tile % size_t(tilesX_)), ty = int(tile / size_t(tilesX_));
+        if (thin && tx < wholeTilesX && ty < wholeTilesY) return;
+        if (coversTile(shape, tx, ty)) coverFrom_[tile] = place;
+      });
+    }
+    for (size_t t = tileBegin; t < tileEnd; ++t) {
+      std::uint32_t* range = &tiles_[2 * t];
+      range[1] = range[1] - coverFrom_[t];  // from the next free place to the count left
+      range[0] = coverFrom_[t];
+    }
+  });
 
   runs_.clear();
   for (int ty = 0; ty < tilesY_; ++ty) {

@@ -18,8 +18,10 @@
 inline constexpr float kAnnulusKind = 16.0f;
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "core/worker_pool.hpp"
 #include "render/shape_mesh.hpp"
 
 namespace particles::render {
@@ -31,6 +33,30 @@ inline constexpr int kTileSizePx = 4;
 struct ShapeRecord {
   float texel[4][4];
 };
+
+// An allocator whose resize leaves new elements uninitialised (default-initialised): a frame's
+// records and tile ranges are all written before they are read, and zeroing a million-particle
+// frame's 190 MB of records first would cost as much as writing them.
+template <typename T>
+struct UninitialisedAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = UninitialisedAllocator<U>;
+  };
+  UninitialisedAllocator() = default;
+  template <typename U>
+  UninitialisedAllocator(const UninitialisedAllocator<U>&) noexcept {}
+  template <typename U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+template <typename T>
+using UninitialisedVector = std::vector<T, UninitialisedAllocator<T>>;
 
 class TileBins final : public ShapeSink {
  public:
@@ -49,20 +75,32 @@ class TileBins final : public ShapeSink {
   // Records a line directly: its edges are known without convexEdges' square root per edge.
   void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false) override;
 
+  // Shapes written into numbered places, for building a frame's records on several threads
+  // (render/frame_mesh.hpp's buildFrameTiles): slots(n) makes the records 0 … n − 1, to be filled
+  // by writers; writer(k) is a ShapeSink that fills slots k, k + 1, … one per shape it is given.
+  // A shape that would add nothing (a degenerate line or polygon, which convex() and line() drop)
+  // takes its slot all the same, as an empty record that no tile lists: so which slot a shape
+  // lands in depends only on the shapes before it, never on how the work was split, and the
+  // frame's bins are the same whatever the thread count. Slots must all be written before bin().
+  class SlotWriter;
+  void slots(size_t shapes);
+  SlotWriter writer(size_t firstSlot);
+
   // Sorts the shapes into tiles: after this, tile t's shapes are items()[first .. first + count)
   // with (first, count) = tiles()[2t], tiles()[2t + 1], in the order they were added. Tiles are
   // numbered row by row from the top-left; a tile lists each shape that may cover one of its
   // pixels (a shape's grown box, less tiles wholly outside one of its edges or its ring), from
-  // the last shape that covers all of it, if one does.
-  void bin();
+  // the last shape that covers all of it, if one does. With a pool, the work is shared out in
+  // bands of tile rows (and the shapes in fixed chunks): the same lists as without one.
+  void bin(WorkerPool* pool = nullptr);
 
   int width() const { return width_; }
   int height() const { return height_; }
   int tilesPerRow() const { return tilesX_; }
   int tileRows() const { return tilesY_; }
-  const std::vector<ShapeRecord>& shapes() const { return shapes_; }
-  const std::vector<std::uint32_t>& tiles() const { return tiles_; }
-  const std::vector<std::uint32_t>& items() const { return items_; }
+  const UninitialisedVector<ShapeRecord>& shapes() const { return shapes_; }
+  const UninitialisedVector<std::uint32_t>& tiles() const { return tiles_; }
+  const UninitialisedVector<std::uint32_t>& items() const { return items_; }
   // The tiles with shapes as rectangles for the pass to draw: each run of such tiles along a row
   // of tiles is two triangles, 6 corners (x, y) in image pixels, clipped to the image.
   const std::vector<float>& runs() const { return runs_; }
@@ -71,22 +109,52 @@ class TileBins final : public ShapeSink {
   // A shape's tiles: an inclusive range of tile columns and rows, and the test that drops tiles of
   // that range the shape cannot reach.
   struct Reach {
-    int tx0, ty0, tx1, ty1;
+    int tx0, ty0, tx1, ty1;  // tx1 < tx0: none
   };
-  void addReach(float x0, float y0, float x1, float y1);
+  static constexpr Reach kNoReach = {0, 0, -1, -1};
+  // A shape's record and reach, false for a shape that adds nothing.
+  bool convexShape(std::span<const P2> corners, Rgb col, unsigned smoothEdges, ShapeRecord& r, Reach& q) const;
+  bool lineShape(P2 a, P2 b, float width, Rgb col, bool squareCaps, ShapeRecord& r, Reach& q) const;
+  void annulusShape(P2 c, float inner, float outer, Rgb col, ShapeRecord& r, Reach& q) const;
+  Reach reachOf(float x0, float y0, float x1, float y1) const;
   bool reachesTile(size_t shape, int tx, int ty) const;
-  // Calls visit(tile, shape) for each tile each shape reaches, shape by shape in the order they
-  // were added, each shape's tiles row by row.
+  // Calls visit(tile, shape) for each tile of rows [rowBegin, rowEnd) that `shape` reaches, row
+  // by row.
   template <typename Visit>
-  void forEachReachedTile(Visit&& visit) const;
+  void forEachReachedTile(std::uint32_t shape, int rowBegin, int rowEnd, Visit&& visit) const;
   bool coversTile(size_t shape, int tx, int ty) const;
+  float thickness(size_t shape) const;
 
   int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
-  std::vector<ShapeRecord> shapes_;
-  std::vector<Reach> reach_;  // per shape
-  std::vector<std::uint32_t> tiles_, items_;
+  UninitialisedVector<ShapeRecord> shapes_;
+  UninitialisedVector<Reach> reach_;  // per shape
+  UninitialisedVector<std::uint32_t> tiles_, items_;
   std::vector<float> runs_;
-  std::vector<std::uint32_t> scratch_;
+  // bin()'s scratch, kept from frame to frame: the shapes of each band of tile rows, band after
+  // band (bandFirst_[b] … bandFirst_[b + 1]), and the counts per chunk of shapes and band.
+  UninitialisedVector<std::uint32_t> bandShapes_, chunkBandCounts_;
+  UninitialisedVector<std::uint32_t> coverFrom_;  // per tile: where its list will start
+  std::vector<size_t> bandFirst_;
+};
+
+// Fills a TileBins' slots from one on (TileBins::writer): one slot per shape. clear() goes back
+// to the first slot.
+class TileBins::SlotWriter final : public ShapeSink {
+ public:
+  using ShapeSink::convex;
+  void clear() override { next_ = first_; }
+  void convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges = 0xF) override;
+  void annulus(P2 c, float inner, float outer, Rgb col) override;
+  void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false) override;
+  size_t next() const { return next_; }          // the slot the next shape fills
+  size_t recorded() const { return recorded_; }  // shapes written that add something
+
+ private:
+  friend class TileBins;
+  SlotWriter(TileBins& bins, size_t first) : bins_(bins), first_(first), next_(first) {}
+  void put(bool valid, const ShapeRecord& r, const Reach& q);
+  TileBins& bins_;
+  size_t first_, next_, recorded_ = 0;
 };
 
 }  // namespace particles::render

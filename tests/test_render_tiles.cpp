@@ -5,6 +5,9 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
+#include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -206,6 +209,72 @@ TEST_CASE("tile bins: frameShapeCount makes room for every record of a demo fram
     CHECK(bins.shapes().size() <= shapes);
     CHECK(bins.shapes().capacity() == shapes);
   }
+}
+
+TEST_CASE("tile bins: a frame built and binned on threads is the same bytes for every count, and lists the serial path's shapes") {
+  // The 150² cloth over the demo's square (spacing 1.92 / 149 m), a disk and a half-plane below it
+  // (large shapes covering whole tiles), the mouse pulling: 67,350 shapes, 3 pieces of springs and 2 of particles
+  // (render/frame_mesh.cpp), 23 bands of tile rows, and an image whose sides are not whole tiles.
+  const DemoFrame f = demoFrame("cloth", 0.05,
+                                {scenario::parseOverride("grids.0.size=[150, 150]"),
+                                 scenario::parseOverride("grids.0.spacing=[0.012885906040268456, 0.012885906040268456]"),
+                                 scenario::parseOverride("simulation.dt=0.001"),
+                                 scenario::parseOverride("mouse.0.from=0"),
+                                 scenario::parseOverride("colliders=[{type: disk, center: [0.5, -1.2], radius: 0.3}, "
+                                                         "{type: half_plane, normal: [0, 1], offset: -1.4}]")});
+  const RenderOptions o = options(1283, 719, 4, Raster::tiles);
+  const Theme colors = theme(o.themeName);
+  auto build = [&](int threads) {
+    WorkerPool pool(threads);
+    auto bins = std::make_unique<TileBins>();
+    bins->reset(o.width, o.height);
+    const size_t recorded = buildFrameTiles(f.drawing, f.camera, o, colors, *bins, threads > 0 ? &pool : nullptr);
+    bins->bin(threads > 0 ? &pool : nullptr);
+    return std::pair{std::move(bins), recorded};
+  };
+  const auto [serial, recorded] = build(0);
+  REQUIRE(serial->shapes().size() == frameShapeCount(f.drawing));
+  REQUIRE(serial->shapes().size() > 60000);
+  auto bytes = [](const auto& v) {
+    return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(v[0]));
+  };
+  for (int threads : {1, 2, 3, 4}) {
+    CAPTURE(threads);
+    const auto [bins, count] = build(threads);
+    CHECK(count == recorded);
+    CHECK(bytes(bins->shapes()) == bytes(serial->shapes()));
+    CHECK(bytes(bins->tiles()) == bytes(serial->tiles()));
+    CHECK(bytes(bins->items()) == bytes(serial->items()));
+    CHECK(bins->runs() == serial->runs());
+  }
+  // The serial path (TileBins as a sink, degenerate shapes dropped) lists the same records in
+  // every tile; there, `recorded` is the number of records.
+  TileBins direct;
+  direct.reset(o.width, o.height);
+  buildFrameMesh(f.drawing, f.camera, o, colors, direct);
+  direct.bin();
+  CHECK(direct.shapes().size() == recorded);
+  REQUIRE(direct.tiles().size() == serial->tiles().size());
+  long differing = 0, covered = 0;
+  for (size_t t = 0; t < direct.tiles().size() / 2; ++t) {
+    const std::uint32_t count = direct.tiles()[2 * t + 1];
+    if (count != serial->tiles()[2 * t + 1]) {
+      ++differing;
+      continue;
+    }
+    // Below the half-plane's edge (y < −1.4 m: 640.4 px down), the half-plane's fill (shape 0)
+    // reaches every tile: a list starting at the disk's fill (shape 2) was cut at its cover.
+    const int ty = int(t) / serial->tilesPerRow();
+    if (ty * kTileSizePx > 641 && count > 0 && serial->items()[serial->tiles()[2 * t]] == 2) ++covered;
+    for (std::uint32_t i = 0; i < count; ++i) {
+      const ShapeRecord& a = direct.shapes()[direct.items()[direct.tiles()[2 * t] + i]];
+      const ShapeRecord& b = serial->shapes()[serial->items()[serial->tiles()[2 * t] + i]];
+      if (std::memcmp(&a, &b, sizeof a) != 0) ++differing;
+    }
+  }
+  CHECK(differing == 0);
+  MESSAGE("tiles below the half-plane whose list starts at the disk: ", covered);
+  CHECK(covered > 20);
 }
 
 TEST_CASE("tile path: the demos' pixels are the triangle path's within the golden tolerance") {

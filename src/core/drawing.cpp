@@ -4,6 +4,20 @@
 
 namespace particles {
 
+void Drawing::clear() {
+  time = 0.0;
+  particles.clear();
+  particleFixed.clear();
+  bodies.clear();
+  springs.clear();
+  rods.clear();
+  guideCircles.clear();
+  guideLines.clear();
+  halfPlanes.clear();
+  disks.clear();
+  cursors.clear();
+}
+
 void Drawing::addGuideCircle(const Circle& c) {
   const bool seen = std::any_of(guideCircles.begin(), guideCircles.end(),
                                 [&](const Circle& o) { return o.center == c.center && o.radius == c.radius; });

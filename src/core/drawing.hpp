@@ -67,6 +67,9 @@ struct Drawing {
   std::vector<Disk> disks;
   std::vector<Cursor> cursors;
 
+  // Empties every list, keeping its storage.
+  void clear();
+
   // Guides are drawn once however many constraints share them (the cloth puts one rail
   // constraint on each of its top particles): these skip an exact duplicate.
   void addGuideCircle(const Circle& c);

@@ -90,8 +90,9 @@ class Force {
   virtual bool isTimeDependent() const { return false; }
   // True for a force that only takes energy out (drag): it stores none, so energy reports skip it.
   virtual bool isDissipative() const { return false; }
-  // Adds what this force shows (springs, cursors) to the frame's drawing; nothing by default.
-  virtual void draw(const StateView& s, double t, Drawing& out) const = 0;
+  // Adds what this force shows (springs, cursors) to the frame's drawing. A force of many items
+  // may fill its part in chunks on `pool` (null: serial), as its other loops do.
+  virtual void draw(const StateView& s, double t, Drawing& out, WorkerPool* pool) const = 0;
   // Adds ∂f/∂x and ∂f/∂v at (s, t) for the implicit integrator (core/force_jacobians.hpp: symmetric,
   // negative semi-definite blocks). Nothing by default: the force is then taken explicitly.
   virtual void addJacobians(const Model&, const StateView&, double, ForceJacobians&) const {}

@@ -153,23 +153,31 @@ std::vector<MouseSpringForce*> System::mice() {
 }
 
 Drawing System::draw() const {
+  Drawing d;
+  draw(d);
+  return d;
+}
+
+void System::draw(Drawing& d) const {
   const StateView s = view();
   const StateLayout& layout = model_.layout;
-  Drawing d;
+  d.clear();
   d.time = t_;
-  d.particles.reserve(size_t(layout.numParticles));
-  d.particleFixed.reserve(size_t(layout.numParticles));
-  for (int i = 0; i < layout.numParticles; ++i) {
-    d.particles.push_back(s.pos(i));
-    d.particleFixed.push_back(model_.isFixed(i) ? 1 : 0);
-  }
+  // The long lists on the system's threads (a million-particle frame's drawing is 100 MB).
+  d.particles.resize(size_t(layout.numParticles));
+  d.particleFixed.resize(size_t(layout.numParticles));
+  forChunks(pool_.get(), size_t(layout.numParticles), kPointChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      d.particles[i] = s.pos(int(i));
+      d.particleFixed[i] = model_.isFixed(int(i)) ? 1 : 0;
+    }
+  });
   for (int j = 0; j < layout.numBodies; ++j) {
     d.bodies.push_back({s.pos(layout.bodyPoint(j)), s.angle(j), model_.bodies[size_t(j)].size});
   }
-  for (const auto& force : forces_) force->draw(s, t_, d);
+  for (const auto& force : forces_) force->draw(s, t_, d, pool_.get());
   for (const auto& constraint : constraints_) constraint->draw(s, d);
   for (const auto& collider : colliders_) collider->draw(d);
-  return d;
 }
 
 double System::constraintError(const Eigen::VectorXd& y) const {

@@ -97,8 +97,12 @@ class System {
   EnergyReport energy(const Eigen::VectorXd& y, double t) const;
   EnergyReport energy() const { return energy(y_, t_); }
   // The current state as plain geometry for drawing: particles, bodies, and what every force,
-  // constraint and collider shows of itself (core/drawing.hpp).
+  // constraint and collider shows of itself (core/drawing.hpp). The long lists are filled on the
+  // system's threads: the same drawing for every count.
   Drawing draw() const;
+  // The same into `out`, reusing its lists' storage: a render's frames draw into one Drawing, so
+  // that a large scene's lists are not allocated (and their pages not faulted in) every frame.
+  void draw(Drawing& out) const;
 
   double constraintError(const Eigen::VectorXd& y) const;  // largest violation, m
   double penetration(const Eigen::VectorXd& y) const;      // largest collider depth, m

@@ -254,11 +254,14 @@ double DampedSpringForce::maxStretchRatio(const StateView& s) const {
   return worst;
 }
 
-void DampedSpringForce::draw(const StateView& s, double, Drawing& out) const {
-  out.springs.reserve(out.springs.size() + size());
-  for (size_t i = 0; i < size(); ++i) {
-    out.springs.push_back({endpointPosition(s, a_[i]), endpointPosition(s, b_[i]), strain(s, i)});
-  }
+void DampedSpringForce::draw(const StateView& s, double, Drawing& out, WorkerPool* pool) const {
+  const size_t first = out.springs.size();
+  out.springs.resize(first + size());
+  forChunks(pool, size(), kSpringChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      out.springs[first + i] = {endpointPosition(s, a_[i]), endpointPosition(s, b_[i]), strain(s, i)};
+    }
+  });
 }
 
 namespace {

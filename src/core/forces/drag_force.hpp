@@ -22,7 +22,7 @@ class DragForce final : public Force {
   double potentialEnergy(const Model&, const StateView&, double) const override { return 0.0; }
   double energyScale(const Model&, const StateView&) const override { return 0.0; }
   bool isDissipative() const override { return true; }
-  void draw(const StateView&, double, Drawing&) const override {}  // nothing to show
+  void draw(const StateView&, double, Drawing&, WorkerPool*) const override {}  // nothing to show
   void addJacobians(const Model& model, const StateView& s, double t, ForceJacobians& out) const override;
 
  private:

@@ -18,7 +18,7 @@ class GravityForce final : public Force {
                      int end) const override;
   PointwiseTerm pointwiseTerm() const override { return {.kind = PointwiseTerm::Kind::perMass, .a = g_}; }
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
-  void draw(const StateView&, double, Drawing&) const override {}  // nothing to show
+  void draw(const StateView&, double, Drawing&, WorkerPool*) const override {}  // nothing to show
   // M |g| (extent + 1 m): the work gravity does when everything falls across the scene.
   double energyScale(const Model& model, const StateView& s) const override;
 

@@ -70,7 +70,7 @@ double MouseSpringForce::energyScale(const Model&, const StateView& s) const {
 
 void MouseSpringForce::validate(const StateLayout& layout) const { checkEndpoint(layout, script_.grab, "mouse"); }
 
-void MouseSpringForce::draw(const StateView& s, double t, Drawing& out) const {
+void MouseSpringForce::draw(const StateView& s, double t, Drawing& out, WorkerPool*) const {
   if (activeAt(t)) out.cursors.push_back({target(t), endpointPosition(s, script_.grab)});
 }
 

@@ -42,7 +42,7 @@ class MouseSpringForce final : public Force {
   double energyScale(const Model& model, const StateView& s) const override;
   void addJacobians(const Model& model, const StateView& s, double t, ForceJacobians& out) const override;
   // The cursor and its line while the script holds its point.
-  void draw(const StateView& s, double t, Drawing& out) const override;
+  void draw(const StateView& s, double t, Drawing& out, WorkerPool* pool) const override;
   void validate(const StateLayout& layout) const override;
 
  private:
