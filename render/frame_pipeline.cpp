@@ -24,10 +24,14 @@ void FramePipeline::rethrowIfFailed() {
 }
 
 void FramePipeline::push(const Image& frame) {
+  pushWith([&](std::size_t slot) { fill_(frame, slot); });
+}
+
+void FramePipeline::pushWith(const std::function<void(std::size_t slot)>& fill) {
   if (capacity_ == 0) {
     if (error_) std::rethrow_exception(error_);
     if (cancelled_ || closing_) throw std::logic_error("FramePipeline::push after close or cancel");
-    fill_(frame, 0);
+    fill(0);
     try {
       consume_(0, consumed_++);
     } catch (...) {
@@ -45,7 +49,7 @@ void FramePipeline::push(const Image& frame) {
   free_.pop_back();
   lock.unlock();
   try {
-    fill_(frame, slot);  // outside the lock: the worker goes on consuming meanwhile
+    fill(slot);  // outside the lock: the worker goes on consuming meanwhile
   } catch (...) {
     lock.lock();
     free_.push_back(slot);

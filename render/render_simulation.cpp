@@ -1,11 +1,14 @@
 #include "render/render_simulation.hpp"
 
 #include <chrono>
+#include <optional>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
 #include "core/solver.hpp"
 #include "render/frame_memory.hpp"
+#include "render/frame_pipeline.hpp"
 #include "render/renderer.hpp"
 
 namespace particles::render {
@@ -19,7 +22,7 @@ GlRequest rasterRequestOf(const RenderJob& job) {
   return gl;
 }
 
-// The renderer's frame for the current state, drawn over by the decorate hook if there is one.
+// The renderer's frame for a drawing, drawn over by the decorate hook if there is one.
 class FramePainter {
  public:
   FramePainter(const RenderJob& job, const RenderHooks& hooks)
@@ -28,8 +31,8 @@ class FramePainter {
     // The copy drawn over, allocated with the frame (render/frame_memory.hpp) and reused.
     if (decorate_) decorated_ = allocateImage(job.look.width, job.look.height, "the frame's decorated copy");
   }
-  // The frame's shapes are built on the system's threads (Renderer::render), which are idle while
-  // it is drawn.
+  // The system's current state, its shapes built on the system's threads (Renderer::render),
+  // which are idle while it is drawn.
   const Image& paint(System& system) {
     system.draw(drawing_);
     const Image& image = renderer_.render(drawing_, camera_, system.pool());
@@ -38,6 +41,9 @@ class FramePainter {
     decorate_(decorated_, system);
     return decorated_;
   }
+  // A drawing made earlier, without the decorate hook (which needs the system at the frame's time).
+  const Image& paint(const Drawing& drawing, WorkerPool* pool) { return renderer_.render(drawing, camera_, pool); }
+  void releaseFromThread() { renderer_.releaseFromThread(); }
 
  private:
   Renderer renderer_;
@@ -45,6 +51,43 @@ class FramePainter {
   Drawing drawing_;  // the frame's, its storage reused from frame to frame
   const std::function<void(Image&, const System&)>& decorate_;
   Image decorated_;
+};
+
+// The frame loop overlapped (issue 42): while this thread steps the simulation to frame k + 1's
+// time, another draws frame k (its shapes built on a pool of its own, GL, the read-back) and hands
+// it to the writer, whose own thread encodes frame k − 1. What passes between the two is the
+// frame's Drawing, a snapshot of the state in plain geometry (core/drawing.hpp), in one of three
+// reused slots (FramePipeline::slotCount(1): one being drawn, one waiting, one being filled), so
+// memory stays bounded. Frames are drawn in order, each from its own state: the same images as
+// the plain loop, byte for byte. Not for a decorated frame, whose hook reads the system itself.
+class OverlappedFrames {
+ public:
+  OverlappedFrames(FramePainter& painter, FrameWriter& writer, int threads)
+      : painter_(painter),
+        writer_(writer),
+        pool_(threads),
+        pipeline_(1, nullptr, [this](std::size_t slot, long) {
+          // The GL context is this thread's for the frame: taken in Renderer::render, given back
+          // after, so that the owning thread can release it at the end.
+          struct Release {
+            FramePainter& painter;
+            ~Release() { painter.releaseFromThread(); }
+          } release{painter_};
+          writer_.write(painter_.paint(drawings_[slot], &pool_));
+        }) {}
+
+  void push(const System& system) {
+    pipeline_.pushWith([&](std::size_t slot) { system.draw(drawings_[slot]); });
+  }
+  void finish() { pipeline_.close(); }  // rethrows a failed frame's error
+  void cancel() noexcept { pipeline_.cancel(); }
+
+ private:
+  FramePainter& painter_;
+  FrameWriter& writer_;
+  std::vector<Drawing> drawings_ = std::vector<Drawing>(FramePipeline::slotCount(1));
+  WorkerPool pool_;  // the drawing thread's: the system's belongs to the stepping thread
+  FramePipeline pipeline_;  // last: its worker uses the members above
 };
 
 double secondsSince(std::chrono::steady_clock::time_point start) {
@@ -108,8 +151,15 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
   const long frames = end - first;
   // Removes everything it wrote if an exception leaves this function before finish().
   const std::unique_ptr<FrameWriter> writer = openFrameWriter(job.output, out);
+  // Declared after the writer and the painter, which it uses: stopped (cancel) before they go.
+  std::optional<OverlappedFrames> overlapped;
+  if (job.threads != 1 && !hooks.decorate) {
+    painter.releaseFromThread();  // the drawing thread takes the GL context from here on
+    overlapped.emplace(painter, *writer, job.threads > 0 ? job.threads : system.threads());
+  }
   for (long i = 0; i < frames; ++i) {
     if (hooks.shouldStop && hooks.shouldStop()) {
+      if (overlapped) overlapped->cancel();
       writer->abort();
       summary.frames = i;
       summary.stopped = true;
@@ -118,10 +168,15 @@ RenderSummary renderSimulation(System& system, Integrator integrator, double dt,
     // The same stepper reaches frame k's time by the same steps whether or not the frames before
     // it were drawn: the state is the whole render's.
     reached(double(first + i) / job.fps);
-    writer->write(painter.paint(system));
+    if (overlapped) {
+      overlapped->push(system);
+    } else {
+      writer->write(painter.paint(system));
+    }
     if (hooks.progress) hooks.progress(i + 1, frames, system);
   }
   if (!summary.stopped) {
+    if (overlapped) overlapped->finish();
     writer->finish();
     summary.frames = frames;
   }

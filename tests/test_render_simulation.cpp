@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
@@ -142,6 +144,34 @@ TEST_CASE("render simulation: one PNG at a time is the frame `particles render -
   const Image library = readPng(s.dir / "library.png");
   CHECK(library.width == 160);
   CHECK(library == readPng(s.dir / "cli.png"));
+}
+
+TEST_CASE("render simulation: the overlapped loop (threads ≠ 1) draws the plain loop's frames, in order") {
+  // With threads 1 each frame is drawn as soon as it is reached; otherwise the next frame's state is
+  // stepped to while another thread draws (render/render_simulation.cpp, OverlappedFrames). The
+  // falling particles move every frame, so a frame drawn from another frame's state would show.
+  ScratchDir dir;
+  std::vector<Image> sequences[2];
+  for (int threads : {1, 3}) {
+    CAPTURE(threads);
+    System system = particles::test::fallingParticles();
+    RenderJob job = smallJob(dir / ("frames" + std::to_string(threads) + "/"));
+    job.duration = 1.0;
+    job.threads = threads;
+    std::vector<double> times;
+    RenderHooks hooks;
+    hooks.onFrame = [&](const System& s) { times.push_back(s.time()); };
+    CHECK(renderSimulation(system, Integrator::Rk4, kDt, job, hooks).frames == 10);
+    CHECK(times.size() == 10);
+    for (int i = 0; i < 10; ++i) {
+      sequences[threads == 1 ? 0 : 1].push_back(readPng(job.output / fmt::format("frame_{:06d}.png", i)));
+    }
+  }
+  for (size_t i = 0; i < 10; ++i) {
+    CAPTURE(i);
+    CHECK(sequences[0][i] == sequences[1][i]);
+    if (i > 0) CHECK(sequences[1][i] != sequences[1][i - 1]);
+  }
 }
 
 TEST_CASE("render simulation: a stop request leaves no output, and an earlier output untouched") {

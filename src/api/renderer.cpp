@@ -85,8 +85,10 @@ Image Renderer::render(const Simulation& simulation) {
       render::validate(impl_->look);
       impl_->renderer.emplace(impl_->look, impl_->gl);
     }
-    const render::Image& frame =
-        impl_->renderer->render(sim.system().draw(), render::Camera{view.viewCenter, view.viewHeight});
+    // A large frame's shapes are built on the simulation's threads, idle while it is drawn (it is
+    // this call's: `use` above).
+    const render::Image& frame = impl_->renderer->render(
+        sim.system().draw(), render::Camera{view.viewCenter, view.viewHeight}, sim.system().pool());
     Image image{frame.width, frame.height, frame.rgba};
     // A program may draw each frame on another thread (a Python thread pool): EGL binds a context
     // to one thread at a time.
