@@ -19,6 +19,7 @@ inline constexpr float kAnnulusKind = 16.0f;
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "core/worker_pool.hpp"
@@ -118,8 +119,7 @@ class TileBins final : public ShapeSink {
   void annulusShape(P2 c, float inner, float outer, Rgb col, ShapeRecord& r, Reach& q) const;
   Reach reachOf(float x0, float y0, float x1, float y1) const;
   bool reachesTile(size_t shape, int tx, int ty) const;
-  // Calls visit(tile, shape) for each tile of rows [rowBegin, rowEnd) that `shape` reaches, row
-  // by row.
+  // Calls visit(tile) for each tile of rows [rowBegin, rowEnd) that `shape` reaches, row by row.
   template <typename Visit>
   void forEachReachedTile(std::uint32_t shape, int rowBegin, int rowEnd, Visit&& visit) const;
   bool coversTile(size_t shape, int tx, int ty) const;
