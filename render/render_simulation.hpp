@@ -47,8 +47,10 @@ struct RenderJob {
   // llvmpipe rasterises and x264 encodes on the calling thread; with n > 1, llvmpipe starts n
   // rasteriser threads (GlRequest::threads), x264 n threads (VideoOptions::encoderThreads) and
   // the frames reach the encoder through a thread of their own; 0 leaves llvmpipe and x264 at
-  // their defaults (one and 1.5 threads per CPU). The frames are the same for every value (an
-  // MP4's one difference is x264's note of its thread count in the first frame).
+  // their defaults (one and 1.5 threads per CPU). With any value but 1, frames are drawn on a
+  // thread of their own while the simulation steps to the next (docs/architecture.md, "The frame
+  // loop"). The frames are the same for every value (an MP4's one difference is x264's note of
+  // its thread count in the first frame).
   int threads = 0;
   VideoOptions video;  // the encoder's settings for file.mp4; its fps is set from `fps`
   PngOptions png;      // for file.png and dir/

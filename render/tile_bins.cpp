@@ -35,11 +35,6 @@ void TileBins::reset(int width, int height) {
   clear();
 }
 
-void TileBins::reserve(size_t shapes) {
-  shapes_.reserve(shapes);
-  reach_.reserve(shapes);
-}
-
 void TileBins::clear() {
   shapes_.clear();
   reach_.clear();
@@ -286,16 +281,6 @@ constexpr float kThinnerThanTilesPx = float(kTileSizePx) - 0.5f;
 // Shapes per chunk of bin()'s first passes (which band each shape goes to).
 constexpr size_t kBinChunk = 16384;
 
-// task(k) for k in [0, count), on the pool if there is one.
-template <typename Task>
-void eachTask(WorkerPool* pool, size_t count, Task&& task) {
-  if (pool == nullptr) {
-    for (size_t k = 0; k < count; ++k) task(k);
-  } else {
-    pool->run(count, task);
-  }
-}
-
 }  // namespace
 
 void TileBins::bin(WorkerPool* pool) {
@@ -348,7 +333,7 @@ void TileBins::bin(WorkerPool* pool) {
     return std::pair<int, int>{first, std::min(first + kBandTileRows, tilesY_)};
   };
   tiles_.resize(2 * tileCount);
-  eachTask(pool, bands, [&](size_t b) {
+  forChunks(pool, bands, 1, [&](size_t b, size_t) {  // one band a task
     const auto [rowBegin, rowEnd] = bandRows(b);
     for (size_t t = size_t(rowBegin) * size_t(tilesX_); t < size_t(rowEnd) * size_t(tilesX_); ++t) tiles_[2 * t + 1] = 0;
     for (size_t i = bandFirst_[b]; i < bandFirst_[b + 1]; ++i) {
@@ -367,7 +352,7 @@ void TileBins::bin(WorkerPool* pool) {
   // than kTileSizePx − 1 + 2 · ½ px (coversTile), so a shape thinner than kThinnerThanTilesPx (half a
   // pixel below that, far beyond float rounding) cannot cover it.
   const int wholeTilesX = width_ / kTileSizePx, wholeTilesY = height_ / kTileSizePx;
-  eachTask(pool, bands, [&](size_t b) {
+  forChunks(pool, bands, 1, [&](size_t b, size_t) {  // one band a task
     const auto [rowBegin, rowEnd] = bandRows(b);
     const size_t tileBegin = size_t(rowBegin) * size_t(tilesX_), tileEnd = size_t(rowEnd) * size_t(tilesX_);
     // Each tile's next free place in items_, in its count's entry (back to the count below), and

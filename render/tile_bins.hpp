@@ -65,10 +65,6 @@ class TileBins final : public ShapeSink {
 
   // Forgets the shapes and sets the image size (pixels, both > 0).
   void reset(int width, int height);
-  // Makes room for `shapes` shapes at once (render/frame_mesh.hpp's frameShapeCount): grown by
-  // push_back, the records of a million-particle cloth's 3 million shapes (192 MB) took a 268 MB
-  // store, and their tile ranges another 19 MB more than they need (issue 28).
-  void reserve(size_t shapes);
   void clear() override;
 
   void convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges = 0xF) override;
@@ -83,6 +79,9 @@ class TileBins final : public ShapeSink {
   // takes its slot all the same, as an empty record that no tile lists: so which slot a shape
   // lands in depends only on the shapes before it, never on how the work was split, and the
   // frame's bins are the same whatever the thread count. Slots must all be written before bin().
+  // The records are made at once, frameShapeCount of them: grown by push_back, the records of a
+  // million-particle cloth's 3 million shapes (192 MB) took a 268 MB store, and their tile ranges
+  // another 19 MB more than they need (issue 28).
   class SlotWriter;
   void slots(size_t shapes);
   SlotWriter writer(size_t firstSlot);

@@ -195,19 +195,22 @@ TEST_CASE("tile bins: the demos' frames bin exactly (every reached tile listed)"
 }
 
 TEST_CASE("tile bins: frameShapeCount makes room for every record of a demo frame at once") {
-  // Renderer::render reserves it, so that a large frame's records are not grown by doubling.
+  // Renderer::render builds the frame into frameShapeCount slots (buildFrameTiles), made at once,
+  // so that a large frame's records are not grown by doubling; the sink path adds no more records.
   for (const auto& [name, at] :
        {std::pair<std::string, double>{"cloth", 2.5}, {"soft_body", 20.0}, {"rigid_chain", 3.0}}) {
     CAPTURE(name);
     const DemoFrame f = demoFrame(name, at);
     const RenderOptions o = options(160, 120, 4, Raster::tiles);
-    TileBins bins;
-    bins.reset(o.width, o.height);
     const size_t shapes = frameShapeCount(f.drawing);
-    bins.reserve(shapes);
-    buildFrameMesh(f.drawing, f.camera, o, theme(o.themeName), bins);
-    CHECK(bins.shapes().size() <= shapes);
+    TileBins bins, direct;
+    bins.reset(o.width, o.height);
+    buildFrameTiles(f.drawing, f.camera, o, theme(o.themeName), bins);
+    CHECK(bins.shapes().size() == shapes);
     CHECK(bins.shapes().capacity() == shapes);
+    direct.reset(o.width, o.height);
+    buildFrameMesh(f.drawing, f.camera, o, theme(o.themeName), direct);
+    CHECK(direct.shapes().size() <= shapes);
   }
 }
 

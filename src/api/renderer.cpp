@@ -11,6 +11,7 @@
 #include "api/exclusive_use.hpp"
 #include "api/guarded_call.hpp"
 #include "api/simulation_impl.hpp"
+#include "core/drawing.hpp"
 #include "render/gl_backend.hpp"
 #include "render/png_io.hpp"
 #include "render/renderer.hpp"
@@ -35,6 +36,7 @@ struct Renderer::Impl {
   bool sizeGiven = false;
   render::GlRequest gl;
   std::optional<render::Renderer> renderer;  // made at the first frame, again for a new size
+  Drawing drawing;  // the frame's, its storage reused from frame to frame (System::draw)
   std::atomic<bool> busy{false};              // a frame is being drawn (ExclusiveUse)
 };
 
@@ -87,8 +89,9 @@ Image Renderer::render(const Simulation& simulation) {
     }
     // A large frame's shapes are built on the simulation's threads, idle while it is drawn (it is
     // this call's: `use` above).
+    sim.system().draw(impl_->drawing);
     const render::Image& frame = impl_->renderer->render(
-        sim.system().draw(), render::Camera{view.viewCenter, view.viewHeight}, sim.system().pool());
+        impl_->drawing, render::Camera{view.viewCenter, view.viewHeight}, sim.system().pool());
     Image image{frame.width, frame.height, frame.rgba};
     // A program may draw each frame on another thread (a Python thread pool): EGL binds a context
     // to one thread at a time.
