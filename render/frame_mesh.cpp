@@ -1,6 +1,8 @@
 #include "render/frame_mesh.hpp"
 
+#include <algorithm>
 #include <array>
+#include <string>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -16,12 +18,13 @@ class FrameShapes {
  public:
   FrameShapes(const Drawing& f, const Camera& camera, const RenderOptions& options, const Theme& colors)
       : f_(f), camera_(camera), o_(options), c_(colors) {
-    if (!(camera.height > 0.0)) throw std::invalid_argument("camera height must be positive");
+    if (f.springTopology && f.springTopology->ends.size() != 2 * f.springTopology->rest.size()) {
+      throw std::invalid_argument("the drawing's spring topology has other than two ends per spring");
+    }
     w_ = float(options.width);
     h_ = float(options.height);
-    scale_ = double(options.height) / camera.height;  // pixels per world unit
-    radius_ = float(options.particleRadius.unit == Length::Unit::world ? options.particleRadius.value * scale_
-                                                                       : options.particleRadius.value);
+    scale_ = pixelsPerUnit(camera, options);
+    radius_ = particleRadiusPx(camera, options);
   }
 
   // Shapes per section, in drawing order.
@@ -32,7 +35,7 @@ class FrameShapes {
   static Counts counts(const Drawing& f) {
     constexpr size_t kArrowPieces = 4, kArrowOutline = 7;  // the cursor drawn in cursors()
     return {2 * f.halfPlanes.size() + 2 * f.disks.size() + f.guideCircles.size() + f.guideLines.size(),
-            f.springs.size(),
+            f.springs.size() + springsByIndex(f),
             f.rods.size(),
             5 * f.bodies.size(),
             f.particles.size(),
@@ -91,10 +94,25 @@ class FrameShapes {
     }
   }
 
+  static size_t springsByIndex(const Drawing& f) { return f.springTopology ? f.springTopology->rest.size() : 0; }
+
+  // Springs [begin, end) of the section: those by position (Drawing::springs), then those by index
+  // (Drawing::springTopology), their ends and strain found as System::draw finds them.
   void springs(ShapeSink& mesh, size_t begin, size_t end) const {
-    for (size_t i = begin; i < end; ++i) {
+    const float width = float(o_.springWidthPx);
+    const size_t byPosition = f_.springs.size();
+    for (size_t i = begin; i < std::min(end, byPosition); ++i) {
       const Drawing::Spring& s = f_.springs[i];
-      mesh.line(toPixel(s.a), toPixel(s.b), float(o_.springWidthPx), springColor(c_, s.strain, o_.strainForFullColor));
+      mesh.line(toPixel(s.a), toPixel(s.b), width, springColor(c_, s.strain, o_.strainForFullColor));
+    }
+    for (size_t i = std::max(begin, byPosition); i < end; ++i) {
+      const Drawing::SpringTopology& topology = *f_.springTopology;
+      const size_t k = i - byPosition;
+      const Vec2& a = particleAt(topology.ends[2 * k]);
+      const Vec2& b = particleAt(topology.ends[2 * k + 1]);
+      const double rest = topology.rest[k];
+      const double strain = rest > 0.0 ? (a - b).norm() / rest - 1.0 : 0.0;
+      mesh.line(toPixel(a), toPixel(b), width, springColor(c_, strain, o_.strainForFullColor));
     }
   }
 
@@ -124,6 +142,14 @@ class FrameShapes {
         mesh.disc(p, radius_, c_.particle);
       }
     }
+  }
+
+  const Vec2& particleAt(std::uint32_t index) const {
+    if (index >= f_.particles.size()) {
+      throw std::invalid_argument("a spring of the drawing's topology ends at particle " + std::to_string(index) +
+                                  ", and the drawing has " + std::to_string(f_.particles.size()) + " particles");
+    }
+    return f_.particles[index];
   }
 
   // The scripted mouse: a line to the grabbed point, then an arrow pointer with its tip on the
@@ -163,7 +189,7 @@ void buildFrameMesh(const Drawing& f, const Camera& camera, const RenderOptions&
   const FrameShapes frame(f, camera, options, c);
   mesh.clear();
   frame.front(mesh);
-  frame.springs(mesh, 0, f.springs.size());
+  frame.springs(mesh, 0, FrameShapes::counts(f).springs);
   frame.rods(mesh);
   frame.bodies(mesh);
   frame.particles(mesh, 0, f.particles.size());
@@ -204,6 +230,46 @@ size_t buildFrameTiles(const Drawing& f, const Camera& camera, const RenderOptio
   pieces([&](ShapeSink& out, size_t begin, size_t end) { frame.particles(out, begin, end); }, counts.particles);
   serial([&](ShapeSink& out) { frame.cursors(out); }, counts.cursors);
   return recorded;
+}
+
+MeshBreaks buildFrameMeshAround(const Drawing& f, const Camera& camera, const RenderOptions& options, const Theme& c,
+                                ShapeMesh& mesh) {
+  const FrameShapes frame(f, camera, options, c);
+  mesh.clear();
+  frame.front(mesh);
+  frame.springs(mesh, 0, f.springs.size());  // by position only: the resident path draws the others
+  MeshBreaks breaks;
+  breaks.springsEnd = mesh.vertices().size();
+  frame.rods(mesh);
+  frame.bodies(mesh);
+  breaks.particlesAt = mesh.vertices().size();
+  frame.cursors(mesh);
+  return breaks;
+}
+
+void particlePixels(const Drawing& f, const Camera& camera, const RenderOptions& options, std::vector<float>& pixels,
+                    WorkerPool* pool) {
+  const Theme unused{};
+  const FrameShapes frame(f, camera, options, unused);
+  pixels.resize(2 * f.particles.size());
+  forChunks(pool, f.particles.size(), kShapesPerPiece, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) {
+      const P2 p = frame.toPixel(f.particles[i]);
+      pixels[2 * i] = p[0];
+      pixels[2 * i + 1] = p[1];
+    }
+  });
+}
+
+double pixelsPerUnit(const Camera& camera, const RenderOptions& options) {
+  if (!(camera.height > 0.0)) throw std::invalid_argument("camera height must be positive");
+  return double(options.height) / camera.height;
+}
+
+float particleRadiusPx(const Camera& camera, const RenderOptions& options) {
+  return float(options.particleRadius.unit == Length::Unit::world
+                   ? options.particleRadius.value * pixelsPerUnit(camera, options)
+                   : options.particleRadius.value);
 }
 
 size_t frameShapeCount(const Drawing& f) {

@@ -7,6 +7,8 @@
 // Shapes are added back to front, in the order of core/drawing.hpp: obstacles (half-planes, then
 // disks) → guides (circles, then lines) → springs → rods → bodies → particles → cursors.
 
+#include <vector>
+
 #include "core/drawing.hpp"
 #include "core/worker_pool.hpp"
 #include "render/render_options.hpp"
@@ -32,6 +34,26 @@ void buildFrameMesh(const Drawing& frame, const Camera& camera, const RenderOpti
 // buildFrameMesh gives a TileBins as records): what the renderer's automatic choice counts.
 size_t buildFrameTiles(const Drawing& frame, const Camera& camera, const RenderOptions& options, const Theme& colors,
                        TileBins& bins, WorkerPool* pool = nullptr);
+
+// Where the resident path (render/resident_program.hpp) draws its springs and particles among the
+// shapes of buildFrameMeshAround's mesh: vertices [0, springsEnd) before the springs by index,
+// [springsEnd, particlesAt) between them and the particles, the rest after the particles.
+struct MeshBreaks {
+  size_t springsEnd = 0, particlesAt = 0;
+};
+// buildFrameMesh's shapes but the particles, and the springs by index (Drawing::springTopology),
+// which the resident path draws from GL's copy of them; the frame's springs by position, if any,
+// come just before those by index.
+MeshBreaks buildFrameMeshAround(const Drawing& frame, const Camera& camera, const RenderOptions& options,
+                                const Theme& colors, ShapeMesh& mesh);
+
+// Where every path puts the frame's particles: (x, y) in pixels per particle, into `pixels`, on
+// `pool`'s threads when it is given. Throws std::invalid_argument as buildFrameMesh does.
+void particlePixels(const Drawing& frame, const Camera& camera, const RenderOptions& options,
+                    std::vector<float>& pixels, WorkerPool* pool = nullptr);
+// Pixels per world unit, and a particle's radius in pixels, as every path draws them.
+double pixelsPerUnit(const Camera& camera, const RenderOptions& options);
+float particleRadiusPx(const Camera& camera, const RenderOptions& options);
 
 // How many shapes buildFrameMesh gives `frame` before any is dropped as off-screen: an upper bound
 // on what a sink receives, counted without building anything (the renderer's choice of raster path).

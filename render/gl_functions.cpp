@@ -28,7 +28,7 @@ GlFunctions loadGlFunctions(GlProcLookup lookup, const char* lookupName) {
   if (!gl.name) {                                                                   \
     throw RenderError(                                                              \
         fmt::format("{}(\"{}\") found no such function: the OpenGL library is too " \
-                    "old for the renderer (it needs OpenGL 3.0)",                   \
+                    "old for the renderer (it needs OpenGL 3.1)",                   \
                     lookupName, #name));                                            \
   }
   PARTICLES_GL_FUNCTIONS(PARTICLES_GL_LOAD)

@@ -18,7 +18,10 @@ namespace {
 
 constexpr NameTableRow<ThemeName> kThemeNames[] = {{ThemeName::dark, "dark"}, {ThemeName::light, "light"}};
 constexpr NameTableRow<Raster> kRasterNames[] = {
-    {Raster::automatic, "auto"}, {Raster::triangles, "triangles"}, {Raster::tiles, "tiles"}};
+    {Raster::automatic, "auto"},
+    {Raster::triangles, "triangles"},
+    {Raster::tiles, "tiles"},
+    {Raster::resident, "resident"}};
 // RenderOptions::transparentBackground's two values: the theme's colour, or none.
 constexpr NameTableRow<bool> kBackgroundNames[] = {{false, "theme"}, {true, "transparent"}};
 

@@ -41,8 +41,11 @@ std::string sampleCountsText();
 
 // How shapes reach the pixels (render/renderer.hpp): triangles, one GL primitive per piece of a
 // shape; tiles, shapes binned into screen tiles on the CPU and one full-screen pass
-// (render/tile_bins.hpp); automatic, tiles from kTilesFromShapes shapes in a frame.
-enum class Raster { automatic, triangles, tiles };
+// (render/tile_bins.hpp); resident, the scene's springs and particles kept in GL's buffers, only
+// their positions sent each frame, particles drawn as instances and springs expanded in the
+// vertex shader (render/resident_program.hpp); automatic, resident on a GPU, else tiles from
+// kTilesFromShapes shapes in a frame.
+enum class Raster { automatic, triangles, tiles, resident };
 // The shape count from which automatic draws with tiles: about where the two cost the same for
 // the cloth at 1280×720 on llvmpipe, between the 80 × 80 and the 100 × 100 cloth (bench/README.md, "Measurements behind choices in the source").
 // Below it the triangle path, which the goldens were drawn with, is faster.
@@ -75,7 +78,7 @@ std::optional<ThemeName> themeFromName(std::string_view name);
 std::optional<Raster> rasterFromName(std::string_view name);
 std::string_view themeNameOf(ThemeName theme);
 std::string_view rasterNameOf(Raster raster);
-std::vector<std::string> rasterNames();  // "auto", "triangles", "tiles"
+std::vector<std::string> rasterNames();  // "auto", "triangles", "tiles", "resident"
 
 // The look options of `particles render`, one row each: its command-line word, what its text may
 // be, how the text sets RenderOptions and how RenderOptions writes it back. The render command

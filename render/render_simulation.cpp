@@ -34,7 +34,7 @@ class FramePainter {
   // The system's current state, its shapes built on the system's threads (Renderer::render),
   // which are idle while it is drawn.
   const Image& paint(System& system) {
-    system.draw(drawing_);
+    system.draw(drawing_, SpringDetail::topology);  // every raster path draws springs by index
     const Image& image = renderer_.render(drawing_, camera_, system.pool());
     if (!decorate_) return image;
     decorated_ = image;  // the renderer's image is reused for the next frame
@@ -77,7 +77,7 @@ class OverlappedFrames {
         }) {}
 
   void push(const System& system) {
-    pipeline_.pushWith([&](std::size_t slot) { system.draw(drawings_[slot]); });
+    pipeline_.pushWith([&](std::size_t slot) { system.draw(drawings_[slot], SpringDetail::topology); });
   }
   void finish() { pipeline_.close(); }  // rethrows a failed frame's error
   void cancel() noexcept { pipeline_.cancel(); }

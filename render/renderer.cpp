@@ -1,8 +1,12 @@
 #include "render/renderer.hpp"
 
+#include <stdexcept>
+#include <vector>
+
 #include "render/frame_memory.hpp"
 #include "render/frame_mesh.hpp"
 #include "render/gl_context.hpp"
+#include "render/resident_program.hpp"
 #include "render/shader_program.hpp"
 #include "render/shape_mesh.hpp"
 #include "render/tile_bins.hpp"
@@ -36,15 +40,67 @@ struct Renderer::Impl {
   ShapeMesh mesh;  // the frame's triangles, storage reused from frame to frame
   TileBins bins;   // or its shapes in tiles
   std::unique_ptr<TileProgram> tiles;  // made when first needed
+  std::unique_ptr<ResidentProgram> resident;  // on the resident path
+  std::vector<float> pixels;                  // its particles' positions in pixels
+  const bool gpu;                             // a GPU was asked for: automatic draws resident
   Image straight;                      // a transparent frame with its colour unpremultiplied
 
   Impl(const RenderOptions& o, const GlRequest& gl)
       : options(o),
         colors(theme(o.themeName)),
         context(makeGlContext(gl, o.width, o.height)),
-        program(context->gl(), o.msaa, o.width, o.height, context->flipsY()) {
+        program(context->gl(), o.msaa, o.width, o.height, context->flipsY()),
+        gpu(gl.gpu) {
     // Allocated now, with the frame (render/frame_memory.hpp): later copies of the frame reuse it.
     if (o.transparentBackground) straight = allocateImage(o.width, o.height, "the frame's unpremultiplied copy");
+  }
+
+  // The frame on the resident path: the CPU's shapes before the springs, the springs by index
+  // from GL's copy, the CPU's shapes between, the particles from GL's copy, the CPU's shapes after.
+  void drawResident(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+    particlePixels(frame, camera, options, pixels, pool);
+    resident->upload(pixels, frame.particleFixed, frame.springTopology);
+    const MeshBreaks breaks = buildFrameMeshAround(frame, camera, options, colors, mesh);
+    const ResidentLook look{.particleRadiusPx = particleRadiusPx(camera, options),
+                            .springWidthPx = float(options.springWidthPx),
+                            .pixelsPerUnit = pixelsPerUnit(camera, options),
+                            .strainForFullColor = options.strainForFullColor,
+                            .colors = colors};
+    program.draw(mesh, 0, breaks.springsEnd);
+    resident->drawSprings(look);
+    program.draw(mesh, breaks.springsEnd, breaks.particlesAt);
+    resident->drawParticles(look);
+    program.draw(mesh, breaks.particlesAt, mesh.vertices().size());
+  }
+
+  // The frame built on the CPU: as triangles, or as tiles (the automatic choice, RenderOptions).
+  void drawBuilt(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+    // automatic: a frame that cannot reach the threshold goes straight to triangles; one that may
+    // is built as tiles first and decided on the shapes it really has (degenerate ones dropped).
+    const size_t shapes = frameShapeCount(frame);
+    bool tiled = options.raster == Raster::tiles ||
+                 (options.raster != Raster::triangles && shapes >= kTilesFromShapes);
+    if (tiled) {
+      bins.reset(options.width, options.height);
+      const size_t recorded = buildFrameTiles(frame, camera, options, colors, bins, pool);
+      tiled = options.raster == Raster::tiles || recorded >= kTilesFromShapes;
+    }
+    const bool transparent = options.transparentBackground;
+    context->beginFrame(colors.background, transparent);
+    if (tiled) {
+      bins.bin(pool);
+      if (!tiles) {
+        tiles = std::make_unique<TileProgram>(context->gl(), options.msaa, options.width, options.height,
+                                                context->flipsY());
+      }
+      tiled = tiles->fits(bins);  // else too large for GL's texture buffers: triangles
+    }
+    if (tiled) {
+      tiles->draw(bins, colors.background, transparent);
+    } else {
+      buildFrameMesh(frame, camera, options, colors, mesh);
+      program.draw(mesh);
+    }
   }
 };
 
@@ -69,31 +125,25 @@ const GlInfo& Renderer::gl() const {
 
 const Image& Renderer::render(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
   Impl& m = *impl_;
-  // automatic: a frame that cannot reach the threshold goes straight to triangles; one that may
-  // is built as tiles first and decided on the shapes it really has (degenerate ones dropped).
-  const size_t shapes = frameShapeCount(frame);
-  bool tiled =
-      m.options.raster == Raster::tiles || (m.options.raster == Raster::automatic && shapes >= kTilesFromShapes);
-  if (tiled) {
-    m.bins.reset(m.options.width, m.options.height);
-    const size_t recorded = buildFrameTiles(frame, camera, m.options, m.colors, m.bins, pool);
-    tiled = m.options.raster == Raster::tiles || recorded >= kTilesFromShapes;
-  }
   const bool transparent = m.options.transparentBackground;
-  m.context->beginFrame(m.colors.background, transparent);
-  if (tiled) {
-    m.bins.bin(pool);
-    if (!m.tiles) {
-      m.tiles = std::make_unique<TileProgram>(m.context->gl(), m.options.msaa, m.options.width, m.options.height,
-                                              m.context->flipsY());
+  // resident: asked for, or automatic with a GPU (what the path is for), or automatic below the
+  // tiles' threshold, where on llvmpipe it is faster than triangles (bench/README.md, "The resident path").
+  const Raster raster = m.options.raster;
+  bool resident = raster == Raster::resident ||
+                  (raster == Raster::automatic && (m.gpu || frameShapeCount(frame) < kTilesFromShapes));
+  if (resident) {
+    m.context->beginFrame(m.colors.background, transparent);  // current, for a program made now
+    if (!m.resident) {
+      m.resident = std::make_unique<ResidentProgram>(m.context->gl(), m.options.msaa, m.options.width,
+                                                     m.options.height, m.context->flipsY());
     }
-    tiled = m.tiles->fits(m.bins);  // else too large for GL's texture buffers: triangles
+    const size_t springsByIndex = frame.springTopology ? frame.springTopology->rest.size() : 0;
+    resident = m.resident->fits(frame.particles.size(), springsByIndex);  // else built on the CPU
   }
-  if (tiled) {
-    m.tiles->draw(m.bins, m.colors.background, transparent);
+  if (resident) {
+    m.drawResident(frame, camera, pool);
   } else {
-    buildFrameMesh(frame, camera, m.options, m.colors, m.mesh);
-    m.program.draw(m.mesh);
+    m.drawBuilt(frame, camera, pool);
   }
   if (!transparent) return m.context->finishFrame();
   m.straight = m.context->finishFrame();

@@ -13,6 +13,10 @@
 // the shader's cost grows only with the pixels shapes touch. msaa = 1 tests the
 // pixel centre only: hard edges.
 //
+// On the resident path (Raster::resident, render/resident_program.hpp) a scene's springs and
+// particles stay in GL's buffers and each frame sends their positions only; everything else is
+// built as below.
+//
 // Every shape is built on the CPU as triangles in pixel coordinates (lines as quads of a given
 // pixel width, discs as fans), pushed out by a 1 px fringe where they are smoothed, and drawn in a
 // fixed order: the same drawing gives the same pixels every time (tests check byte equality).
@@ -45,8 +49,11 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   // Draws the frame. The image is owned by the renderer and valid until the next call.
-  // Throws RenderError if GL reports an error. With a pool, a large frame's shapes are built and
-  // binned on its threads (the tile path, render/tile_bins.hpp): the same pixels for every count.
+  // Throws RenderError if GL reports an error, std::invalid_argument for a spring topology that
+  // names particles the frame lacks. With a pool, a large frame's shapes are built and binned on
+  // its threads (the tile path, render/tile_bins.hpp): the same pixels for every count. The frame's
+  // springs may come by position or by index (System::draw's SpringDetail, the better for a
+  // render: the resident path keeps them in GL's buffers, and the others need no list of them).
   const Image& render(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr);
   // Lets another thread draw the next frame (GlContext::releaseFromThread).
   void releaseFromThread();

@@ -142,9 +142,14 @@ unsigned linkProgram(const GlFunctions& gl, const std::string& vertexSource, con
   return program;
 }
 
+std::string coverageFragmentShader(int samples, bool flipY) {
+  return std::string("#version 130\n#define Y_SIGN ") + (flipY ? "-1.0" : "1.0") + "\n" + samplePatternGlsl(samples) +
+         kFragmentShader;
+}
+
 ShaderProgram::ShaderProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY) : gl_(gl) {
   const std::string ySign = std::string("#version 130\n#define Y_SIGN ") + (flipY ? "-1.0" : "1.0") + "\n";
-  program_ = linkProgram(gl, ySign + kVertexShader, ySign + samplePatternGlsl(samples) + kFragmentShader);
+  program_ = linkProgram(gl, ySign + kVertexShader, coverageFragmentShader(samples, flipY));
   positionAttr_ = gl.glGetAttribLocation(program_, "position");
   colorAttr_ = gl.glGetAttribLocation(program_, "color");
   shapeAttr_ = gl.glGetAttribLocation(program_, "shape");
@@ -154,8 +159,8 @@ ShaderProgram::ShaderProgram(const GlFunctions& gl, int samples, int width, int 
   checkGl(gl, "shader program setup");
 }
 
-void ShaderProgram::draw(const ShapeMesh& mesh) const {
-  if (mesh.vertices().empty()) return;
+void ShaderProgram::draw(const ShapeMesh& mesh, size_t first, size_t end) const {
+  if (first >= end) return;
   const ShapeVertex* v = mesh.vertices().data();
   const GLsizei stride = sizeof(ShapeVertex);
   gl_.glUseProgram(program_);
@@ -167,7 +172,7 @@ void ShaderProgram::draw(const ShapeMesh& mesh) const {
   if (colorAttr_ >= 0) gl_.glVertexAttribPointer(GLuint(colorAttr_), 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, v->rgba);
   if (shapeAttr_ >= 0) gl_.glVertexAttribPointer(GLuint(shapeAttr_), 4, GL_FLOAT, GL_FALSE, stride, v->shape);
   if (kindAttr_ >= 0) gl_.glVertexAttribPointer(GLuint(kindAttr_), 1, GL_FLOAT, GL_FALSE, stride, &v->kind);
-  gl_.glDrawArrays(GL_TRIANGLES, 0, GLsizei(mesh.vertices().size()));
+  gl_.glDrawArrays(GL_TRIANGLES, GLint(first), GLsizei(end - first));
   for (GLint a : attrs) {
     if (a >= 0) gl_.glDisableVertexAttribArray(GLuint(a));
   }

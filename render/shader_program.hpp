@@ -24,6 +24,13 @@ const std::vector<Vec2>& samplePattern(int samples);
 // `#define SAMPLE_COUNT n` and `#define SAMPLES vec2(…), …`: the pattern of `samples` for a shader.
 std::string samplePatternGlsl(int samples);
 
+// The coverage fragment shader's whole text (GLSL 1.30) for `samples` per pixel: it takes the
+// primitive's colour (vColor), boundary (vShape, render/shape_mesh.hpp's ShapeVertex::shape) and
+// kind (flat vKind) from the vertex shader; `flipY` as ShaderProgram's. The resident path's vertex
+// shaders (render/resident_program.hpp) feed it the same, so every triangle-drawing path blends
+// the same coverage.
+std::string coverageFragmentShader(int samples, bool flipY);
+
 // Compiles and links a program of the two sources in the current context. Throws RenderError with
 // the compiler's or the linker's log.
 unsigned linkProgram(const GlFunctions& gl, const std::string& vertexSource, const std::string& fragmentSource);
@@ -41,8 +48,10 @@ class ShaderProgram {
   ShaderProgram(const ShaderProgram&) = delete;
   ShaderProgram& operator=(const ShaderProgram&) = delete;
 
-  // Draws the mesh's triangles in order, in the current context (nothing for an empty mesh).
-  void draw(const ShapeMesh& mesh) const;
+  // Draws the mesh's triangles in order, in the current context (nothing for an empty mesh); or
+  // only its vertices [first, end).
+  void draw(const ShapeMesh& mesh) const { draw(mesh, 0, mesh.vertices().size()); }
+  void draw(const ShapeMesh& mesh, size_t first, size_t end) const;
 
  private:
   const GlFunctions& gl_;

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <filesystem>
 #include <set>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "core/solver.hpp"
 #include "core/system.hpp"
 #include "render/image.hpp"
+#include "render/image_compare.hpp"
 #include "render/renderer.hpp"
 #include "scenario/scenario.hpp"
 #include "source_tree.hpp"
@@ -71,6 +73,16 @@ inline render::RenderOptions smallRenderOptions(int width = 320, int height = 24
   return o;
 }
 
+// A frame of width × height at `msaa` samples per pixel, drawn by `raster`'s path; the rest default.
+inline render::RenderOptions rasterOptions(int width, int height, int msaa, render::Raster raster) {
+  render::RenderOptions o;
+  o.width = width;
+  o.height = height;
+  o.msaa = msaa;
+  o.raster = raster;
+  return o;
+}
+
 // Where camera and image size put a world point, in pixels from the top-left (x right, y down).
 inline Vec2 projectToPixel(const Vec2& p, const render::Camera& camera, int width, int height) {
   const double scale = double(height) / camera.height;
@@ -90,16 +102,50 @@ inline void checkVideo(const VideoInfo& info, const std::string& codec, int widt
 }
 
 // A demo scenario (scenarios/NAME.yaml, with `overrides`) advanced to `at` seconds: its drawing
-// and camera.
+// (springs by position), the same state drawn with its springs by index where it can be
+// (SpringDetail::topology, as `particles render` draws), and its camera.
 struct DemoFrame {
   Drawing drawing;
   render::Camera camera;
+  Drawing byIndex;
 };
 
 inline DemoFrame demoFrame(const std::string& name, double at, const std::vector<scenario::Override>& overrides = {}) {
   scenario::Scenario s = scenario::loadScenarioFile(kScenarios / (name + ".yaml"), overrides);
   Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(at);
-  return {s.system.draw(), {s.render.viewCenter, s.render.viewHeight}};
+  DemoFrame frame{s.system.draw(), {s.render.viewCenter, s.render.viewHeight}, {}};
+  s.system.draw(frame.byIndex, SpringDetail::topology);
+  return frame;
+}
+
+// The three demos at a moment each (springs strained, bodies, contacts, the cursor) at 1280×720,
+// at every sample count, drawn by the triangle path from the springs by position and by `path`:
+// from the springs by index with `byIndex`, else by position. Checks that the two are within the
+// golden tolerance (a difference over 16 in at most 0.02 % of the pixels; at 1 sample 0.15 %,
+// where an edge along pixel centres ties a whole row), and that at most `roundingShare` of the
+// pixels (0.15 % at 1 sample) differ by more than `rounding`.
+inline void checkDemoFramesOnPath(render::Raster path, bool byIndex, int rounding, double roundingShare) {
+  for (const auto& [name, at] : {std::pair<std::string, double>{"cloth", 2.5}, {"soft_body", 20.0}, {"rigid_chain", 3.0}}) {
+    const DemoFrame f = demoFrame(name, at);
+    for (int msaa : render::kSampleCounts) {
+      CAPTURE(name);
+      CAPTURE(msaa);
+      render::RenderOptions o;
+      o.msaa = msaa;  // the default 1280×720
+      o.raster = render::Raster::triangles;
+      render::Renderer triangles(o);
+      o.raster = path;
+      render::Renderer other(o);
+      const render::Image expected = triangles.render(f.drawing, f.camera);
+      const render::Image& actual = other.render(byIndex ? f.byIndex : f.drawing, f.camera);
+      const double share = msaa == 1 ? 0.0015 : 0.0002;
+      const render::ImageComparison golden = render::compareImages(expected, actual, {16, share});
+      CHECK_MESSAGE(golden.passed, golden.differing, " pixels differ by more than 16");
+      const render::ImageComparison close =
+          render::compareImages(expected, actual, {rounding, msaa == 1 ? 0.0015 : roundingShare});
+      CHECK_MESSAGE(close.passed, close.differing, " pixels differ by more than ", rounding);
+    }
+  }
 }
 
 }  // namespace particles::test

@@ -27,6 +27,7 @@ using namespace particles;
 using namespace particles::render;
 using particles::test::DemoFrame;
 using particles::test::demoFrame;
+using particles::test::rasterOptions;
 
 namespace {
 
@@ -110,15 +111,6 @@ long checkBins(const TileBins& bins) {
   return slack;
 }
 
-RenderOptions options(int width, int height, int msaa, Raster raster) {
-  RenderOptions o;
-  o.width = width;
-  o.height = height;
-  o.msaa = msaa;
-  o.raster = raster;
-  return o;
-}
-
 }  // namespace
 
 TEST_CASE("tile bins: a line's record is the record of its rectangle as a convex shape") {
@@ -185,7 +177,7 @@ TEST_CASE("tile bins: the demos' frames bin exactly (every reached tile listed)"
   for (const auto& [name, at] : {std::pair<std::string, double>{"cloth", 2.5}, {"soft_body", 20.0}, {"rigid_chain", 3.0}}) {
     CAPTURE(name);
     const DemoFrame f = demoFrame(name, at);
-    const RenderOptions o = options(160, 120, 4, Raster::tiles);
+    const RenderOptions o = rasterOptions(160, 120, 4, Raster::tiles);
     TileBins bins;
     bins.reset(o.width, o.height);
     buildFrameMesh(f.drawing, f.camera, o, theme(o.themeName), bins);
@@ -201,7 +193,7 @@ TEST_CASE("tile bins: frameShapeCount makes room for every record of a demo fram
        {std::pair<std::string, double>{"cloth", 2.5}, {"soft_body", 20.0}, {"rigid_chain", 3.0}}) {
     CAPTURE(name);
     const DemoFrame f = demoFrame(name, at);
-    const RenderOptions o = options(160, 120, 4, Raster::tiles);
+    const RenderOptions o = rasterOptions(160, 120, 4, Raster::tiles);
     const size_t shapes = frameShapeCount(f.drawing);
     TileBins bins, direct;
     bins.reset(o.width, o.height);
@@ -225,7 +217,7 @@ TEST_CASE("tile bins: a frame built and binned on threads is the same bytes for 
                                  scenario::parseOverride("mouse.0.from=0"),
                                  scenario::parseOverride("colliders=[{type: disk, center: [0.5, -1.2], radius: 0.3}, "
                                                          "{type: half_plane, normal: [0, 1], offset: -1.4}]")});
-  const RenderOptions o = options(1283, 719, 4, Raster::tiles);
+  const RenderOptions o = rasterOptions(1283, 719, 4, Raster::tiles);
   const Theme colors = theme(o.themeName);
   auto build = [&](int threads) {
     WorkerPool pool(threads);
@@ -285,26 +277,12 @@ TEST_CASE("tile path: the demos' pixels are the triangle path's within the golde
   // differ by more than 16, which float rounding decides either way in the two paths. At 1 sample
   // per pixel that is whole rows where an edge runs along pixel centres (the cloth's rail: 934 of
   // 921,600 pixels), so 1 sample has its own bound.
-  for (const auto& [name, at] : {std::pair<std::string, double>{"cloth", 2.5}, {"soft_body", 20.0}, {"rigid_chain", 3.0}}) {
-    const DemoFrame f = demoFrame(name, at);
-    for (int msaa : kSampleCounts) {
-      CAPTURE(name);
-      CAPTURE(msaa);
-      Renderer triangles(options(1280, 720, msaa, Raster::triangles));
-      Renderer tiles(options(1280, 720, msaa, Raster::tiles));
-      const Image expected = triangles.render(f.drawing, f.camera);
-      const Image& actual = tiles.render(f.drawing, f.camera);
-      const ImageComparison golden = compareImages(expected, actual, {16, msaa == 1 ? 0.0015 : 0.0002});
-      CHECK_MESSAGE(golden.passed, golden.differing, " pixels differ by more than 16");
-      // Away from ties the paths differ only by the 8-bit rounding after each blend, which the tile
-      // pass does once at the end: a unit or two.
-      const ImageComparison rounding = compareImages(expected, actual, {2, msaa == 1 ? 0.0015 : 0.002});
-      CHECK_MESSAGE(rounding.passed, rounding.differing, " pixels differ by more than 2");
-    }
-  }
+  // Away from ties the paths differ only by the 8-bit rounding after each blend, which the tile
+  // pass does once at the end: a unit or two.
+  particles::test::checkDemoFramesOnPath(Raster::tiles, false, 2, 0.002);
 }
 
-TEST_CASE("tile path: the same frame twice is the same bytes, and auto takes it for large scenes only") {
+TEST_CASE("tile path: the same frame twice is the same bytes, and auto takes it for large scenes only (resident below)") {
   // The cloth at 100 × 100: 10,000 particles and 19,800 springs, past kTilesFromShapes; the demo's
   // 25 × 25 is below it.
   const DemoFrame large = demoFrame("cloth", 0.5,
@@ -313,9 +291,9 @@ TEST_CASE("tile path: the same frame twice is the same bytes, and auto takes it 
   const DemoFrame small = demoFrame("cloth", 0.5);
   REQUIRE(large.drawing.particles.size() + large.drawing.springs.size() >= kTilesFromShapes);
   REQUIRE(small.drawing.particles.size() + small.drawing.springs.size() < kTilesFromShapes);
-  Renderer automatic(options(640, 360, 4, Raster::automatic));
-  Renderer tiles(options(640, 360, 4, Raster::tiles));
-  Renderer triangles(options(640, 360, 4, Raster::triangles));
+  Renderer automatic(rasterOptions(640, 360, 4, Raster::automatic));
+  Renderer tiles(rasterOptions(640, 360, 4, Raster::tiles));
+  Renderer triangles(rasterOptions(640, 360, 4, Raster::triangles));
   const Image largeTiles = tiles.render(large.drawing, large.camera);
   CHECK(tiles.render(large.drawing, large.camera).rgba == largeTiles.rgba);
   CHECK(automatic.render(large.drawing, large.camera).rgba == largeTiles.rgba);
@@ -326,17 +304,20 @@ TEST_CASE("tile path: the same frame twice is the same bytes, and auto takes it 
   // the other right of it (216 pixels over 16, measured). Hence the bound of 1 sample per pixel.
   const ImageComparison c = compareImages(largeTriangles, largeTiles, {16, 0.0015});
   CHECK_MESSAGE(c.passed, c.differing, " pixels differ by more than 16");
-  // Small, then large, then small again from one renderer: each frame its own path, nothing left
-  // over from the other (the tile pass turns blending off; the next frame turns it on).
-  const Image smallTriangles = triangles.render(small.drawing, small.camera);
-  CHECK(automatic.render(small.drawing, small.camera).rgba == smallTriangles.rgba);
+  // Small, then large, then small again from one renderer: each frame its own path (below the
+  // threshold the resident path, render/resident_program.hpp), nothing left over from the other
+  // (the tile pass turns blending off; the next frame turns it on).
+  Renderer resident(rasterOptions(640, 360, 4, Raster::resident));
+  const Image smallResident = resident.render(small.drawing, small.camera);
+  CHECK(automatic.render(small.drawing, small.camera).rgba == smallResident.rgba);
   CHECK(automatic.render(large.drawing, large.camera).rgba == largeTiles.rgba);
-  CHECK(automatic.render(small.drawing, small.camera).rgba == smallTriangles.rgba);
+  CHECK(automatic.render(small.drawing, small.camera).rgba == smallResident.rgba);
+  CHECK(automatic.render(large.byIndex, large.camera).rgba == largeTiles.rgba);  // springs by index: the same
 }
 
 TEST_CASE("tile path: an empty frame is the background, and a frame of one odd size draws") {
   Drawing empty;
-  Renderer tiles(options(37, 23, 4, Raster::tiles));
+  Renderer tiles(rasterOptions(37, 23, 4, Raster::tiles));
   const Image& image = tiles.render(empty, Camera{});
   const render::Rgb bg = theme(ThemeName::dark).background;
   for (size_t i = 0; i < image.rgba.size(); i += 4) {
@@ -347,7 +328,7 @@ TEST_CASE("tile path: an empty frame is the background, and a frame of one odd s
   }
   Drawing one;
   one.particles.push_back(Vec2(0.1, -0.2));
-  Renderer triangles(options(37, 23, 4, Raster::triangles));
+  Renderer triangles(rasterOptions(37, 23, 4, Raster::triangles));
   const Image expected = triangles.render(one, Camera{});
   CHECK(tiles.render(one, Camera{}).rgba == expected.rgba);
 }

@@ -75,7 +75,7 @@ class Energy:
 
 Theme = Literal["dark", "light"]
 Background = Literal["theme", "transparent"]
-Raster = Literal["auto", "triangles", "tiles"]
+Raster = Literal["auto", "triangles", "tiles", "resident"]
 GlBackend = Literal["auto", "egl", "osmesa"]
 
 class Simulation:

@@ -89,7 +89,7 @@ Image Renderer::render(const Simulation& simulation) {
     }
     // A large frame's shapes are built on the simulation's threads, idle while it is drawn (it is
     // this call's: `use` above).
-    sim.system().draw(impl_->drawing);
+    sim.system().draw(impl_->drawing, SpringDetail::topology);  // springs by index: every path draws them
     const render::Image& frame = impl_->renderer->render(
         impl_->drawing, render::Camera{view.viewCenter, view.viewHeight}, sim.system().pool());
     Image image{frame.width, frame.height, frame.rgba};

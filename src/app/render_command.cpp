@@ -304,8 +304,9 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
   renderCmd
       ->add_option("--raster", render.raster,
                    fmt::format("How shapes become pixels: triangles (one GL primitive each), tiles (sorted into "
-                               "screen tiles on the CPU, one pass; fast for large scenes) or auto (tiles from {} "
-                               "shapes)",
+                               "screen tiles on the CPU, one pass; fast for large scenes), resident (springs and "
+                               "particles kept in GL's buffers, only positions sent each frame; the GPU's path) or "
+                               "auto (with --gpu resident, else tiles from {} shapes and resident below)",
                                render::kTilesFromShapes))
       ->check(CLI::IsMember(render::rasterNames()))
       ->capture_default_str();

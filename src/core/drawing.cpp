@@ -10,6 +10,7 @@ void Drawing::clear() {
   particleFixed.clear();
   bodies.clear();
   springs.clear();
+  springTopology.reset();
   rods.clear();
   guideCircles.clear();
   guideLines.clear();

@@ -7,6 +7,8 @@
 //   particles → cursors.
 // A new kind draws itself by adding to these lists; a new list is a change to the renderer.
 
+#include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/state.hpp"
@@ -20,6 +22,11 @@ namespace particles {
 inline constexpr int kMaxImageSide = 16384;
 // The most frames a second of simulated time is drawn in: a scenario's render.fps, render's --fps.
 inline constexpr int kMaxFps = 1000;
+
+// How System::draw gives the springs: each with its ends' positions and strain (Drawing::springs),
+// or, where every spring joins two particles, by index (Drawing::springTopology), for a renderer
+// that keeps them on the GPU (render/resident_program.hpp).
+enum class SpringDetail { positions, topology };
 
 struct Drawing {
   struct Spring {   // a spring, coloured by strain
@@ -50,6 +57,15 @@ struct Drawing {
     double angle;  // rad, counter-clockwise
     Vec2 size;     // full width and height
   };
+  // The springs by their ends, for a renderer that keeps a scene's topology on the GPU and sends
+  // only positions each frame (render/resident_program.hpp): the springs `springs` would hold,
+  // in the same order. System::draw gives it (SpringDetail::topology) when every spring joins two
+  // particles; it is then the same object from frame to frame, since a system's springs never
+  // change, and `springs` stays empty.
+  struct SpringTopology {
+    std::vector<std::uint32_t> ends;  // two particle indices per spring: a, b
+    std::vector<double> rest;         // rest lengths; strain |l| / rest − 1, 0 where rest is 0
+  };
   struct Cursor {  // a scripted mouse while it holds its point
     Vec2 target;   // where the cursor is
     Vec2 grabbed;  // the point it pulls
@@ -60,6 +76,7 @@ struct Drawing {
   std::vector<char> particleFixed;  // 1 for a fixed particle, same length as particles
   std::vector<Box> bodies;
   std::vector<Spring> springs;
+  std::shared_ptr<const SpringTopology> springTopology;  // null unless asked for and possible
   std::vector<Segment> rods;
   std::vector<Circle> guideCircles;
   std::vector<Line> guideLines;

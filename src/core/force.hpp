@@ -93,6 +93,15 @@ class Force {
   // Adds what this force shows (springs, cursors) to the frame's drawing. A force of many items
   // may fill its part in chunks on `pool` (null: serial), as its other loops do.
   virtual void draw(const StateView& s, double t, Drawing& out, WorkerPool* pool) const = 0;
+  // A spring set's springs (what its draw() adds) by their ends' particle indices, appended to
+  // `out` in draw()'s order (Drawing::SpringTopology); false, adding nothing, when one of them has
+  // an end on a body, which only draw() can show. When every force gives its springs so, System::draw
+  // with SpringDetail::topology does not call a spring set's draw(). A force that is no spring set
+  // draws no springs: it adds nothing.
+  virtual bool addSpringTopology(Drawing::SpringTopology& out) const {
+    (void)out;
+    return !isSpringSet();
+  }
   // Adds ∂f/∂x and ∂f/∂v at (s, t) for the implicit integrator (core/force_jacobians.hpp: symmetric,
   // negative semi-definite blocks). Nothing by default: the force is then taken explicitly.
   virtual void addJacobians(const Model&, const StateView&, double, ForceJacobians&) const {}

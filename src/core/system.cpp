@@ -158,7 +158,7 @@ Drawing System::draw() const {
   return d;
 }
 
-void System::draw(Drawing& d) const {
+void System::draw(Drawing& d, SpringDetail springs) const {
   const StateView s = view();
   const StateLayout& layout = model_.layout;
   d.clear();
@@ -175,7 +175,20 @@ void System::draw(Drawing& d) const {
   for (int j = 0; j < layout.numBodies; ++j) {
     d.bodies.push_back({s.pos(layout.bodyPoint(j)), s.angle(j), model_.bodies[size_t(j)].size});
   }
-  for (const auto& force : forces_) force->draw(s, t_, d, pool_.get());
+  if (springs == SpringDetail::topology) {
+    std::call_once(springTopology_->made, [&] {
+      auto topology = std::make_shared<Drawing::SpringTopology>();
+      bool byIndex = true;
+      for (const auto& force : forces_) byIndex = byIndex && force->addSpringTopology(*topology);
+      if (byIndex) springTopology_->topology = std::move(topology);
+    });
+    d.springTopology = springTopology_->topology;
+  }
+  for (const auto& force : forces_) {
+    // Forces by index add no springs: their ends' positions are the particles'.
+    if (d.springTopology && force->isSpringSet()) continue;
+    force->draw(s, t_, d, pool_.get());
+  }
   for (const auto& constraint : constraints_) constraint->draw(s, d);
   for (const auto& collider : colliders_) collider->draw(d);
 }

@@ -5,6 +5,7 @@
 // Built with SystemBuilder, so that the layout of the state vector is fixed before stepping.
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -102,7 +103,9 @@ class System {
   Drawing draw() const;
   // The same into `out`, reusing its lists' storage: a render's frames draw into one Drawing, so
   // that a large scene's lists are not allocated (and their pages not faulted in) every frame.
-  void draw(Drawing& out) const;
+  // With SpringDetail::topology, springs that all join particles come as Drawing::springTopology
+  // (built on the first such call, then shared by every drawing) instead of in Drawing::springs.
+  void draw(Drawing& out, SpringDetail springs = SpringDetail::positions) const;
 
   double constraintError(const Eigen::VectorXd& y) const;  // largest violation, m
   double penetration(const Eigen::VectorXd& y) const;      // largest collider depth, m
@@ -135,6 +138,13 @@ class System {
   std::unique_ptr<WorkerPool> pool_;  // null: one thread
   ImplicitSolver implicitSolver_ = ImplicitSolver::automatic;
   double energyScale_ = 0.0;
+  // The springs by index, made once on the first draw that asks (by whichever thread draws first:
+  // two renderers may draw one system), null when a spring has an end on a body.
+  struct SpringTopologyCache {
+    std::once_flag made;
+    std::shared_ptr<const Drawing::SpringTopology> topology;
+  };
+  std::unique_ptr<SpringTopologyCache> springTopology_ = std::make_unique<SpringTopologyCache>();
 };
 
 class SystemBuilder {

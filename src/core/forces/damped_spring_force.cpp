@@ -264,6 +264,14 @@ void DampedSpringForce::draw(const StateView& s, double, Drawing& out, WorkerPoo
   });
 }
 
+bool DampedSpringForce::addSpringTopology(Drawing::SpringTopology& out) const {
+  if (!allParticles_) return false;
+  out.ends.reserve(out.ends.size() + 2 * size());
+  for (size_t i = 0; i < size(); ++i) out.ends.insert(out.ends.end(), {std::uint32_t(a_[i].particle), std::uint32_t(b_[i].particle)});
+  out.rest.insert(out.rest.end(), rest_.begin(), rest_.end());
+  return true;
+}
+
 namespace {
 
 bool sameEndpoint(const Endpoint& a, const Endpoint& b) {

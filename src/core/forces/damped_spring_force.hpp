@@ -65,6 +65,7 @@ class DampedSpringForce final : public Force, private PointGatherSource {
   double potentialEnergy(const Model& model, const StateView& s, double t) const override;
   double energyScale(const Model& model, const StateView& s) const override;
   void draw(const StateView& s, double t, Drawing& out, WorkerPool* pool) const override;
+  bool addSpringTopology(Drawing::SpringTopology& out) const override;
   void addJacobians(const Model& model, const StateView& s, double t, ForceJacobians& out) const override;
   void validate(const StateLayout& layout) const override;
 

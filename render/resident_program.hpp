@@ -1,0 +1,87 @@
+#pragma once
+// Internal to render/: the resident path (Raster::resident, issue 42). A scene's springs and
+// particles stay in GL's buffers: the springs' topology (each spring's two particle indices and
+// rest length) is uploaded once, when a drawing brings a topology the program does not hold yet
+// (Drawing::springTopology, the same object from frame to frame), and each frame sends only the
+// particles' positions, 8 bytes a particle, plus their fixed flags when those change. Particles
+// are drawn as instances of one square, springs as instances of one quad expanded in the vertex
+// shader from its ends' positions; both feed the triangle path's coverage shader
+// (render/shader_program.hpp) the boundary ShapeSink would have given them (render/shape_mesh.hpp:
+// the line's quad grown by its fringe, the disc's centre offsets and radii), and each spring gets
+// its strain colour (render/theme.hpp's springColor) from its length there. GL draws an instanced
+// draw's primitives in instance order, so painter's order and the blending are the triangle
+// path's: the same pixels up to the float rounding of the geometry, now done by the GPU
+// (tests/test_render_resident.cpp measures how close). Positions go to GL as pixels computed on
+// the CPU as every path computes them (render/frame_mesh.hpp's particlePixels).
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "core/drawing.hpp"
+#include "render/theme.hpp"
+
+namespace particles::render {
+
+struct GlFunctions;  // render/gl_functions.hpp
+
+// What the resident path draws with, per frame: the look (render/render_options.hpp, the theme)
+// resolved to pixels and colours.
+struct ResidentLook {
+  float particleRadiusPx = 4.0f;
+  float springWidthPx = 1.5f;
+  double pixelsPerUnit = 1.0;       // for the springs' strain, from their pixel lengths
+  double strainForFullColor = 0.2;  // RenderOptions::strainForFullColor
+  Theme colors{};
+};
+
+class ResidentProgram {
+ public:
+  // Compiles the springs' and the particles' programs for `samples` per pixel in the current GL
+  // context, whose functions `gl` are, and makes their buffers there; `flipY` and the size as
+  // ShaderProgram's. Throws RenderError with the compiler's log.
+  ResidentProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY);
+  // No destructor: the programs and buffers are freed with their context (as ShaderProgram's).
+  ResidentProgram(const ResidentProgram&) = delete;
+  ResidentProgram& operator=(const ResidentProgram&) = delete;
+
+  // Whether a frame of this many particles and springs by index fits GL's texture buffers
+  // (GL_MAX_TEXTURE_BUFFER_SIZE texels each); one that does not must take another path.
+  bool fits(size_t particles, size_t springs) const;
+
+  // Sends the frame's particles: their positions in pixels (x, y per particle) and their fixed
+  // flags (1 fixed; a shorter list leaves the rest free), which go to GL only when they differ
+  // from the last frame's; and the springs' topology (null: none) when it is not the one GL holds.
+  void upload(std::span<const float> pixels, std::span<const char> fixed,
+              const std::shared_ptr<const Drawing::SpringTopology>& springs);
+  // Draws the uploaded springs, or particles, over what the frame holds, in the current context.
+  void drawSprings(const ResidentLook& look) const;
+  void drawParticles(const ResidentLook& look) const;
+
+  // How many times the topology went to GL (tests: once for a whole render).
+  long topologyUploads() const { return topologyUploads_; }
+
+ private:
+  enum Buffer { kPositions, kFixed, kEnds, kRest, kBufferCount };
+  // Fills buffer `b` with `bytes` (growing its store when needed, as the tile path does).
+  void fill(Buffer b, const void* data, size_t bytes);
+  void drawInstances(int cornerAttr, size_t instances) const;
+
+  const GlFunctions& gl_;
+  unsigned springs_ = 0, particles_ = 0;  // the programs
+  int springCorner_ = -1, particleCorner_ = -1;
+  unsigned buffers_[kBufferCount] = {};
+  unsigned textures_[kBufferCount] = {};
+  size_t capacity_[kBufferCount] = {};
+  long long maxTexels_ = 0;
+  size_t particleCount_ = 0, springCount_ = 0;
+  std::shared_ptr<const Drawing::SpringTopology> topology_;  // the one GL holds, kept alive
+  size_t particlesNeeded_ = 0;  // the topology's largest particle index + 1
+  std::vector<std::uint8_t> fixed_;                           // the flags GL holds
+  std::vector<float> rest_;                                   // scratch: rest lengths as GL takes them
+  long topologyUploads_ = 0;
+};
+
+}  // namespace particles::render
