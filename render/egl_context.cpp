@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstring>
+#include <stdexcept>
 #include <string_view>
 #include <vector>
 
@@ -229,19 +231,32 @@ constexpr std::size_t kReadStripBytes = std::size_t(32) << 20;
 
 class EglContext final : public GlContext {
  public:
-  EglContext(bool gpu, int width, int height);
+  EglContext(bool gpu, bool readAhead, int width, int height);
   void releaseFromThread() override { context_->release(); }
+  bool readsAhead() const override { return readAhead_; }
 
  private:
   std::unique_ptr<OwnedContext> context_;
   bool packInvert_ = false;  // GL_MESA_pack_invert: glReadPixels hands rows back from the top
+  // The read-ahead's two pixel-buffer objects (made at the first startRead), which frames go into
+  // in turn, and how many frames they hold that are not collected yet.
+  const bool readAhead_;
+  GLuint packBuffers_[2] = {0, 0};
+  int nextBuffer_ = 0, pending_ = 0;
 
   void makeCurrent() override { context_->makeCurrent(); }
   void readFrame() override;
+  void readAhead() override;
+  void collectAhead() override;
   void makeFramebuffer();
+  // The frame's rows from GL, strip by strip, to `out` (an image's pixels, or an offset into the
+  // bound pixel-pack buffer), rows from the top where GL_MESA_pack_invert hands them so.
+  void readRows(std::uint8_t* out);
+  void flipRowsUnlessInverted();
 };
 
-EglContext::EglContext(bool gpu, int width, int height) : GlContext(width, height, true) {
+EglContext::EglContext(bool gpu, bool readAhead, int width, int height)
+    : GlContext(width, height, true), readAhead_(readAhead) {
   // The renderbuffer, and the strip glReadPixels reads through (render/frame_memory.hpp).
   reserveFrame(frameBytes(width, height) + std::min(frameBytes(width, height), kReadStripBytes));
   DisplayChoice choice;
@@ -297,20 +312,26 @@ void EglContext::makeFramebuffer() {
   if (status != GL_FRAMEBUFFER_COMPLETE) throw RenderError(fmt::format("{} is incomplete: 0x{:04x}", what, status));
 }
 
-void EglContext::readFrame() {
+void EglContext::readRows(std::uint8_t* out) {
   // The picture's top row is GL window row height − 1 (flipsY); image rows go from the top. Rows
-  // of 4-byte pixels need no packing beyond GL's default alignment of 4. glReadPixels waits for
-  // the drawing to finish. Mesa reads through scratch memory the size of what is asked for, so a
-  // large frame is read in strips of rows (render/frame_memory.hpp); a 1280×720 frame is one.
-  const int stripRows = int(std::max<std::size_t>(1, kReadStripBytes / image_.stride()));
+  // of 4-byte pixels need no packing beyond GL's default alignment of 4. Mesa reads through
+  // scratch memory the size of what is asked for, so a large frame is read in strips of rows
+  // (render/frame_memory.hpp); a 1280×720 frame is one.
+  const std::size_t stride = image_.stride();
+  const int stripRows = int(std::max<std::size_t>(1, kReadStripBytes / stride));
   for (int y = 0; y < height_; y += stripRows) {
     const int rows = std::min(stripRows, height_ - y);
     // With GL_MESA_pack_invert GL rows y … y + rows − 1 come top first: image rows from
-    // height − y − rows. Without it they come as stored, to be swapped below.
+    // height − y − rows. Without it they come as stored, to be swapped after.
     const int imageRow = packInvert_ ? height_ - y - rows : y;
-    gl().glReadPixels(0, y, width_, rows, GL_RGBA, GL_UNSIGNED_BYTE, image_.pixel(0, imageRow));
+    const std::size_t offset = std::size_t(imageRow) * stride;
+    void* target = out != nullptr ? static_cast<void*>(out + offset) : reinterpret_cast<void*>(offset);
+    gl().glReadPixels(0, y, width_, rows, GL_RGBA, GL_UNSIGNED_BYTE, target);
     checkGl(gl(), "glReadPixels");
   }
+}
+
+void EglContext::flipRowsUnlessInverted() {
   if (packInvert_) return;
   // A driver without GL_MESA_pack_invert (a GPU's): swap the rows here.
   for (int top = 0, bottom = image_.height - 1; top < bottom; ++top, --bottom) {
@@ -318,10 +339,61 @@ void EglContext::readFrame() {
   }
 }
 
+void EglContext::readFrame() {
+  // glReadPixels into client memory waits for the drawing to finish.
+  readRows(image_.pixel(0, 0));
+  flipRowsUnlessInverted();
+}
+
+void EglContext::readAhead() {
+  if (pending_ == 2) throw std::logic_error("EglContext: a third frame read ahead before the first was collected");
+  const GlFunctions& g = gl();
+  const GLsizeiptr bytes = GLsizeiptr(frameBytes(width_, height_));
+  if (packBuffers_[0] == 0) {
+    // The memory checked first, as the frame's own (render/frame_memory.hpp): a failure is a message.
+    MemoryReservation room(2 * std::size_t(bytes), fmt::format("two {}x{} frames read back ahead", width_, height_));
+    room = {};
+    g.glGenBuffers(2, packBuffers_);
+    for (GLuint buffer : packBuffers_) {
+      g.glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+      g.glBufferData(GL_PIXEL_PACK_BUFFER, bytes, nullptr, GL_STREAM_READ);
+    }
+    checkGl(g, fmt::format("two {} MiB pixel-pack buffers for reading frames back", bytes >> 20).c_str());
+  }
+  // With a pixel-pack buffer bound, glReadPixels takes an offset into it and returns once the copy
+  // is queued: GL makes it while the next frame is drawn.
+  g.glBindBuffer(GL_PIXEL_PACK_BUFFER, packBuffers_[nextBuffer_]);
+  readRows(nullptr);
+  g.glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  nextBuffer_ = 1 - nextBuffer_;
+  ++pending_;
+}
+
+void EglContext::collectAhead() {
+  if (pending_ == 0) throw std::logic_error("EglContext: a frame collected that was not read");
+  const GlFunctions& g = gl();
+  const int oldest = pending_ == 2 ? nextBuffer_ : 1 - nextBuffer_;
+  const std::size_t bytes = frameBytes(width_, height_);
+  g.glBindBuffer(GL_PIXEL_PACK_BUFFER, packBuffers_[oldest]);
+  // Mapping waits for that frame's copy, not for the frame drawn since.
+  const void* pixels = g.glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, GLsizeiptr(bytes), GL_MAP_READ_BIT);
+  if (pixels == nullptr) {
+    g.glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+    checkGl(g, "glMapBufferRange(GL_PIXEL_PACK_BUFFER)");
+    throw RenderError("glMapBufferRange(GL_PIXEL_PACK_BUFFER) returned no memory");
+  }
+  std::memcpy(image_.pixel(0, 0), pixels, bytes);
+  g.glUnmapBuffer(GL_PIXEL_PACK_BUFFER);
+  g.glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  checkGl(g, "reading a frame back from its pixel-pack buffer");
+  --pending_;
+  flipRowsUnlessInverted();
+}
+
 }  // namespace
 
-std::unique_ptr<GlContext> makeEglContext(bool gpu, int width, int height) {
-  return std::make_unique<EglContext>(gpu, width, height);
+std::unique_ptr<GlContext> makeEglContext(bool gpu, bool readAhead, int width, int height) {
+  return std::make_unique<EglContext>(gpu, readAhead, width, height);
 }
 
 }  // namespace particles::render

@@ -27,6 +27,12 @@ struct GlRequest {
   // request's count holds for the process; an LP_NUM_THREADS the user set wins. llvmpipe's pixels
   // do not depend on it (golden/README.md: the same bytes with 0, 1, 2 and 8).
   int threads = 0;
+  // How EGL reads frames back (GlContext::startRead): ahead, through two pixel-pack buffers, which
+  // pays on a GPU (the copy runs while the next frame is drawn); or at once. automatic: ahead with
+  // `gpu`. On llvmpipe the copy is made at once either way, and the buffers' extra copy cost the
+  // demo's render 2 to 3 % (bench/README.md, "The resident path"). OSMesa draws into the image.
+  enum class ReadBack { automatic, ahead, direct };
+  ReadBack readBack = ReadBack::automatic;
 };
 
 // "auto", "egl", "osmesa", and back; nothing for another name.

@@ -57,6 +57,16 @@ class GlContext {
   // Waits until GL has drawn everything and returns the image. Throws RenderError if GL reported an
   // error since beginFrame.
   const Image& finishFrame();
+  // The read-back in two steps, so that a frame loop draws frame k + 1 while frame k's pixels
+  // travel (issue 42). startRead, after the frame is drawn, asks GL to copy it into one of two
+  // pixel-buffer objects and returns without waiting; collectFrame waits for the oldest copy
+  // started and not yet collected and returns it as the image. At most two may be started and not
+  // collected. Only where readsAhead (EGL); elsewhere startRead reads the frame at once
+  // (finishFrame) and collectFrame returns it, so the frame must be collected before the next is
+  // drawn. Both throw RenderError as finishFrame does.
+  virtual bool readsAhead() const { return false; }
+  void startRead();
+  const Image& collectFrame();
   // Unbinds the context from this thread, where a backend binds a context to one thread at a time
   // (EGL): another thread may then draw with it. Between frames only.
   virtual void releaseFromThread() {}
@@ -89,6 +99,10 @@ class GlContext {
   // After everything is drawn: the backend's pixels into image_ (an OSMesa context draws there
   // already). Throws RenderError.
   virtual void readFrame() = 0;
+  // Where readsAhead: the frame into the next pixel buffer, without waiting; and the oldest such
+  // frame out of its buffer into image_.
+  virtual void readAhead() {}
+  virtual void collectAhead() {}
 
   const bool flipsY_;
   MemoryReservation reservation_;

@@ -30,6 +30,7 @@ namespace particles::render {
   /* the tile path's texture buffers */ X(glGenBuffers) X(glBindBuffer) X(glBufferData) X(glBufferSubData) \
   X(glGenTextures) X(glBindTexture) X(glTexBuffer) X(glActiveTexture) X(glUniform1i) X(glUniform1f) X(glUniform3f)        \
   X(glGetIntegerv)                                                                                      \
+  /* the read-back's pixel-pack buffers */ X(glMapBufferRange) X(glUnmapBuffer)                          \
   /* the EGL backend's framebuffer */ X(glGenRenderbuffers) X(glBindRenderbuffer)                       \
   X(glRenderbufferStorage) X(glGenFramebuffers) X(glBindFramebuffer) X(glFramebufferRenderbuffer)       \
   X(glCheckFramebufferStatus)

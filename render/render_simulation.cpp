@@ -41,8 +41,11 @@ class FramePainter {
     decorate_(decorated_, system);
     return decorated_;
   }
-  // A drawing made earlier, without the decorate hook (which needs the system at the frame's time).
-  const Image& paint(const Drawing& drawing, WorkerPool* pool) { return renderer_.render(drawing, camera_, pool); }
+  // A drawing made earlier, without the decorate hook (which needs the system at the frame's time),
+  // in two steps (Renderer::submit, collect).
+  void submit(const Drawing& drawing, WorkerPool* pool) { renderer_.submit(drawing, camera_, pool); }
+  const Image& collect() { return renderer_.collect(); }
+  bool readsAhead() const { return renderer_.readsAhead(); }
   void releaseFromThread() { renderer_.releaseFromThread(); }
 
  private:
@@ -55,7 +58,10 @@ class FramePainter {
 
 // The frame loop overlapped (issue 42): while this thread steps the simulation to frame k + 1's
 // time, another draws frame k (its shapes built on a pool of its own, GL, the read-back) and hands
-// it to the writer, whose own thread encodes frame k − 1. What passes between the two is the
+// it to the writer, whose own thread encodes frame k − 1. Where the renderer reads ahead (EGL:
+// two pixel-pack buffers), the drawing thread starts frame k's read-back and hands the writer
+// frame k − 1's instead, so that GL copies frame k out while the CPU converts frame k − 1 and
+// builds frame k + 1; finish() collects the last. What passes between the two is the
 // frame's Drawing, a snapshot of the state in plain geometry (core/drawing.hpp), in one of three
 // reused slots (FramePipeline::slotCount(1): one being drawn, one waiting, one being filled), so
 // memory stays bounded. Frames are drawn in order, each from its own state: the same images as
@@ -73,13 +79,23 @@ class OverlappedFrames {
             FramePainter& painter;
             ~Release() { painter.releaseFromThread(); }
           } release{painter_};
-          writer_.write(painter_.paint(drawings_[slot], &pool_));
+          painter_.submit(drawings_[slot], &pool_);
+          if (held_ || !painter_.readsAhead()) writer_.write(painter_.collect());
+          held_ = painter_.readsAhead();  // this frame waits in its buffer for the next one
         }) {}
 
   void push(const System& system) {
     pipeline_.pushWith([&](std::size_t slot) { system.draw(drawings_[slot], SpringDetail::topology); });
   }
-  void finish() { pipeline_.close(); }  // rethrows a failed frame's error
+  // Rethrows a failed frame's error; else writes the frame still being read back, on this thread
+  // (the drawing thread has given the GL context back).
+  void finish() {
+    pipeline_.close();
+    if (!held_) return;
+    held_ = false;
+    writer_.write(painter_.collect());
+    painter_.releaseFromThread();
+  }
   void cancel() noexcept { pipeline_.cancel(); }
 
  private:
@@ -87,6 +103,7 @@ class OverlappedFrames {
   FrameWriter& writer_;
   std::vector<Drawing> drawings_ = std::vector<Drawing>(FramePipeline::slotCount(1));
   WorkerPool pool_;  // the drawing thread's: the system's belongs to the stepping thread
+  bool held_ = false;  // a frame read ahead and not yet written (the drawing thread's, then finish's)
   FramePipeline pipeline_;  // last: its worker uses the members above
 };
 

@@ -123,7 +123,7 @@ const GlInfo& Renderer::gl() const {
   return impl_->context->info();
 }
 
-const Image& Renderer::render(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
   Impl& m = *impl_;
   const bool transparent = m.options.transparentBackground;
   // resident: asked for, or automatic with a GPU (what the path is for), or automatic below the
@@ -145,10 +145,25 @@ const Image& Renderer::render(const Drawing& frame, const Camera& camera, Worker
   } else {
     m.drawBuilt(frame, camera, pool);
   }
-  if (!transparent) return m.context->finishFrame();
-  m.straight = m.context->finishFrame();
+  m.context->startRead();
+}
+
+const Image& Renderer::collect() {
+  Impl& m = *impl_;
+  const Image& image = m.context->collectFrame();
+  if (!m.options.transparentBackground) return image;
+  m.straight = image;
   unpremultiply(m.straight);
   return m.straight;
+}
+
+bool Renderer::readsAhead() const {
+  return impl_->context->readsAhead();
+}
+
+const Image& Renderer::render(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+  submit(frame, camera, pool);
+  return collect();
 }
 
 }  // namespace particles::render

@@ -55,6 +55,14 @@ class Renderer {
   // springs may come by position or by index (System::draw's SpringDetail, the better for a
   // render: the resident path keeps them in GL's buffers, and the others need no list of them).
   const Image& render(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr);
+  // render in two steps, for a frame loop that draws frame k + 1 while frame k is read back
+  // (GlContext::startRead): submit draws the frame and starts its read-back; collect returns the
+  // oldest frame submitted and not collected (valid until the next call). Where readsAhead (EGL),
+  // up to two frames may be submitted before the first is collected; elsewhere each must be
+  // collected before the next is submitted.
+  void submit(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr);
+  const Image& collect();
+  bool readsAhead() const;
   // Lets another thread draw the next frame (GlContext::releaseFromThread).
   void releaseFromThread();
 

@@ -98,6 +98,36 @@ TEST_CASE("GL backends: every backend built draws the demos' frames to the same 
   }
 }
 
+TEST_CASE("GL backends: frames read back ahead (two pixel-pack buffers) are the frames render draws, in order") {
+  // EGL asked to read ahead (as it does on a GPU): two frames submitted, then collected oldest
+  // first; OSMesa, which draws into the image itself, reads each at once, as EGL does on llvmpipe
+  // by default. Each gives render's bytes, opaque and transparent.
+  const DemoFrame early = demoFrame("cloth", 1.0), late = demoFrame("cloth", 3.0);
+  for (GlBackend backend : builtBackends()) {
+    for (bool transparent : {false, true}) {
+      CAPTURE(glBackendName(backend));
+      CAPTURE(transparent);
+      RenderOptions o = particles::test::smallRenderOptions();
+      o.transparentBackground = transparent;
+      GlRequest request{backend};
+      request.readBack = GlRequest::ReadBack::ahead;
+      Renderer renderer(o, request);
+      CHECK(!Renderer(o, GlRequest{backend}).readsAhead());  // llvmpipe's default
+      const Image first = renderer.render(early.byIndex, early.camera);
+      const Image second = renderer.render(late.byIndex, late.camera);
+      CHECK(first.rgba != second.rgba);
+      CHECK(renderer.readsAhead() == (backend == GlBackend::egl));
+      if (!renderer.readsAhead()) continue;
+      renderer.submit(early.byIndex, early.camera);
+      renderer.submit(late.byIndex, late.camera);
+      CHECK(renderer.collect().rgba == first.rgba);
+      renderer.submit(early.byIndex, early.camera);  // a buffer is free again
+      CHECK(renderer.collect().rgba == second.rgba);
+      CHECK(renderer.collect().rgba == first.rgba);
+    }
+  }
+}
+
 TEST_CASE("GL backends: renderers of both take turns in one thread, each drawing in its own buffer") {
   if (builtBackends().size() < 2)
     return particles::test::skipTest("needs both backends, this build has " + glBuildDescription());

@@ -150,26 +150,35 @@ TEST_CASE("render simulation: the overlapped loop (threads ≠ 1) draws the plai
   // With threads 1 each frame is drawn as soon as it is reached; otherwise the next frame's state is
   // stepped to while another thread draws (render/render_simulation.cpp, OverlappedFrames). The
   // falling particles move every frame, so a frame drawn from another frame's state would show.
+  // The third run reads frames back ahead (EGL's two pixel-pack buffers, as on a GPU): each frame
+  // is handed on when the next one is drawn, the last one at the end.
   ScratchDir dir;
-  std::vector<Image> sequences[2];
-  for (int threads : {1, 3}) {
-    CAPTURE(threads);
+  std::vector<Image> sequences[3];
+  for (int run : {0, 1, 2}) {
+    const int threads = run == 0 ? 1 : 3;
+    CAPTURE(run);
     System system = particles::test::fallingParticles();
-    RenderJob job = smallJob(dir / ("frames" + std::to_string(threads) + "/"));
+    RenderJob job = smallJob(dir / ("frames" + std::to_string(run) + "/"));
     job.duration = 1.0;
     job.threads = threads;
+    if (run == 2) {
+      if (!render::glBackendBuilt(render::GlBackend::egl)) continue;
+      job.gl.backend = render::GlBackend::egl;
+      job.gl.readBack = render::GlRequest::ReadBack::ahead;
+    }
     std::vector<double> times;
     RenderHooks hooks;
     hooks.onFrame = [&](const System& s) { times.push_back(s.time()); };
     CHECK(renderSimulation(system, Integrator::Rk4, kDt, job, hooks).frames == 10);
     CHECK(times.size() == 10);
     for (int i = 0; i < 10; ++i) {
-      sequences[threads == 1 ? 0 : 1].push_back(readPng(job.output / fmt::format("frame_{:06d}.png", i)));
+      sequences[run].push_back(readPng(job.output / fmt::format("frame_{:06d}.png", i)));
     }
   }
   for (size_t i = 0; i < 10; ++i) {
     CAPTURE(i);
     CHECK(sequences[0][i] == sequences[1][i]);
+    if (!sequences[2].empty()) CHECK(sequences[0][i] == sequences[2][i]);
     if (i > 0) CHECK(sequences[1][i] != sequences[1][i - 1]);
   }
 }
