@@ -8,7 +8,9 @@
 #        PARTICLES=/opt/pb/particles bench/server_table.sh   a program elsewhere (a server bundle,
 #                                                           ../shared/device/README.md)
 #        THREADS="1 16" ROWS="sympl rk4" bench/server_table.sh   some counts, some rows
-# Rows: sympl rk4 beuler million stability render316 render316tri render1000 demo (all by default).
+# Rows: sympl rk4 beuler million stability render316 render316tri render316res render1000 frames1000
+# demo (all by default). frames1000 is drawing-bound (12 frames of the 1000² cloth, 10 steps
+# each): its GPU cell against its 16-thread cell is issue 42's "GPU path ≥ 3× llvmpipe per frame".
 # The scenarios are the checkout's: run it from there, or set SCENARIOS=dir.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -17,7 +19,7 @@ scenarios="${SCENARIOS:-$root/scenarios}"
 [ -x "$particles" ] || { echo "no program at $particles (cmake --build build --target particles)" >&2; exit 2; }
 cores=$(nproc)
 threads_wanted=(${THREADS:-1 2 4 8 16})
-rows=(${ROWS:-sympl rk4 beuler million stability render316 render316tri render1000 demo})
+rows=(${ROWS:-sympl rk4 beuler million stability render316 render316tri render316res render1000 frames1000 demo})
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 
@@ -40,6 +42,10 @@ describe() {
       args=(render "${cloth[@]}" "${big[@]}" --duration 2 -o "$tmp/out.mp4") ;;
     render316tri) label="316² cloth, 2 s to MP4, --raster triangles"
       args=(render "${cloth[@]}" "${big[@]}" --duration 2 --raster triangles -o "$tmp/out.mp4") ;;
+    render316res) label="316² cloth, 2 s to MP4, --raster resident"
+      args=(render "${cloth[@]}" "${big[@]}" --duration 2 --raster resident -o "$tmp/out.mp4") ;;
+    frames1000) label="1000² cloth, 12 frames at 600 fps to MP4 (drawing-bound)"
+      args=(render "$scenarios/cloth_million.yaml" --duration 0.02 --fps 600 --particle-radius 0.1px -o "$tmp/out.mp4") ;;
     render1000) label="1000² cloth, 0.1 s to MP4 (6 frames)"
       args=(render "$scenarios/cloth_million.yaml" --duration 0.1 --particle-radius 0.1px -o "$tmp/out.mp4") ;;
     demo) label="cloth demo, 600 frames to MP4"
