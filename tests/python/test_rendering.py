@@ -25,6 +25,17 @@ def test_render_gives_the_bytes_of_particles_render_at(run_particles, tmp_path, 
     assert (tmp_path / "api.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
 
 
+@pytest.mark.parametrize("raster", ["triangles", "tiles", "resident"])
+def test_each_raster_path_gives_the_bytes_of_particles_render(run_particles, tmp_path, raster):
+    # The resident path (springs and particles kept in GL's buffers) included: the library draws
+    # the command's springs by index too.
+    run_particles("render", scenario_path("cloth"), "--at", "1.5", "--size", "320x240", "--raster", raster,
+                  "-o", "cli.png", "--quiet")
+    sim = particles.Simulation(particles.Scenario.load(scenario_path("cloth")), threads=2)
+    sim.advance(1.5)
+    assert sim.render(size=(320, 240), raster=raster).png() == (tmp_path / "cli.png").read_bytes()
+
+
 def test_frames_show_in_a_notebook_and_a_renderer_draws_several_simulations(tmp_path):
     cloth = particles.Simulation(particles.Scenario.load(scenario_path("cloth")), threads=1)
     chain = particles.Simulation(particles.Scenario.load(scenario_path("rigid_chain")), threads=1)
