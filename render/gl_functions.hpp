@@ -26,7 +26,7 @@ namespace particles::render {
   X(glGetProgramiv) X(glGetProgramInfoLog) X(glUseProgram) X(glGetAttribLocation)                       \
   X(glGetUniformLocation) X(glUniform2f)                                                                \
   /* drawing */ X(glEnableVertexAttribArray) X(glDisableVertexAttribArray) X(glVertexAttribPointer)     \
-  X(glDrawArrays) X(glDrawArraysInstanced)                                                              \
+  X(glDrawArrays) X(glDrawElementsInstanced)                                                            \
   /* the tile path's texture buffers */ X(glGenBuffers) X(glBindBuffer) X(glBufferData) X(glBufferSubData) \
   X(glGenTextures) X(glBindTexture) X(glTexBuffer) X(glActiveTexture) X(glUniform1i) X(glUniform1f) X(glUniform3f)        \
   X(glGetIntegerv)                                                                                      \

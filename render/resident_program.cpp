@@ -19,18 +19,17 @@ namespace {
 constexpr const char* kResidentCommon = R"(
 uniform vec2 imageSize;
 uniform samplerBuffer positions;  // particles, in pixels (x right, y = image row)
-in float corner;                  // 0 … 5: the vertex's place in the instance's two triangles
+in float corner;                  // 0 … 3: which of the instance's four corners
 out vec4 vColor;
 out vec4 vShape;
 flat out float vKind;
 
-int cornerOf(int vertex) { return vertex < 3 ? vertex : (vertex == 3 ? 0 : vertex - 2); }
 
 // Corner i of the rectangle centre ± along · u ± across · v (|u| = |v| = 1, v = u turned a
 // quarter), corners in the order (−u, +v), (+u, +v), (+u, −v), (−u, −v), grown by FRINGE on every
 // edge, and the distances from it to the four edges (positive inside): what render/shape_mesh.cpp's
 // convexEdges and ShapeMesh::convex give a rectangle whose edges are all smoothed, in closed form
-// (the vertex shader runs for each of an instance's six vertices: on llvmpipe, on one thread).
+// (the vertex shader runs for each of an instance's four corners: on llvmpipe, on one thread).
 void grownCorner(vec2 centre, vec2 u, vec2 v, float along, float across, int i, out vec2 q, out vec4 shape) {
   float su = (i == 0 || i == 3) ? -1.0 : 1.0, sv = i < 2 ? 1.0 : -1.0;
   float grownAlong = su * (along + FRINGE), grownAcross = sv * (across + FRINGE);
@@ -65,7 +64,7 @@ void main() {
   bool drawn = len > 1e-4;  // as ShapeSink::line: a degenerate segment is not drawn
   if (drawn) {
     vec2 u = (b - a) / len;
-    grownCorner(0.5 * (a + b), u, vec2(-u.y, u.x), 0.5 * len, halfWidth, cornerOf(int(corner)), q, shape);
+    grownCorner(0.5 * (a + b), u, vec2(-u.y, u.x), 0.5 * len, halfWidth, int(corner), q, shape);
   }
   place(q, drawn);
   // springColor (render/theme.cpp): the strain |l| / rest − 1, towards the full colour, each
@@ -89,7 +88,7 @@ uniform float radius;               // pixels
 uniform vec3 particleColor, fixedColor;  // 0 … 255
 void main() {
   vec2 p = texelFetch(positions, gl_InstanceID).xy;
-  int k = cornerOf(int(corner));
+  int k = int(corner);
   vec2 q;
   vec4 shape;
   bool fixedParticle = texelFetch(fixedFlags, gl_InstanceID).x != 0u;
@@ -109,8 +108,11 @@ void main() {
 )";
 
 constexpr GLenum kResidentFormats[] = {GL_RG32F, GL_R8UI, GL_RG32UI, GL_R32F};
-// Each instance's six vertices, numbered (the vertex shader's `corner`).
-constexpr float kInstanceCorners[6] = {0, 1, 2, 3, 4, 5};
+// Each instance's four corners, numbered (the vertex shader's `corner`).
+constexpr float kInstanceCorners[4] = {0, 1, 2, 3};
+// Each instance's two triangles, (0, 1, 2) and (0, 2, 3) as ShapeMesh emits a quad's: indexed, so
+// that the four corners are shaded once each (GL's vertex cache) rather than six times.
+constexpr GLubyte kInstanceTriangles[6] = {0, 1, 2, 0, 2, 3};
 
 void setColor(const GlFunctions& gl, unsigned program, const char* name, Rgb c) {
   gl.glUniform3f(gl.glGetUniformLocation(program, name), float(c.r), float(c.g), float(c.b));
@@ -214,7 +216,7 @@ void ResidentProgram::drawInstances(int cornerAttr, size_t instances) const {
   gl.glActiveTexture(GL_TEXTURE0);
   gl.glEnableVertexAttribArray(GLuint(cornerAttr));
   gl.glVertexAttribPointer(GLuint(cornerAttr), 1, GL_FLOAT, GL_FALSE, 0, kInstanceCorners);
-  gl.glDrawArraysInstanced(GL_TRIANGLES, 0, 6, GLsizei(instances));
+  gl.glDrawElementsInstanced(GL_TRIANGLES, 6, GL_UNSIGNED_BYTE, kInstanceTriangles, GLsizei(instances));
   gl.glDisableVertexAttribArray(GLuint(cornerAttr));
 }
 
