@@ -75,8 +75,9 @@ struct Renderer::Impl {
 
   // The frame built on the CPU: as triangles, or as tiles (the automatic choice, RenderOptions).
   void drawBuilt(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
-    // automatic: a frame that cannot reach the threshold goes straight to triangles; one that may
-    // is built as tiles first and decided on the shapes it really has (degenerate ones dropped).
+    // automatic (here when the resident path could not take the frame): a frame that cannot reach
+    // the threshold goes straight to triangles; one that may is built as tiles first and decided
+    // on the shapes it really has (degenerate ones dropped).
     const size_t shapes = frameShapeCount(frame);
     bool tiled = options.raster == Raster::tiles ||
                  (options.raster != Raster::triangles && shapes >= kTilesFromShapes);
@@ -127,7 +128,8 @@ void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* po
   Impl& m = *impl_;
   const bool transparent = m.options.transparentBackground;
   // resident: asked for, or automatic with a GPU (what the path is for), or automatic below the
-  // tiles' threshold, where on llvmpipe it is faster than triangles (bench/README.md, "The resident path").
+  // tiles' threshold, where on llvmpipe it costs about what the triangles do, with less of this
+  // thread's CPU (bench/README.md, "The resident path").
   const Raster raster = m.options.raster;
   bool resident = raster == Raster::resident ||
                   (raster == Raster::automatic && (m.gpu || frameShapeCount(frame) < kTilesFromShapes));
