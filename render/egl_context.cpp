@@ -392,8 +392,10 @@ void EglContext::collectAhead() {
 
 }  // namespace
 
-std::unique_ptr<GlContext> makeEglContext(bool gpu, bool readAhead, int width, int height) {
-  return std::make_unique<EglContext>(gpu, readAhead, width, height);
+std::unique_ptr<GlContext> makeEglContext(bool gpu, GlRequest::ReadBack readBack, int width, int height) {
+  // automatic: ahead on a GPU only (GlRequest::readBack says why).
+  const bool ahead = readBack == GlRequest::ReadBack::ahead || (readBack == GlRequest::ReadBack::automatic && gpu);
+  return std::make_unique<EglContext>(gpu, ahead, width, height);
 }
 
 }  // namespace particles::render

@@ -22,8 +22,8 @@ namespace particles::render {
 
 // A compatibility-profile context (OpenGL ≥ 3.0) on the software device, or a hardware one with
 // `gpu`, drawing into a width × height RGBA8 framebuffer; current on return; reading frames back
-// through two pixel-pack buffers with `readAhead` (GlContext::readsAhead). Throws RenderError
-// naming the failing call and EGL's error (no display, no config, no context, no such device).
-std::unique_ptr<GlContext> makeEglContext(bool gpu, bool readAhead, int width, int height);
+// as `readBack` says (GlRequest::readBack; GlContext::readsAhead). Throws RenderError naming the
+// failing call and EGL's error (no display, no config, no context, no such device).
+std::unique_ptr<GlContext> makeEglContext(bool gpu, GlRequest::ReadBack readBack, int width, int height);
 
 }  // namespace particles::render

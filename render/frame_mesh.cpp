@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
-#include <string>
 #include <cmath>
+#include <string>
 #include <stdexcept>
 #include <vector>
 
@@ -11,19 +11,36 @@ namespace particles::render {
 
 namespace {
 
+// World to pixels through a camera (render/render_options.hpp's Camera), as every path places shapes.
+class PixelMapping {
+ public:
+  PixelMapping(const Camera& camera, const RenderOptions& options)
+      : camera_(camera), width_(options.width), height_(options.height), scale_(pixelsPerUnit(camera, options)) {}
+  P2 operator()(const Vec2& p) const {
+    return {float(0.5 * width_ + (p.x() - camera_.center.x()) * scale_),
+            float(0.5 * height_ - (p.y() - camera_.center.y()) * scale_)};
+  }
+  double scale() const { return scale_; }  // pixels per world unit
+
+ private:
+  const Camera& camera_;
+  int width_, height_;
+  double scale_;
+};
+
 // The frame's shapes, section by section in drawing order; the long sections (springs, particles)
 // by ranges of their items, so that they can be built in pieces. Each item gives a fixed number of
 // shapes (counts()), which is what lets the pieces be written into numbered slots.
 class FrameShapes {
  public:
   FrameShapes(const Drawing& f, const Camera& camera, const RenderOptions& options, const Theme& colors)
-      : f_(f), camera_(camera), o_(options), c_(colors) {
+      : f_(f), o_(options), c_(colors), toPixel_(camera, options) {
     if (f.springTopology && f.springTopology->ends.size() != 2 * f.springTopology->rest.size()) {
       throw std::invalid_argument("the drawing's spring topology has other than two ends per spring");
     }
     w_ = float(options.width);
     h_ = float(options.height);
-    scale_ = pixelsPerUnit(camera, options);
+    scale_ = toPixel_.scale();
     radius_ = particleRadiusPx(camera, options);
   }
 
@@ -42,10 +59,7 @@ class FrameShapes {
             f.cursors.size() * (1 + kArrowPieces + kArrowOutline)};
   }
 
-  P2 toPixel(const Vec2& p) const {
-    return {float(0.5 * o_.width + (p.x() - camera_.center.x()) * scale_),
-            float(0.5 * o_.height - (p.y() - camera_.center.y()) * scale_)};
-  }
+  P2 toPixel(const Vec2& p) const { return toPixel_(p); }
 
   // Colliders, then constraint guides.
   void front(ShapeSink& mesh) const {
@@ -172,9 +186,9 @@ class FrameShapes {
 
  private:
   const Drawing& f_;
-  const Camera& camera_;
   const RenderOptions& o_;
   const Theme& c_;
+  const PixelMapping toPixel_;
   float w_, h_, radius_;
   double scale_;
 };
@@ -249,12 +263,11 @@ MeshBreaks buildFrameMeshAround(const Drawing& f, const Camera& camera, const Re
 
 void particlePixels(const Drawing& f, const Camera& camera, const RenderOptions& options, std::vector<float>& pixels,
                     WorkerPool* pool) {
-  const Theme unused{};
-  const FrameShapes frame(f, camera, options, unused);
+  const PixelMapping toPixel(camera, options);
   pixels.resize(2 * f.particles.size());
   forChunks(pool, f.particles.size(), kShapesPerPiece, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      const P2 p = frame.toPixel(f.particles[i]);
+      const P2 p = toPixel(f.particles[i]);
       pixels[2 * i] = p[0];
       pixels[2 * i + 1] = p[1];
     }

@@ -110,17 +110,6 @@ const Image& GlContext::collectFrame() {
   return image_;
 }
 
-#if PARTICLES_WITH_EGL
-namespace {
-
-// Whether an EGL context on a GPU (or not) reads ahead for `request` (GlRequest::readBack).
-bool readsAheadFor(const GlRequest& request, bool gpu) {
-  return request.readBack == GlRequest::ReadBack::ahead || (request.readBack == GlRequest::ReadBack::automatic && gpu);
-}
-
-}  // namespace
-#endif
-
 std::unique_ptr<GlContext> makeGlContext(const GlRequest& request, int width, int height) {
   validate(request);
   // LP_NUM_THREADS counts the threads besides the calling one: 0 rasterises on it.
@@ -129,7 +118,7 @@ std::unique_ptr<GlContext> makeGlContext(const GlRequest& request, int width, in
     setenv("LP_NUM_THREADS", value.c_str(), 0);
   }
 #if PARTICLES_WITH_EGL
-  if (request.backend == GlBackend::egl) return makeEglContext(request.gpu, readsAheadFor(request, request.gpu), width, height);
+  if (request.backend == GlBackend::egl) return makeEglContext(request.gpu, request.readBack, width, height);
 #endif
 #if PARTICLES_WITH_OSMESA
   if (request.backend == GlBackend::osmesa) return makeOsMesaContext(width, height);
@@ -137,10 +126,10 @@ std::unique_ptr<GlContext> makeGlContext(const GlRequest& request, int width, in
     // auto: EGL, else OSMesa. A GPU was asked for: EGL's hardware device or nothing (validate has
     // refused it without EGL), OSMesa would not be one.
 #if PARTICLES_WITH_EGL && PARTICLES_WITH_OSMESA
-  if (request.gpu) return makeEglContext(true, readsAheadFor(request, true), width, height);
+  if (request.gpu) return makeEglContext(true, request.readBack, width, height);
   std::string eglFailure;
   try {
-    return makeEglContext(false, readsAheadFor(request, false), width, height);
+    return makeEglContext(false, request.readBack, width, height);
   } catch (const RenderError& e) {
     eglFailure = e.what();
   }
@@ -152,7 +141,7 @@ std::unique_ptr<GlContext> makeGlContext(const GlRequest& request, int width, in
     throw RenderError(fmt::format("no OpenGL context could be made. EGL: {}. OSMesa: {}", eglFailure, e.what()));
   }
 #elif PARTICLES_WITH_EGL
-  return makeEglContext(request.gpu, readsAheadFor(request, request.gpu), width, height);
+  return makeEglContext(request.gpu, request.readBack, width, height);
 #else
   return makeOsMesaContext(width, height);
 #endif

@@ -58,9 +58,9 @@ struct Renderer::Impl {
   // The frame on the resident path: the CPU's shapes before the springs, the springs by index
   // from GL's copy, the CPU's shapes between, the particles from GL's copy, the CPU's shapes after.
   void drawResident(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+    const MeshBreaks breaks = buildFrameMeshAround(frame, camera, options, colors, mesh);  // checks the topology
     particlePixels(frame, camera, options, pixels, pool);
     resident->upload(pixels, frame.particleFixed, frame.springTopology);
-    const MeshBreaks breaks = buildFrameMeshAround(frame, camera, options, colors, mesh);
     const ResidentLook look{.particleRadiusPx = particleRadiusPx(camera, options),
                             .springWidthPx = float(options.springWidthPx),
                             .pixelsPerUnit = pixelsPerUnit(camera, options),

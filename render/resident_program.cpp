@@ -173,14 +173,12 @@ void ResidentProgram::upload(std::span<const float> pixels, std::span<const char
                              const std::shared_ptr<const Drawing::SpringTopology>& springs) {
   particleCount_ = pixels.size() / 2;
   fill(kPositions, pixels.data(), pixels.size_bytes());
-  // The flags, one byte a particle: sent again only when they change (a scene's pins rarely do).
-  const size_t given = std::min(fixed.size(), particleCount_);
-  const bool same = fixed_.size() == particleCount_ && std::equal(fixed.begin(), fixed.begin() + long(given), fixed_.begin(),
-                                                                  [](char a, std::uint8_t b) { return (a != 0) == (b != 0); }) &&
-                    std::all_of(fixed_.begin() + long(given), fixed_.end(), [](std::uint8_t b) { return b == 0; });
-  if (!same) {
-    fixed_.assign(particleCount_, 0);
-    for (size_t i = 0; i < given; ++i) fixed_[i] = fixed[i] != 0 ? 1 : 0;
+  // The flags, one byte a particle as GL takes them: sent again only when they change (a scene's
+  // pins rarely do).
+  flags_.assign(particleCount_, 0);
+  for (size_t i = 0; i < std::min(fixed.size(), particleCount_); ++i) flags_[i] = fixed[i] != 0 ? 1 : 0;
+  if (flags_ != fixed_) {
+    fixed_.swap(flags_);
     fill(kFixed, fixed_.data(), fixed_.size());
   }
   if (springs != topology_) {
@@ -188,9 +186,9 @@ void ResidentProgram::upload(std::span<const float> pixels, std::span<const char
     springCount_ = springs ? springs->rest.size() : 0;
     if (springs) {
       if (springs->ends.size() != 2 * springCount_) throw std::logic_error("a spring topology without two ends per spring");
-      rest_.assign(springs->rest.begin(), springs->rest.end());
+      const std::vector<float> rest(springs->rest.begin(), springs->rest.end());  // as GL takes them
       fill(kEnds, springs->ends.data(), springs->ends.size() * sizeof(std::uint32_t));
-      fill(kRest, rest_.data(), rest_.size() * sizeof(float));
+      fill(kRest, rest.data(), rest.size() * sizeof(float));
       ++topologyUploads_;
     }
     particlesNeeded_ = springs && !springs->ends.empty()

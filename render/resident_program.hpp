@@ -80,7 +80,7 @@ class ResidentProgram {
   std::shared_ptr<const Drawing::SpringTopology> topology_;  // the one GL holds, kept alive
   size_t particlesNeeded_ = 0;  // the topology's largest particle index + 1
   std::vector<std::uint8_t> fixed_;                           // the flags GL holds
-  std::vector<float> rest_;                                   // scratch: rest lengths as GL takes them
+  std::vector<std::uint8_t> flags_;                           // scratch: this frame's
   long topologyUploads_ = 0;
 };
 
