@@ -125,7 +125,7 @@ BENCHMARK(BM_DerivEval_ClothOnRail)->Arg(25)->Arg(100)->Arg(316)->Unit(benchmark
 BENCHMARK(BM_DerivEval_Cloth)->Arg(25)->Arg(100)->Arg(316)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SpringForce_Apply)->Arg(25)->Arg(100)->Arg(316)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DerivEval_ClothThreads)
-    ->ArgsProduct({{25, 316}, {1, 2}})
+    ->ArgsProduct({{25, 316}, {1, 2, 4, 8, 16}})
     ->UseRealTime()
     ->MeasureProcessCPUTime()
     ->Unit(benchmark::kMicrosecond);

@@ -302,7 +302,7 @@ const bool kRegistered = [] {
   for (Integrator integrator : {Integrator::Rk4, Integrator::SymplecticEuler, Integrator::BackwardEuler}) {
     for (const Case& c : kCases) {
       if (c.n != 316 || c.integrator != integrator || c.solve != ImplicitSolver::automatic) continue;
-      for (int threads : {1, 2}) {
+      for (int threads : {1, 2, 4, 8, 16}) {
         const std::string name =
             fmt::format("BM_IntegratorStepThreads/cloth/316/{}/threads:{}", integratorName(integrator), threads);
         benchmark::RegisterBenchmark(name.c_str(),

@@ -133,21 +133,22 @@ void ConstraintSolver::assemble(const Model& model, const StateView& s, const Co
   forChunks(pool_, size_t(m), kConstraintRowChunk, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) rows_[i] = constraints[i]->evaluate(s);
   });
+  // The compact columns, each row's diagonal entry of J W Jᵀ, and whether any moving particle is
+  // in two rows: when none is, J W Jᵀ is diagonal (a rail's or a set of beads' rows, each on a
+  // particle of its own), and the solve is one division per row, without the sparse matrices.
+  diagonal_ = true;
   for (int i = 0; i < m; ++i) {
     ConstraintRow& row = rows_[size_t(i)];
     for (int k = 0; k < row.count; ++k) {
       const int p = row.particle[size_t(k)];
-      const Vec2& jk = row.J[size_t(k)];
       const double w = model.invMass[p];
-      diag_[size_t(i)] += w * jk.squaredNorm();
+      diag_[size_t(i)] += w * row.J[size_t(k)].squaredNorm();
       int& column = columnOf_[size_t(p)];
       if (column < 0) {
         column = int(touched_.size());
         touched_.push_back(p);
-      }
-      for (int d = 0; d < 2; ++d) {
-        jTriplets_.emplace_back(i, 2 * column + d, jk[d]);
-        if (w != 0.0) jwTriplets_.emplace_back(i, 2 * column + d, w * jk[d]);
+      } else if (w != 0.0) {
+        diagonal_ = false;  // a second entry on a moving particle, in this row or another
       }
     }
     diagSum += diag_[size_t(i)];
@@ -161,14 +162,27 @@ void ConstraintSolver::assemble(const Model& model, const StateView& s, const Co
   groupByBucket(touched_.size(), columnOfEntry_, columnStart_, columnEntries_);
 
   const double epsilon = options_.regularization * diagSum / m;
+  aDiagonal_.resize(m);
   for (int i = 0; i < m; ++i) {
-    if (diag_[size_t(i)] == 0.0) {
-      // Only fixed particles: nothing can move, so no force is needed.
-      diagTriplets_.emplace_back(i, i, 1.0);
-      inert_[size_t(i)] = 1;
-    } else {
-      diagTriplets_.emplace_back(i, i, epsilon);
+    // Only fixed particles: nothing can move, so no force is needed.
+    inert_[size_t(i)] = diag_[size_t(i)] == 0.0;
+    aDiagonal_[i] = inert_[size_t(i)] ? 1.0 : diag_[size_t(i)] + epsilon;
+  }
+  if (diagonal_) return;
+
+  for (int i = 0; i < m; ++i) {
+    const ConstraintRow& row = rows_[size_t(i)];
+    for (int k = 0; k < row.count; ++k) {
+      const int p = row.particle[size_t(k)];
+      const Vec2& jk = row.J[size_t(k)];
+      const double w = model.invMass[p];
+      const int column = columnOf_[size_t(p)];
+      for (int d = 0; d < 2; ++d) {
+        jTriplets_.emplace_back(i, 2 * column + d, jk[d]);
+        if (w != 0.0) jwTriplets_.emplace_back(i, 2 * column + d, w * jk[d]);
+      }
     }
+    diagTriplets_.emplace_back(i, i, inert_[size_t(i)] ? 1.0 : epsilon);
   }
 
   const int cols = 2 * int(touched_.size());
@@ -189,6 +203,15 @@ void ConstraintSolver::solveAssembled(const Model& model, Eigen::VectorXd& x, Co
   stats.preconditioner = preconditioner;
   for (Eigen::Index i = 0; i < rhs_.size(); ++i) {
     if (inert_[size_t(i)]) rhs_[i] = 0.0;
+  }
+  if (diagonal_) {
+    // J W Jᵀ + εI is diagonal: the exact solution, which Jacobi-preconditioned CG reaches in its
+    // first step (to rounding).
+    stats.preconditioner = Preconditioner::jacobi;
+    x = rhs_.cwiseQuotient(aDiagonal_);
+    stats.iterations = 1;
+    stats.relativeResidual = 0.0;
+    return;
   }
   if (x.size() != rhs_.size()) x.setZero(rhs_.size());
   if (preconditioner == Preconditioner::incompleteCholesky) {

@@ -111,6 +111,8 @@ class ConstraintSolver {
   // constraints on a large cloth cost per constraint, not per particle.
   std::vector<int> columnOf_;  // per particle: compact column block, or -1
   std::vector<int> touched_;
+  bool diagonal_ = false;       // no moving particle in two rows: J W Jᵀ + εI is aDiagonal_
+  Eigen::VectorXd aDiagonal_;
   std::vector<int> parent_;  // union-find over compact columns, for automaticPreconditioner
   // Per compact column c (particle touched_[c]): its row entries 2·row + k, in row order, at
   // columnEntries_[columnStart_[c] … columnStart_[c + 1]).

@@ -63,19 +63,14 @@ void Solver::doStep(System& system, double dt) {
   const double t1 = runStart_ + double(runSteps_ + 1) * dt;
 
   std::string reason;
-  // 0·x is 0 for a finite x and NaN for ±∞ or NaN: one multiply and compare per entry, which
-  // vectorises (Eigen's allFinite forms x − x twice).
-  const double* values = y.data();
-  const bool nonFinite = anyOf(pool, size_t(y.size()), kVectorChunk, guardChunks_,
-                               [values](size_t i) { return std::isnan(values[i] * 0.0); });
-  if (nonFinite) {
+  const System::StateCheck check = system.checkState(system.state(), guardScratch_);
+  if (!check.finite) {
     reason = "the state became non-finite (NaN or infinity)";
   } else {
-    const double kinetic = system.kineticEnergy(system.state());
     const double limit = guard_.energyFactor * system.energyScale();
-    if (kinetic > limit) {
+    if (check.kinetic > limit) {
       reason = fmt::format("kinetic energy {:.3g} J exceeds {:.0e} times the system's energy scale ({:.3g} J)",
-                           kinetic, guard_.energyFactor, system.energyScale());
+                           check.kinetic, guard_.energyFactor, system.energyScale());
     }
   }
   if (!reason.empty()) {

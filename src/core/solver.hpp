@@ -53,7 +53,7 @@ class Solver {
   ExplosionGuard guard_;
   std::unique_ptr<IntegratorState> state_;
   Eigen::VectorXd previous_;
-  std::vector<char> guardChunks_;  // anyOf's verdict per chunk
+  System::StateCheckScratch guardScratch_;
   long steps_ = 0;
   // The current run of equal steps: t = runStart_ + runSteps_ · runDt_.
   double runStart_ = 0.0, runDt_ = 0.0;

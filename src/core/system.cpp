@@ -3,6 +3,7 @@
 #include "core/forces/mouse_spring_force.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -104,23 +105,56 @@ void System::forceJacobians(const Eigen::VectorXd& y, double t, ForceJacobians& 
   addCollisionJacobians(model_, s, colliders_, out);
 }
 
-double System::kineticEnergy(const Eigen::VectorXd& y) const {
+// The particles' part of the kinetic energy over points [begin, end): one chunk of kineticEnergy's
+// sum, and of checkState's, which must give the same bits.
+static double pointsKineticEnergy(const Model& model, const StateView& s, size_t begin, size_t end) {
+  double part = 0.0;
+  for (size_t i = begin; i < end; ++i) {
+    if (model.invMass[i] != 0.0) part += 0.5 * model.mass[i] * s.vel(int(i)).squaredNorm();
+  }
+  return part;
+}
+
+double System::bodiesKineticEnergy(const Eigen::VectorXd& y) const {
   const StateView s(model_.layout, y);
-  // Summed in fixed chunks of points, added in chunk order (sumChunks): the same bits on any
-  // thread count; the solver's explosion guard takes it every step.
-  std::vector<double> partials;
-  double k =
-      sumChunks(pool_.get(), size_t(model_.layout.numPoints()), kPointChunk, partials, [&](size_t begin, size_t end) {
-        double part = 0.0;
-        for (size_t i = begin; i < end; ++i) {
-          if (model_.invMass[i] != 0.0) part += 0.5 * model_.mass[i] * s.vel(int(i)).squaredNorm();
-        }
-        return part;
-      });
+  double k = 0.0;
   for (int j = 0; j < model_.layout.numBodies; ++j) {
     k += 0.5 * model_.bodies[size_t(j)].inertia * s.omega(j) * s.omega(j);
   }
   return k;
+}
+
+double System::kineticEnergy(const Eigen::VectorXd& y) const {
+  const StateView s(model_.layout, y);
+  // Summed in fixed chunks of points, added in chunk order (sumChunks): the same bits on any
+  // thread count.
+  std::vector<double> partials;
+  const double k = sumChunks(pool_.get(), size_t(model_.layout.numPoints()), kPointChunk, partials,
+                             [&](size_t begin, size_t end) { return pointsKineticEnergy(model_, s, begin, end); });
+  return k + bodiesKineticEnergy(y);
+}
+
+System::StateCheck System::checkState(const Eigen::VectorXd& y, StateCheckScratch& scratch) const {
+  const StateView s(model_.layout, y);
+  const size_t points = size_t(model_.layout.numPoints());
+  const double* position = y.data();
+  const double* velocity = y.data() + model_.layout.velocityOffset();
+  scratch.nonFinite.assign(chunkCount(points, kPointChunk), 0);
+  // kineticEnergy's chunks and sum, with each chunk's positions and velocities tested on the way:
+  // 0·x is 0 for a finite x and NaN for ±∞ or NaN, one multiply and compare an entry that
+  // vectorises (Eigen's allFinite forms x − x twice), into a local flag (no early exit).
+  const double k = sumChunks(pool_.get(), points, kPointChunk, scratch.partials, [&](size_t begin, size_t end) {
+    bool bad = false;
+    for (size_t i = 2 * begin; i < 2 * end; ++i) bad |= std::isnan(position[i] * 0.0) | std::isnan(velocity[i] * 0.0);
+    scratch.nonFinite[begin / kPointChunk] = bad ? 1 : 0;
+    return pointsKineticEnergy(model_, s, begin, end);
+  });
+  bool finite = std::find(scratch.nonFinite.begin(), scratch.nonFinite.end(), 1) == scratch.nonFinite.end();
+  const Eigen::Index bodies = model_.layout.numBodies;
+  for (Eigen::Index j = 0; j < bodies; ++j) {
+    finite &= std::isfinite(y[model_.layout.angleOffset() + j]) && std::isfinite(y[model_.layout.omegaOffset() + j]);
+  }
+  return {finite, k + bodiesKineticEnergy(y)};
 }
 
 EnergyReport System::energy(const Eigen::VectorXd& y, double t) const {

@@ -95,6 +95,17 @@ class System {
   ImplicitSolver implicitSolver() const { return implicitSolver_; }
 
   double kineticEnergy(const Eigen::VectorXd& y) const;
+  // The explosion guard's look at a state after each step, in one pass over it on the threads:
+  // whether every entry is finite, and kineticEnergy(y) (the same bits) when it is.
+  struct StateCheck {
+    bool finite;
+    double kinetic;
+  };
+  struct StateCheckScratch {  // kept by the caller, so that the pass does not allocate
+    std::vector<double> partials;
+    std::vector<char> nonFinite;
+  };
+  StateCheck checkState(const Eigen::VectorXd& y, StateCheckScratch& scratch) const;
   EnergyReport energy(const Eigen::VectorXd& y, double t) const;
   EnergyReport energy() const { return energy(y_, t_); }
   // The current state as plain geometry for drawing: particles, bodies, and what every force,
@@ -123,6 +134,8 @@ class System {
  private:
   friend class SystemBuilder;
   System() = default;
+
+  double bodiesKineticEnergy(const Eigen::VectorXd& y) const;
 
   Model model_;
   Eigen::VectorXd y_;

@@ -68,7 +68,7 @@ WorkerPool::~WorkerPool() {
   }
   {
     std::lock_guard lock(mutex_);
-    stopping_ = true;
+    stopping_.store(true);
   }
   wake_.notify_all();
   for (std::thread& t : workers_) t.join();
@@ -86,19 +86,32 @@ bool WorkerPool::threadsFree() const {
   return !runningOwnTask() && !startedPending_;
 }
 
-void WorkerPool::takeChunks(const Job& job) {
+WorkerPool::Job WorkerPool::readSlot(uint32_t generation) const {
+  // Acquire: if a field shows a later job's value (the owner has moved on by two generations), the
+  // owner's move of the ticket past `generation` happened before, so the worker's compare-and-swap
+  // in takeChunks fails and the mixed copy is never called.
+  const JobSlot& slot = slots_[generation & 1u];
+  return Job{slot.context.load(std::memory_order_acquire), slot.call.load(std::memory_order_acquire),
+             slot.count.load(std::memory_order_acquire), slot.outer.load(std::memory_order_acquire)};
+}
+
+void WorkerPool::takeChunks(const Job& job, uint32_t generation) {
   const EnterTask entered(this, job.outer);
   for (;;) {
-    const size_t k = next_.fetch_add(1, std::memory_order_relaxed);
-    if (k >= job.count) return;
+    uint64_t ticket = ticket_.load(std::memory_order_relaxed);
+    do {
+      if (generationOf(ticket) != generation || chunkOf(ticket) >= job.count) return;
+    } while (!ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acquire, std::memory_order_relaxed));
     try {
-      job.call(job.context, k);
+      job.call(job.context, chunkOf(ticket));
     } catch (...) {
       std::lock_guard lock(mutex_);
       if (!error_) error_ = std::current_exception();
+      failed_.store(true, std::memory_order_relaxed);  // published by the increment below
     }
-    // acq_rel: the task's writes happen before the caller sees the count complete.
-    if (finished_.fetch_add(1, std::memory_order_acq_rel) + 1 == job.count) {
+    // The task's writes happen before the owner sees the count complete (seq_cst: see ownerWaiting_
+    // in finishJob).
+    if (finished_.fetch_add(1) + 1 == job.count && ownerWaiting_.load()) {
       std::lock_guard lock(mutex_);
       done_.notify_one();
     }
@@ -106,24 +119,24 @@ void WorkerPool::takeChunks(const Job& job) {
 }
 
 void WorkerPool::workerLoop() {
-  size_t seen = 0;
+  uint32_t seen = 0;
   for (;;) {
-    spinUntil([&] { return generation_.load(std::memory_order_acquire) != seen; });
-    Job job;
-    {
+    uint64_t ticket = 0;
+    const auto jobOrStop = [&] {
+      ticket = ticket_.load();
+      return generationOf(ticket) != seen || stopping_.load(std::memory_order_relaxed);
+    };
+    if (!spinUntil(jobOrStop)) {
       std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return stopping_ || generation_.load(std::memory_order_relaxed) != seen; });
-      if (stopping_) return;
-      seen = generation_.load(std::memory_order_relaxed);
-      job = job_;
-      ++inside_;
+      // seq_cst, with publish's store of the ticket and load of sleepers_: either the owner sees
+      // this worker asleep (and takes the lock before it notifies), or jobOrStop sees the job.
+      sleepers_.fetch_add(1);
+      wake_.wait(lock, jobOrStop);
+      sleepers_.fetch_sub(1);
     }
-    takeChunks(job);
-    {
-      std::lock_guard lock(mutex_);
-      --inside_;
-    }
-    done_.notify_one();
+    if (stopping_.load()) return;
+    seen = generationOf(ticket);
+    takeChunks(readSlot(seen), seen);
   }
 }
 
@@ -139,34 +152,43 @@ void WorkerPool::startWorkers() {
 }
 
 void WorkerPool::publish(const Job& job) {
-  {
-    std::unique_lock lock(mutex_);
-    // A worker that joined the last job late may still be taking (empty) chunks: next_ is its
-    // until it leaves.
-    done_.wait(lock, [&] { return inside_ == 0; });
-    job_ = job;
-    next_.store(0, std::memory_order_relaxed);
-    finished_.store(0, std::memory_order_relaxed);
-    error_ = nullptr;
-    generation_.fetch_add(1, std::memory_order_release);
+  // The job before this one has ended (finishJob), so no worker holds a chunk of it and none can
+  // take one: the counters and the slot of this generation's parity are the owner's to set.
+  const uint32_t generation = generationOf(ticket_.load(std::memory_order_relaxed)) + 1;
+  JobSlot& slot = slots_[generation & 1u];
+  slot.context.store(job.context, std::memory_order_release);
+  slot.call.store(job.call, std::memory_order_release);
+  slot.count.store(job.count, std::memory_order_release);
+  slot.outer.store(job.outer, std::memory_order_release);
+  job_ = job;
+  finished_.store(0, std::memory_order_relaxed);
+  ticket_.store(uint64_t(generation) << kGenerationShift);
+  if (sleepers_.load() > 0) {
+    { std::lock_guard lock(mutex_); }
+    wake_.notify_all();
   }
-  wake_.notify_all();
 }
 
 void WorkerPool::finishJob() {
   // job_ is this thread's to read: only it publishes, and not before this job is finished.
-  takeChunks(job_);
-  const auto allDone = [&] { return finished_.load(std::memory_order_acquire) == job_.count; };
+  takeChunks(job_, generationOf(ticket_.load(std::memory_order_relaxed)));
+  const auto allDone = [&] { return finished_.load() == job_.count; };
   if (!spinUntil(allDone)) {
     std::unique_lock lock(mutex_);
+    // seq_cst, with the last worker's increment and load of ownerWaiting_ (takeChunks).
+    ownerWaiting_.store(true);
     done_.wait(lock, allDone);
+    ownerWaiting_.store(false, std::memory_order_relaxed);
   }
+  // Every task has returned, so error_ is this thread's to take (and to clear for the next job).
+  if (!failed_.load(std::memory_order_relaxed)) return;
+  failed_.store(false, std::memory_order_relaxed);
   std::exception_ptr error;
   {
     std::lock_guard lock(mutex_);
     error = std::exchange(error_, nullptr);
   }
-  if (error) std::rethrow_exception(error);
+  std::rethrow_exception(error);
 }
 
 void WorkerPool::dispatch(size_t count, void* context, Trampoline call) {

@@ -44,6 +44,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -92,7 +93,7 @@ class WorkerPool {
   template <typename Task>
   void run(size_t count, Task&& task) {
     if (count == 0) return;
-    if (count == 1 || threads_ == 1 || !threadsFree()) {
+    if (count == 1 || threads_ == 1 || count > kMostChunks || !threadsFree()) {
       std::exception_ptr error;
       for (size_t k = 0; k < count; ++k) {
         try {
@@ -141,6 +142,22 @@ class WorkerPool {
     // The pools whose tasks the publishing thread was inside: the job's tasks are inside them too.
     const detail::InsideTask* outer = nullptr;
   };
+  // A job as published: its fields are atomics because a worker may read a slot while the owner
+  // writes the job two generations later into it; the ticket tells the worker afterwards (below).
+  struct JobSlot {
+    std::atomic<void*> context{nullptr};
+    std::atomic<Trampoline> call{nullptr};
+    std::atomic<size_t> count{0};
+    std::atomic<const detail::InsideTask*> outer{nullptr};
+  };
+  // The ticket: the job's generation in the high half, the next chunk to take in the low half. A
+  // worker takes chunk k of generation g by one compare-and-swap from (g, k) to (g, k + 1), so a
+  // worker that arrives after the job has ended (the ticket has moved on to g + 1) can take
+  // nothing of the new job by mistake, without any lock or count of the workers inside.
+  static constexpr int kGenerationShift = 32;
+  static constexpr size_t kMostChunks = 0xffffffffu;  // a run of more tasks runs on the calling thread
+  static uint32_t generationOf(uint64_t ticket) { return uint32_t(ticket >> kGenerationShift); }
+  static size_t chunkOf(uint64_t ticket) { return size_t(ticket & 0xffffffffu); }
 
   bool runningOwnTask() const;  // whether this thread is inside one of this pool's tasks
   bool threadsFree() const;     // see run
@@ -149,21 +166,29 @@ class WorkerPool {
   void publish(const Job& job);
   void finishJob();  // takes the job's chunks left, waits for the rest, rethrows the first exception
   void workerLoop();
-  void takeChunks(const Job& job);
+  // Takes chunks of `job`, generation `generation`, until none is left of it.
+  void takeChunks(const Job& job, uint32_t generation);
+  Job readSlot(uint32_t generation) const;
 
   int threads_ = 1;
   std::vector<std::thread> workers_;  // threads_ − 1 of them once started
+  // Handing a job out takes no lock: the owner writes the job into the slot of its generation's
+  // parity and then the ticket; idle workers poll the ticket for a while (kSpinTime) and only then
+  // sleep on wake_. The owner takes the lock only when some worker sleeps (sleepers_), a finishing
+  // worker only when the owner sleeps (ownerWaiting_): a loop of the 316² cloth's step on 16
+  // threads costs a few microseconds of hand-over instead of one lock per worker (bench/README.md,
+  // "The core past two threads").
   std::mutex mutex_;
   std::condition_variable wake_, done_;
-  // The current job, published under mutex_ with a new generation (read without the lock only to
-  // spin on it); a worker copies it under mutex_ when it joins.
-  Job job_;
-  std::atomic<size_t> generation_{0};
-  bool stopping_ = false;            // under mutex_
-  size_t inside_ = 0;                // workers that joined the current job and have not left, under mutex_
-  std::atomic<size_t> next_{0};      // the job's next chunk to take
+  JobSlot slots_[2];
+  std::atomic<uint64_t> ticket_{0};
+  std::atomic<int> sleepers_{0};          // workers asleep on wake_, or about to be
+  std::atomic<bool> ownerWaiting_{false}; // the owner asleep on done_, or about to be
+  std::atomic<bool> stopping_{false};
+  Job job_;                          // the current job: the owning thread's copy
   std::atomic<size_t> finished_{0};  // the job's chunks whose call has returned
   std::exception_ptr error_;         // the first exception of the job's tasks, under mutex_
+  std::atomic<bool> failed_{false};  // whether error_ is set: the owner looks without the lock
   // The started task: set by the owning thread before the job that calls it is published.
   std::function<void()> started_;
   bool startedPending_ = false;  // until the handle's wait(); the owning thread's alone
