@@ -361,3 +361,62 @@ TEST_CASE("the automatic preconditioner: incomplete Cholesky for loop-free struc
   CHECK(chosen({{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 1}}, {}) == jacobi);  // a chain ending in a loop
   CHECK(chosen({{0, 1}, {0, 2}}, {1, 2, 3}) == jacobi);  // no row joins two moving particles: diagonal
 }
+
+TEST_CASE("rows that share no moving particle are solved exactly, one division per row") {
+  // Beads on wires, each on a particle of its own, a rod between two particles no other row
+  // touches, a rail, and two rods from one fixed particle: J W Jᵀ is diagonal, so the solve divides (ConstraintSolver's diagonal
+  // path). The constraint forces must give every row the acceleration its feedback asks for,
+  // C̈ = −ks C − kd Ċ (docs/physics.md §3), to rounding and the 1e-10 regularisation.
+  SystemBuilder b;
+  b.addParticle(particleAt(0, 0, 1.0, true));  // fixed: a row on it and a moving particle stays diagonal
+  for (int i = 1; i <= 3; ++i) {
+    const int p = b.addParticle(particleAt(0.3 * i, 0.1 * i, 0.5 + 0.1 * i));
+    b.addConstraint(std::make_unique<CircularWireConstraint>(p, Vec2(0.3 * i, 0.6), 0.45 + 0.02 * i));
+  }
+  const int q = b.addParticle(particleAt(1.5, 0.2, 0.3)), r = b.addParticle(particleAt(1.9, 0.5, 0.7));
+  b.addConstraint(std::make_unique<RodConstraint>(q, r, 0.48));
+  const int s = b.addParticle(particleAt(2.4, 1.0, 0.2));
+  b.addConstraint(std::make_unique<HorizontalLineConstraint>(s, 1.01));
+  const int t = b.addParticle(particleAt(-0.5, 0.0, 0.4));
+  b.addConstraint(std::make_unique<RodConstraint>(0, t, 0.51));
+  const int v = b.addParticle(particleAt(-0.2, -0.6, 0.4));
+  b.addConstraint(std::make_unique<RodConstraint>(0, v, 0.63));
+  b.emplaceForce<GravityForce>(Vec2(0.7, -9.81));
+  System sys = b.build();
+  // Moving, and off the constraints, so that C, Ċ and J̇ all count (all but the fixed particle 0).
+  const Eigen::Index velocity = sys.layout().velocityOffset();
+  for (Eigen::Index i = 2; i < sys.state().size(); ++i) {
+    if (i != velocity && i != velocity + 1) sys.state()[i] += 0.05 * std::sin(3.1 * double(i));
+  }
+  Eigen::VectorXd dydt;
+  sys.derivEval(sys.state(), 0.0, dydt);
+  CHECK(sys.lastConstraintSolve().rows == 7);
+  CHECK(sys.lastConstraintSolve().iterations == 1);
+  CHECK(sys.lastConstraintSolve().preconditioner == Preconditioner::jacobi);
+
+  const StateLayout& layout = sys.layout();
+  const StateView view(layout, sys.state());
+  for (const auto& c : sys.constraints()) {
+    const ConstraintRow row = c->evaluate(view);
+    double cddot = 0.0;
+    for (int k = 0; k < row.count; ++k) {
+      const int p = row.particle[size_t(k)];
+      const Vec2 a(dydt[layout.velocityOffset() + 2 * p], dydt[layout.velocityOffset() + 2 * p + 1]);
+      cddot += row.J[size_t(k)].dot(a) + row.Jdot[size_t(k)].dot(view.vel(p));
+    }
+    const double wanted = -c->feedback().ks * row.C - c->feedback().kd * row.Cdot;
+    CAPTURE(row.C);
+    CHECK(std::abs(cddot - wanted) <= 1e-8 * (1.0 + std::abs(wanted)));
+  }
+
+  // One more row on a moving particle couples two rows: the CG path, to its tolerance.
+  SystemBuilder coupled;
+  const int u = coupled.addParticle(particleAt(0.3, 0.1, 0.6)), w = coupled.addParticle(particleAt(0.7, 0.1, 0.6));
+  coupled.addConstraint(std::make_unique<CircularWireConstraint>(u, Vec2(0.3, 0.6), 0.5));
+  coupled.addConstraint(std::make_unique<RodConstraint>(u, w, 0.4));
+  coupled.emplaceForce<GravityForce>(Vec2(0.0, -9.81));
+  System two = coupled.build();
+  two.derivEval(two.state(), 0.0, dydt);
+  CHECK(two.lastConstraintSolve().relativeResidual < 1e-9);
+  CHECK(two.lastConstraintSolve().preconditioner == Preconditioner::incompleteCholesky);
+}

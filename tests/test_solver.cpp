@@ -217,3 +217,35 @@ TEST_CASE("the solver owns time: t = t0 + k·dt, not a rounding sum, and a new d
   stepper.advanceTo(0.7);  // 0.7 / 0.01 is 69.99999…: within 1e-9 of step 70, so reached
   CHECK(stepper.steps() == 70);
 }
+
+TEST_CASE("the guard's one pass: kinetic energy to the bit, and any non-finite entry found") {
+  // System::checkState, which the explosion guard runs after every step: 10,000 particles (3
+  // chunks of its pass), one of them fixed and moving (its energy does not count), on 1 and 3
+  // threads.
+  for (int threads : {1, 3}) {
+    CAPTURE(threads);
+    SystemBuilder b;
+    for (int i = 0; i < 10'000; ++i) {
+      ParticleSpec p = particleAt(0.01 * (i % 100), 0.01 * (i / 100), 0.001 * (1 + i % 7), i == 42);
+      p.vel = Vec2(std::sin(0.37 * i), std::cos(0.11 * i));
+      b.addParticle(p);
+    }
+    System sys = b.build();
+    sys.setThreads(threads);
+    System::StateCheckScratch scratch;
+    const System::StateCheck check = sys.checkState(sys.state(), scratch);
+    CHECK(check.finite);
+    const double expected = sys.kineticEnergy(sys.state());
+    CHECK(std::memcmp(&check.kinetic, &expected, sizeof(double)) == 0);
+    CHECK(check.kinetic > 1.0);
+    const Eigen::Index velocity = sys.layout().velocityOffset();
+    for (Eigen::Index at : {Eigen::Index(0), Eigen::Index(9'999 * 2 + 1), velocity + 8'193 * 2, sys.state().size() - 1}) {
+      for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+        CAPTURE(at);
+        Eigen::VectorXd y = sys.state();
+        y[at] = bad;
+        CHECK_FALSE(sys.checkState(y, scratch).finite);
+      }
+    }
+  }
+}

@@ -50,6 +50,42 @@ TEST_CASE("worker pool: many short jobs in a row (the hand-over between jobs)") 
   for (size_t job = 0; job < sums.size(); ++job) REQUIRE(sums[job] == long(job * 30 + 3));
 }
 
+TEST_CASE("worker pool: late threads never take a chunk of the next job (the ticket's generation)") {
+  // Jobs of 1 to 5 chunks, one after another on 8 threads, some chunks slow: a thread that arrives
+  // after its job has ended finds the ticket on a later generation and takes nothing of that job by
+  // mistake. Each chunk of each job runs exactly once, with the job's own task.
+  WorkerPool pool(8);
+  for (int job = 0; job < 5000; ++job) {
+    const size_t count = size_t(job % 5) + 1;
+    std::vector<int> hits(count, 0);
+    std::vector<int> owner(count, -1);
+    pool.run(count, [&, job](size_t k) {
+      ++hits[k];
+      owner[k] = job;
+      if (job % 97 == 0) std::this_thread::sleep_for(std::chrono::microseconds(50));
+    });
+    for (size_t k = 0; k < count; ++k) {
+      REQUIRE(hits[k] == 1);
+      REQUIRE(owner[k] == job);
+    }
+  }
+}
+
+TEST_CASE("worker pool: threads that went to sleep between jobs wake for the next one") {
+  // Longer than the threads' polling (100 µs) between jobs: each job is handed to sleeping threads,
+  // and a slow chunk makes the owner sleep too, waiting for the last one.
+  WorkerPool pool(4);
+  for (int job = 0; job < 20; ++job) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    std::atomic<int> ran{0};
+    pool.run(16, [&](size_t k) {
+      if (k == 3) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      ++ran;
+    });
+    REQUIRE(ran.load() == 16);
+  }
+}
+
 TEST_CASE("worker pool: a task's exception reaches the caller after every task has ended") {
   for (int threads : {1, 2, 4}) {
     WorkerPool pool(threads);
