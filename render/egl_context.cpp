@@ -259,9 +259,9 @@ EglContext::EglContext(bool gpu, bool readAhead, int width, int height)
     : GlContext(width, height, true), readAhead_(readAhead) {
   // The renderbuffer, and the strip glReadPixels reads through (render/frame_memory.hpp).
   reserveFrame(frameBytes(width, height) + std::min(frameBytes(width, height), kReadStripBytes));
-  DisplayChoice choice;
+  // Which display says nothing of memory (no hardware device, say): its errors go out as they are.
+  const DisplayChoice choice = chooseDisplay(gpu);
   try {
-    choice = chooseDisplay(gpu);
     context_ = std::make_unique<OwnedContext>(initialize(choice.display));
     context_->makeCurrent();
   } catch (const RenderError& e) {

@@ -159,6 +159,32 @@ TEST_CASE("frame check: missing, passed, failed, a size that differs, an unusabl
   }
 }
 
+TEST_CASE("frame check with --gpu: drawn on a GPU, or an error that says there is none; --gpu in the commands") {
+  // golden check --gpu: the GPU's raster path against the references (golden/README.md, "On a
+  // GPU"). Where EGL lists no hardware device (CI, this project's development machine) each frame
+  // is an error with render's message; on a GPU server the frame is drawn. Either way the command
+  // that reproduces it asks for the GPU.
+  GoldenRun g("frames:\n  - {scenario: swing.yaml, times: [0.5]}\n");
+  g.options.gl.backend = render::GlBackend::egl;
+  g.options.gl.gpu = true;
+  const std::vector<FrameResult> r = g.frames();
+  REQUIRE(r.size() == 1);
+  if (r[0].outcome == Outcome::error) {
+    CHECK(r[0].message.find("a GPU was asked for") != std::string::npos);
+    CHECK(r[0].message.find("MiB held") == std::string::npos);  // not a memory problem
+  } else {
+    CHECK(r[0].outcome == Outcome::missing);
+    REQUIRE_FALSE(r[0].reproduce.empty());
+    CHECK(r[0].reproduce[0].find(" --gl egl --gpu") != std::string::npos);
+  }
+  CHECK(r[0].reproduce.back() == "particles golden check golden.yaml --only swing_t0.5 --gl egl --gpu");
+  // The run says so among its settings over the manifest's, which golden update --from sets aside.
+  g.options.overrides.maxShare = 0.001;
+  const CheckRun run = runCheck(g.manifest, g.dir() / "gpu-report", g.options);
+  REQUIRE(run.results.runs.size() == 1);
+  CHECK(run.results.runs[0].overrides == "--max-share 0.001 --gpu");
+}
+
 TEST_CASE("frame check: a control that must differ passes when it differs, fails when it matches") {
   GoldenRun g(
       "frames:\n"

@@ -20,6 +20,7 @@ struct Options {
   std::vector<std::string> only{};       // --only: these frames and states; empty: all
   std::string shard{};                   // --shard K/N: the K-th of N near-equal parts; empty: all
   std::string gl = "auto";               // --gl: auto (EGL, else OSMesa), egl or osmesa
+  bool gpu = false;                      // --gpu: draw on a GPU through EGL (golden/README.md, "On a GPU")
   std::string raster{};                  // --raster for entries without their own; empty: the manifest's
   std::optional<int> threshold{};        // --threshold for entries without their own (0 … 255)
   std::optional<double> maxShare{};      // --max-share for entries without their own (0 … 1)

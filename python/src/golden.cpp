@@ -60,13 +60,14 @@ void bindGolden(py::module_& module) {
   module.def(
       "_golden_check",
       [](const std::string& manifest, const std::string& output, std::vector<std::string> only, const std::string& shard,
-         const std::string& gl, const std::string& raster, std::optional<int> threshold, std::optional<double> maxShare,
-         int jobs) {
+         const std::string& gl, bool gpu, const std::string& raster, std::optional<int> threshold,
+         std::optional<double> maxShare, int jobs) {
         golden::Options options;
         options.output = output;
         options.only = std::move(only);
         options.shard = shard;
         options.gl = gl;
+        options.gpu = gpu;
         options.raster = raster;
         options.threshold = threshold;
         options.maxShare = maxShare;
@@ -74,7 +75,7 @@ void bindGolden(py::module_& module) {
         py::gil_scoped_release released;
         return golden::check(manifest, options);
       },
-      "manifest"_a, "output"_a, "only"_a, "shard"_a, "gl"_a, "raster"_a, "threshold"_a, "max_share"_a, "jobs"_a,
+      "manifest"_a, "output"_a, "only"_a, "shard"_a, "gl"_a, "gpu"_a, "raster"_a, "threshold"_a, "max_share"_a, "jobs"_a,
       "particles.golden.check's C++ side.");
 }
 

@@ -31,7 +31,7 @@ ReportRequest requestOf(const std::string& manifest, const Options& o) {
   if (!backend) {
     throw ArgumentError(fmt::format("golden::check: gl takes {}, not '{}'", fmt::join(render::glBackendNames(), ", "), o.gl));
   }
-  request.check.gl = render::GlRequest{*backend, false};
+  request.check.gl = render::GlRequest{*backend, o.gpu};
   render::validate(request.check.gl);
   if (!o.raster.empty()) {
     const auto raster = render::rasterFromName(o.raster);

@@ -49,6 +49,10 @@ void addGoldenOptions(CLI::App& command, GoldenOptions& o) {
   CLI::App* check = command.add_subcommand("check", "Compare the manifest's frames and states with their references");
   o.checkCommand = check;
   addRunOptions(*check, o.check.run);
+  // Not update's: the references are llvmpipe's (golden/README.md, "On a GPU").
+  check->add_flag("--gpu", o.check.run.gpu,
+                  "Draw on a GPU through EGL instead of llvmpipe on the CPU: a check of the GPU's raster path "
+                  "(golden/README.md, \"On a GPU\")");
   check->add_option("-o,--output", o.check.output, "The report folder: report.html, junit.xml, results.json")
       ->capture_default_str();
   check->add_option("--shard", o.check.shard, "Only the K-th of N near-equal parts of the checks (CI jobs: 1/2, 2/2)")
@@ -118,7 +122,7 @@ scenario::GoldenManifest loadManifest(const GoldenRunOptions& o) {
 golden::CheckOptions checkOptionsOf(const GoldenRunOptions& o) {
   golden::CheckOptions c;
   c.manifestGiven = o.manifest;
-  c.gl = glRequestOf(o.gl, false);
+  c.gl = glRequestOf(o.gl, o.gpu);
   c.jobs = o.jobs > 0 ? o.jobs : golden::defaultJobs();
   c.maxInputMiB = o.maxInputMiB;
   c.program = programPath();

@@ -29,6 +29,7 @@ struct GoldenRunOptions {
   std::string manifest = kDefaultGoldenManifest;
   int jobs = 0;  // 0: half the machine's cores, at least 1
   std::string gl;
+  bool gpu = false;  // draw on a GPU through EGL (render's --gpu)
   std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;
   bool quiet = false;
 };

@@ -114,7 +114,9 @@ CheckRun runCheck(const GoldenManifest& manifest, const fs::path& folder, const 
   out.badReference = run.badReference();
   RunFacts facts;
   facts.gl = run.gl();
+  // A GPU's frames are not llvmpipe's either: golden update --from sets such a report aside too.
   facts.overrides = options.overrides.text();
+  if (options.gl.gpu) facts.overrides += facts.overrides.empty() ? "--gpu" : " --gpu";
   if (options.shard) facts.shard = fmt::format("{}/{}", options.shard->first, options.shard->second);
   out.results.runs.push_back(facts);
   return out;

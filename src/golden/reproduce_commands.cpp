@@ -19,8 +19,10 @@ void append(std::vector<std::string>& words, const std::vector<std::string>& mor
 }  // namespace
 
 std::vector<std::string> glWords(const render::GlRequest& gl) {
-  if (gl.backend == render::GlBackend::automatic) return {};
-  return {"--gl", std::string(render::glBackendName(gl.backend))};
+  std::vector<std::string> words;
+  if (gl.backend != render::GlBackend::automatic) words = {"--gl", std::string(render::glBackendName(gl.backend))};
+  if (gl.gpu) words.push_back("--gpu");
+  return words;
 }
 
 std::string renderCommand(const CheckOptions& options, const scenario::GoldenEntry& entry, const std::string& name,

@@ -18,7 +18,7 @@
 
 namespace particles::golden {
 
-// {"--gl", "egl"}, or nothing for the automatic backend.
+// {"--gl", "egl"}, or nothing for the automatic backend; then "--gpu" when the frames are drawn on a GPU.
 std::vector<std::string> glWords(const render::GlRequest& gl);
 
 // Draws frame `name` of `entry` at `time` (as the manifest writes it) with `look`.

@@ -51,3 +51,16 @@ def test_bad_options_and_a_folder_that_is_not_a_report_are_refused(tmp_path):
     assert (foreign / "thesis.tex").read_text() == "keep me"
     with pytest.raises(particles.ScenarioError):
         particles.golden.check(tmp_path / "nowhere.yaml", tmp_path / "report")
+
+
+def test_gpu_draws_on_a_gpu_or_says_there_is_none(tmp_path):
+    # golden check --gpu from Python: on a GPU server the frame is drawn there (and compared); where
+    # EGL lists no hardware device each frame is an error that says so, not an exception.
+    report = particles.golden.check(SOURCE_DIR / "golden" / "golden.yaml", tmp_path / "report", only="cloth_t0.5",
+                                    gl="egl", gpu=True, jobs=1)
+    frame = report.frames[0]
+    if frame.outcome == "error":
+        assert "a GPU was asked for" in frame.message and report.errors == 1
+    else:
+        assert frame.outcome in ("passed", "failed") and frame.pixels == 320 * 240
+    assert frame.reproduce[-1].endswith("--only cloth_t0.5 --gl egl --gpu")
