@@ -145,7 +145,10 @@ System::StateCheck System::checkState(const Eigen::VectorXd& y, StateCheckScratc
   // vectorises (Eigen's allFinite forms x − x twice), into a local flag (no early exit).
   const double k = sumChunks(pool_.get(), points, kPointChunk, scratch.partials, [&](size_t begin, size_t end) {
     bool bad = false;
-    for (size_t i = 2 * begin; i < 2 * end; ++i) bad |= std::isnan(position[i] * 0.0) | std::isnan(velocity[i] * 0.0);
+    for (size_t i = 2 * begin; i < 2 * end; ++i) {
+      bad |= std::isnan(position[i] * 0.0);
+      bad |= std::isnan(velocity[i] * 0.0);
+    }
     scratch.nonFinite[begin / kPointChunk] = bad ? 1 : 0;
     return pointsKineticEnergy(model_, s, begin, end);
   });

@@ -181,12 +181,14 @@ class WorkerPool {
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   JobSlot slots_[2];
-  std::atomic<uint64_t> ticket_{0};
+  // The ticket and the finished count on cache lines of their own: threads polling the ticket do
+  // not lose their copy each time a chunk is counted finished, nor the counters theirs to the polls.
+  alignas(64) std::atomic<uint64_t> ticket_{0};
   std::atomic<int> sleepers_{0};          // workers asleep on wake_, or about to be
   std::atomic<bool> ownerWaiting_{false}; // the owner asleep on done_, or about to be
   std::atomic<bool> stopping_{false};
   Job job_;                          // the current job: the owning thread's copy
-  std::atomic<size_t> finished_{0};  // the job's chunks whose call has returned
+  alignas(64) std::atomic<size_t> finished_{0};  // the job's chunks whose call has returned
   std::exception_ptr error_;         // the first exception of the job's tasks, under mutex_
   std::atomic<bool> failed_{false};  // whether error_ is set: the owner looks without the lock
   // The started task: set by the owning thread before the job that calls it is published.
