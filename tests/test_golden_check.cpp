@@ -159,7 +159,7 @@ TEST_CASE("frame check: missing, passed, failed, a size that differs, an unusabl
   }
 }
 
-TEST_CASE("frame check with --gpu: drawn on a GPU, or an error that says there is none; --gpu in the commands") {
+TEST_CASE("frame check with --gpu: drawn on a GPU, or an error that says there is none, and --gpu in the commands") {
   // golden check --gpu: the GPU's raster path against the references (golden/README.md, "On a
   // GPU"). Where EGL lists no hardware device (CI, this project's development machine) each frame
   // is an error with render's message; on a GPU server the frame is drawn. Either way the command
