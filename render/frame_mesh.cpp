@@ -52,7 +52,7 @@ class FrameShapes {
   static Counts counts(const Drawing& f) {
     constexpr size_t kArrowPieces = 4, kArrowOutline = 7;  // the cursor drawn in cursors()
     return {2 * f.halfPlanes.size() + 2 * f.disks.size() + f.guideCircles.size() + f.guideLines.size(),
-            f.springs.size() + springsByIndex(f),
+            f.springs.size() + f.springsByIndex(),
             f.rods.size(),
             5 * f.bodies.size(),
             f.particles.size(),
@@ -107,8 +107,6 @@ class FrameShapes {
       }
     }
   }
-
-  static size_t springsByIndex(const Drawing& f) { return f.springTopology ? f.springTopology->rest.size() : 0; }
 
   // Springs [begin, end) of the section: those by position (Drawing::springs), then those by index
   // (Drawing::springTopology), their ends and strain found as System::draw finds them.

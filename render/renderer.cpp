@@ -139,8 +139,7 @@ void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* po
       m.resident = std::make_unique<ResidentProgram>(m.context->gl(), m.options.msaa, m.options.width,
                                                      m.options.height, m.context->flipsY());
     }
-    const size_t springsByIndex = frame.springTopology ? frame.springTopology->rest.size() : 0;
-    resident = m.resident->fits(frame.particles.size(), springsByIndex);  // else built on the CPU
+    resident = m.resident->fits(frame.particles.size(), frame.springsByIndex());  // else built on the CPU
   }
   if (resident) {
     m.drawResident(frame, camera, pool);

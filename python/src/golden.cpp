@@ -75,7 +75,8 @@ void bindGolden(py::module_& module) {
         py::gil_scoped_release released;
         return golden::check(manifest, options);
       },
-      "manifest"_a, "output"_a, "only"_a, "shard"_a, "gl"_a, "gpu"_a, "raster"_a, "threshold"_a, "max_share"_a, "jobs"_a,
+      "manifest"_a, "output"_a, "only"_a, "shard"_a, "gl"_a, "gpu"_a, "raster"_a, "threshold"_a, "max_share"_a,
+      "jobs"_a,
       "particles.golden.check's C++ side.");
 }
 

@@ -86,6 +86,8 @@ struct Drawing {
 
   // Empties every list, keeping its storage.
   void clear();
+  // How many springs come by index (springTopology's), 0 without a topology.
+  size_t springsByIndex() const { return springTopology ? springTopology->rest.size() : 0; }
 
   // Guides are drawn once however many constraints share them (the cloth puts one rail
   // constraint on each of its top particles): these skip an exact duplicate.

@@ -160,7 +160,6 @@ void WorkerPool::publish(const Job& job) {
   slot.call.store(job.call, std::memory_order_release);
   slot.count.store(job.count, std::memory_order_release);
   slot.outer.store(job.outer, std::memory_order_release);
-  job_ = job;
   finished_.store(0, std::memory_order_relaxed);
   ticket_.store(uint64_t(generation) << kGenerationShift);
   if (sleepers_.load() > 0) {
@@ -170,9 +169,11 @@ void WorkerPool::publish(const Job& job) {
 }
 
 void WorkerPool::finishJob() {
-  // job_ is this thread's to read: only it publishes, and not before this job is finished.
-  takeChunks(job_, generationOf(ticket_.load(std::memory_order_relaxed)));
-  const auto allDone = [&] { return finished_.load() == job_.count; };
+  // The job in its slot: only this thread publishes, and not before this job is finished.
+  const uint32_t generation = generationOf(ticket_.load(std::memory_order_relaxed));
+  const Job job = readSlot(generation);
+  takeChunks(job, generation);
+  const auto allDone = [&] { return finished_.load() == job.count; };
   if (!spinUntil(allDone)) {
     std::unique_lock lock(mutex_);
     // seq_cst, with the last worker's increment and load of ownerWaiting_ (takeChunks).

@@ -187,7 +187,6 @@ class WorkerPool {
   std::atomic<int> sleepers_{0};          // workers asleep on wake_, or about to be
   std::atomic<bool> ownerWaiting_{false}; // the owner asleep on done_, or about to be
   std::atomic<bool> stopping_{false};
-  Job job_;                          // the current job: the owning thread's copy
   alignas(64) std::atomic<size_t> finished_{0};  // the job's chunks whose call has returned
   std::exception_ptr error_;         // the first exception of the job's tasks, under mutex_
   std::atomic<bool> failed_{false};  // whether error_ is set: the owner looks without the lock
