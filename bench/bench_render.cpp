@@ -144,4 +144,37 @@ BENCHMARK_CAPTURE(BM_Render, rigid_chain, std::string("rigid_chain.yaml"), 3.0)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+// What a frame of the cloth demo (at 2.5 s, 4 samples, 1280×720) costs by part, on the resident
+// path: the whole frame (0), without its springs (1), without springs and particles (2: the guide,
+// the cursor, the clear and the read-back) and an empty drawing (3: the clear and the read-back).
+// The differences are the springs' and the particles' share; bench/README.md, "The resident path".
+void BM_RenderDemoParts(benchmark::State& state) {
+  scenario::Scenario s = scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/cloth.yaml");
+  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(2.5);
+  render::RenderOptions options;
+  options.width = 1280;
+  options.height = 720;
+  options.msaa = 4;
+  options.raster = render::Raster::resident;
+  render::Renderer renderer(options, glRequestFromEnvironment());
+  const render::Camera camera{s.render.viewCenter, s.render.viewHeight};
+  Drawing drawing;
+  s.system.draw(drawing, SpringDetail::topology);
+  const int part = int(state.range(0));
+  if (part >= 1) drawing.springTopology = nullptr;
+  if (part >= 2) {
+    drawing.particles.clear();
+    drawing.particleFixed.clear();
+  }
+  if (part >= 3) drawing = Drawing{};
+  static const char* const kParts[] = {"whole frame", "no springs", "no springs or particles", "empty"};
+  state.SetLabel(std::string(render::glBackendName(renderer.gl().backend)) + " " + kParts[part]);
+  for (auto _ : state) {
+    const render::Image& image = renderer.render(drawing, camera);
+    benchmark::DoNotOptimize(image.rgba.data());
+  }
+}
+
+BENCHMARK(BM_RenderDemoParts)->DenseRange(0, 3)->UseRealTime()->Unit(benchmark::kMillisecond);
+
 }  // namespace

@@ -20,7 +20,7 @@ constexpr const char* kResidentCommon = R"(
 uniform vec2 imageSize;
 uniform samplerBuffer positions;  // particles, in pixels (x right, y = image row)
 in float corner;                  // 0 … 3: which of the instance's four corners
-out vec4 vColor;
+flat out vec4 vColor;
 out vec4 vShape;
 flat out float vKind;
 
@@ -123,14 +123,17 @@ void setColor(const GlFunctions& gl, unsigned program, const char* name, Rgb c) 
 ResidentProgram::ResidentProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY) : gl_(gl) {
   const std::string header = std::string("#version 140\n#define Y_SIGN ") + (flipY ? "-1.0" : "1.0") +
                              "\n#define FRINGE " + std::to_string(kFringePx) + "\n" + kResidentCommon;
-  const std::string fragment = coverageFragmentShader(samples, flipY);
-  springs_ = linkProgram(gl, header + kSpringVertexShader, fragment);
-  particles_ = linkProgram(gl, header + kParticleVertexShader, fragment);
+  springs_ = linkProgram(gl, header + kSpringVertexShader,
+                         coverageFragmentShader(samples, flipY, CoverageKinds::edgesOnly));
+  particles_ = linkProgram(gl, header + kParticleVertexShader, coverageFragmentShader(samples, flipY));
   springCorner_ = gl.glGetAttribLocation(springs_, "corner");
   particleCorner_ = gl.glGetAttribLocation(particles_, "corner");
+  freeParticles_ = linkProgram(gl, header + kParticleVertexShader,
+                               coverageFragmentShader(samples, flipY, CoverageKinds::discsOnly));
+  freeParticleCorner_ = gl.glGetAttribLocation(freeParticles_, "corner");
   gl.glGenBuffers(kBufferCount, buffers_);
   gl.glGenTextures(kBufferCount, textures_);
-  for (unsigned program : {springs_, particles_}) {
+  for (unsigned program : {springs_, particles_, freeParticles_}) {
     gl.glUseProgram(program);
     gl.glUniform2f(gl.glGetUniformLocation(program, "imageSize"), float(width), float(height));
     gl.glUniform1i(gl.glGetUniformLocation(program, "positions"), kPositions);
@@ -138,8 +141,10 @@ ResidentProgram::ResidentProgram(const GlFunctions& gl, int samples, int width, 
   gl.glUseProgram(springs_);
   gl.glUniform1i(gl.glGetUniformLocation(springs_, "ends"), kEnds);
   gl.glUniform1i(gl.glGetUniformLocation(springs_, "rest"), kRest);
-  gl.glUseProgram(particles_);
-  gl.glUniform1i(gl.glGetUniformLocation(particles_, "fixedFlags"), kFixed);
+  for (unsigned program : {particles_, freeParticles_}) {
+    gl.glUseProgram(program);
+    gl.glUniform1i(gl.glGetUniformLocation(program, "fixedFlags"), kFixed);
+  }
   GLint most = 0;
   gl.glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
   maxTexels_ = most;
@@ -180,6 +185,7 @@ void ResidentProgram::upload(std::span<const float> pixels, std::span<const char
   if (flags_ != fixed_) {
     fixed_.swap(flags_);
     fill(kFixed, fixed_.data(), fixed_.size());
+    anyFixed_ = std::find(fixed_.begin(), fixed_.end(), 1) != fixed_.end();
   }
   if (springs != topology_) {
     topology_ = springs;
@@ -232,11 +238,12 @@ void ResidentProgram::drawSprings(const ResidentLook& look) const {
 
 void ResidentProgram::drawParticles(const ResidentLook& look) const {
   const GlFunctions& gl = gl_;
-  gl.glUseProgram(particles_);
-  gl.glUniform1f(gl.glGetUniformLocation(particles_, "radius"), look.particleRadiusPx);
-  setColor(gl, particles_, "particleColor", look.colors.particle);
-  setColor(gl, particles_, "fixedColor", look.colors.fixedParticle);
-  drawInstances(particleCorner_, particleCount_);
+  const unsigned program = anyFixed_ ? particles_ : freeParticles_;
+  gl.glUseProgram(program);
+  gl.glUniform1f(gl.glGetUniformLocation(program, "radius"), look.particleRadiusPx);
+  setColor(gl, program, "particleColor", look.colors.particle);
+  setColor(gl, program, "fixedColor", look.colors.fixedParticle);
+  drawInstances(anyFixed_ ? particleCorner_ : freeParticleCorner_, particleCount_);
 }
 
 }  // namespace particles::render

@@ -7,7 +7,9 @@
 // are drawn as instances of one square, springs as instances of one quad expanded in the vertex
 // shader from its ends' positions; both feed the triangle path's coverage shader
 // (render/shader_program.hpp) the boundary ShapeSink would have given them (render/shape_mesh.hpp:
-// the line's quad grown by its fringe, the disc's centre offsets and radii), and each spring gets
+// the line's quad grown by its fringe, the disc's centre offsets and radii), compiled for the
+// boundaries each program draws (springs: edges; particles: discs, with edges too only in a frame
+// that has a fixed particle, drawn as a square), and each spring gets
 // its strain colour (render/theme.hpp's springColor) from its length there. GL draws an instanced
 // draw's primitives in instance order, so painter's order and the blending are the triangle
 // path's: the same pixels up to the float rounding of the geometry, now done by the GPU
@@ -71,7 +73,8 @@ class ResidentProgram {
 
   const GlFunctions& gl_;
   unsigned springs_ = 0, particles_ = 0;  // the programs
-  int springCorner_ = -1, particleCorner_ = -1;
+  unsigned freeParticles_ = 0;            // the particles' for a frame with none fixed: discs only
+  int springCorner_ = -1, particleCorner_ = -1, freeParticleCorner_ = -1;
   unsigned buffers_[kBufferCount] = {};
   unsigned textures_[kBufferCount] = {};
   size_t capacity_[kBufferCount] = {};
@@ -80,6 +83,7 @@ class ResidentProgram {
   std::shared_ptr<const Drawing::SpringTopology> topology_;  // the one GL holds, kept alive
   size_t particlesNeeded_ = 0;  // the topology's largest particle index + 1
   std::vector<std::uint8_t> fixed_;                           // the flags GL holds
+  bool anyFixed_ = false;                                     // whether one of them is 1
   std::vector<std::uint8_t> flags_;                           // scratch: this frame's
   long topologyUploads_ = 0;
 };

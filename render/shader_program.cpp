@@ -23,7 +23,7 @@ in vec2 position;   // pixels, x right, y = image row
 in vec4 color;
 in vec4 shape;
 in float kind;
-out vec4 vColor;
+flat out vec4 vColor;  // a shape's one colour (its every vertex has it): not interpolated per pixel
 out vec4 vShape;
 flat out float vKind;
 void main() {
@@ -37,9 +37,10 @@ void main() {
 
 // Compiled once per sample count (SAMPLE_COUNT, SAMPLES and Y_SIGN are defined before this text) so
 // the loop unrolls and llvmpipe's vectorised code has no branches: both shape kinds are evaluated
-// and one is selected. dFdy is along GL's window y; times Y_SIGN, along image rows (y down).
+// and one is selected, unless the program draws one kind only (EDGES_ONLY, DISCS_ONLY: the
+// compiler drops the other's arithmetic). dFdy is along GL's window y; times Y_SIGN, along image rows (y down).
 constexpr const char* kFragmentShader = R"(
-in vec4 vColor;
+flat in vec4 vColor;
 in vec4 vShape;
 flat in float vKind;
 void main() {
@@ -52,9 +53,15 @@ void main() {
     vec2 q = vShape.xy + o;
     float r2 = dot(q, q);
     vec4 d = vShape + ddx * o.x + ddy * o.y;
-    bool inCircle = r2 <= rOut2 && r2 >= rIn2;
     bool inEdges = min(min(d.x, d.y), min(d.z, d.w)) >= 0.0;
+    bool inCircle = r2 <= rOut2 && r2 >= rIn2;
+#if defined(EDGES_ONLY)
+    covered += inEdges ? 1.0 : 0.0;
+#elif defined(DISCS_ONLY)
+    covered += inCircle ? 1.0 : 0.0;
+#else
     covered += (vKind > 0.5 ? inCircle : inEdges) ? 1.0 : 0.0;
+#endif
   }
   if (covered == 0.0) discard;
   gl_FragColor = vec4(vColor.rgb, vColor.a * covered / float(SAMPLE_COUNT));
@@ -142,9 +149,11 @@ unsigned linkProgram(const GlFunctions& gl, const std::string& vertexSource, con
   return program;
 }
 
-std::string coverageFragmentShader(int samples, bool flipY) {
-  return std::string("#version 130\n#define Y_SIGN ") + (flipY ? "-1.0" : "1.0") + "\n" + samplePatternGlsl(samples) +
-         kFragmentShader;
+std::string coverageFragmentShader(int samples, bool flipY, CoverageKinds kinds) {
+  return std::string("#version 130\n#define Y_SIGN ") + (flipY ? "-1.0" : "1.0") + "\n" +
+         (kinds == CoverageKinds::edgesOnly   ? "#define EDGES_ONLY\n"
+          : kinds == CoverageKinds::discsOnly ? "#define DISCS_ONLY\n"
+                                              : "") + samplePatternGlsl(samples) + kFragmentShader;
 }
 
 ShaderProgram::ShaderProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY) : gl_(gl) {

@@ -28,8 +28,12 @@ std::string samplePatternGlsl(int samples);
 // primitive's colour (vColor), boundary (vShape, render/shape_mesh.hpp's ShapeVertex::shape) and
 // kind (flat vKind) from the vertex shader; `flipY` as ShaderProgram's. The resident path's vertex
 // shaders (render/resident_program.hpp) feed it the same, so every triangle-drawing path blends
-// the same coverage.
-std::string coverageFragmentShader(int samples, bool flipY);
+// the same coverage. `kinds` says which boundaries its primitives can have: a program that draws
+// only edge-bounded shapes (the resident path's springs) leaves the disc's test out, and one that
+// draws only discs (its particles, in a frame with none fixed) the edges' test: the same coverage
+// for fewer operations per sample.
+enum class CoverageKinds { edgesAndDiscs, edgesOnly, discsOnly };
+std::string coverageFragmentShader(int samples, bool flipY, CoverageKinds kinds = CoverageKinds::edgesAndDiscs);
 
 // Compiles and links a program of the two sources in the current context. Throws RenderError with
 // the compiler's or the linker's log.
