@@ -76,10 +76,12 @@ struct VideoOptions {
   double keyintSeconds = 2.0;
   // round(keyintSeconds · fps), at least 1.
   int keyframeInterval() const;
-  // x264's threads; 0: its default, 1.5 per CPU the process may use. The pictures it writes are
-  // the same for every count (x264 is deterministic across thread counts); the settings note it
-  // leaves in the first frame (an SEI message, "threads=N") says how many ran. VP9 keeps a fixed
-  // count (webm_writer.cpp): libvpx's pictures do depend on it.
+  // x264's threads; 0: its default, 1.5 per CPU the process may use. x264 is deterministic for a
+  // given count, and the settings note it leaves in the first frame (an SEI message, "threads=N")
+  // says how many ran. Its pictures are the same for 1 to 3 threads; beyond, each frame thread's
+  // vertical motion search is held to the rows the threads before it have encoded (x264's
+  // mv-range-thread, shorter with more threads), so pictures may differ (README.md, "Threads and
+  // determinism"). VP9 keeps a fixed count (webm_writer.cpp): libvpx's pictures depend on it.
   int encoderThreads = 0;
 };
 // The largest --keyint, s: an hour.
