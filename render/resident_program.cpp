@@ -123,25 +123,26 @@ void setColor(const GlFunctions& gl, unsigned program, const char* name, Rgb c) 
 ResidentProgram::ResidentProgram(const GlFunctions& gl, int samples, int width, int height, bool flipY) : gl_(gl) {
   const std::string header = std::string("#version 140\n#define Y_SIGN ") + (flipY ? "-1.0" : "1.0") +
                              "\n#define FRINGE " + std::to_string(kFringePx) + "\n" + kResidentCommon;
-  springs_ = linkProgram(gl, header + kSpringVertexShader,
-                         coverageFragmentShader(samples, flipY, CoverageKinds::edgesOnly));
-  particles_ = linkProgram(gl, header + kParticleVertexShader, coverageFragmentShader(samples, flipY));
-  springCorner_ = gl.glGetAttribLocation(springs_, "corner");
-  particleCorner_ = gl.glGetAttribLocation(particles_, "corner");
-  freeParticles_ = linkProgram(gl, header + kParticleVertexShader,
-                               coverageFragmentShader(samples, flipY, CoverageKinds::discsOnly));
-  freeParticleCorner_ = gl.glGetAttribLocation(freeParticles_, "corner");
+  const auto link = [&](const char* vertexShader, CoverageKinds kinds) {
+    Program p;
+    p.name = linkProgram(gl, header + vertexShader, coverageFragmentShader(samples, flipY, kinds));
+    p.corner = gl.glGetAttribLocation(p.name, "corner");
+    return p;
+  };
+  springs_ = link(kSpringVertexShader, CoverageKinds::edgesOnly);
+  particles_ = link(kParticleVertexShader, CoverageKinds::edgesAndDiscs);
+  freeParticles_ = link(kParticleVertexShader, CoverageKinds::discsOnly);
   gl.glGenBuffers(kBufferCount, buffers_);
   gl.glGenTextures(kBufferCount, textures_);
-  for (unsigned program : {springs_, particles_, freeParticles_}) {
+  for (unsigned program : {springs_.name, particles_.name, freeParticles_.name}) {
     gl.glUseProgram(program);
     gl.glUniform2f(gl.glGetUniformLocation(program, "imageSize"), float(width), float(height));
     gl.glUniform1i(gl.glGetUniformLocation(program, "positions"), kPositions);
   }
-  gl.glUseProgram(springs_);
-  gl.glUniform1i(gl.glGetUniformLocation(springs_, "ends"), kEnds);
-  gl.glUniform1i(gl.glGetUniformLocation(springs_, "rest"), kRest);
-  for (unsigned program : {particles_, freeParticles_}) {
+  gl.glUseProgram(springs_.name);
+  gl.glUniform1i(gl.glGetUniformLocation(springs_.name, "ends"), kEnds);
+  gl.glUniform1i(gl.glGetUniformLocation(springs_.name, "rest"), kRest);
+  for (unsigned program : {particles_.name, freeParticles_.name}) {
     gl.glUseProgram(program);
     gl.glUniform1i(gl.glGetUniformLocation(program, "fixedFlags"), kFixed);
   }
@@ -210,7 +211,8 @@ void ResidentProgram::upload(std::span<const float> pixels, std::span<const char
   checkGl(gl_, "sending the resident path's buffers");
 }
 
-void ResidentProgram::drawInstances(int cornerAttr, size_t instances) const {
+void ResidentProgram::drawInstances(const Program& program, size_t instances) const {
+  const int cornerAttr = program.corner;
   if (instances == 0 || cornerAttr < 0) return;
   const GlFunctions& gl = gl_;
   for (int b = 0; b < kBufferCount; ++b) {
@@ -226,24 +228,25 @@ void ResidentProgram::drawInstances(int cornerAttr, size_t instances) const {
 
 void ResidentProgram::drawSprings(const ResidentLook& look) const {
   const GlFunctions& gl = gl_;
-  gl.glUseProgram(springs_);
-  gl.glUniform1f(gl.glGetUniformLocation(springs_, "halfWidth"), 0.5f * look.springWidthPx);
-  gl.glUniform1f(gl.glGetUniformLocation(springs_, "pixelsPerUnit"), float(look.pixelsPerUnit));
-  gl.glUniform1f(gl.glGetUniformLocation(springs_, "strainForFull"), float(look.strainForFullColor));
-  setColor(gl, springs_, "restColor", look.colors.springRest);
-  setColor(gl, springs_, "compressedColor", look.colors.springCompressed);
-  setColor(gl, springs_, "stretchedColor", look.colors.springStretched);
-  drawInstances(springCorner_, springCount_);
+  const unsigned program = springs_.name;
+  gl.glUseProgram(program);
+  gl.glUniform1f(gl.glGetUniformLocation(program, "halfWidth"), 0.5f * look.springWidthPx);
+  gl.glUniform1f(gl.glGetUniformLocation(program, "pixelsPerUnit"), float(look.pixelsPerUnit));
+  gl.glUniform1f(gl.glGetUniformLocation(program, "strainForFull"), float(look.strainForFullColor));
+  setColor(gl, program, "restColor", look.colors.springRest);
+  setColor(gl, program, "compressedColor", look.colors.springCompressed);
+  setColor(gl, program, "stretchedColor", look.colors.springStretched);
+  drawInstances(springs_, springCount_);
 }
 
 void ResidentProgram::drawParticles(const ResidentLook& look) const {
   const GlFunctions& gl = gl_;
-  const unsigned program = anyFixed_ ? particles_ : freeParticles_;
-  gl.glUseProgram(program);
-  gl.glUniform1f(gl.glGetUniformLocation(program, "radius"), look.particleRadiusPx);
-  setColor(gl, program, "particleColor", look.colors.particle);
-  setColor(gl, program, "fixedColor", look.colors.fixedParticle);
-  drawInstances(anyFixed_ ? particleCorner_ : freeParticleCorner_, particleCount_);
+  const Program& particles = anyFixed_ ? particles_ : freeParticles_;
+  gl.glUseProgram(particles.name);
+  gl.glUniform1f(gl.glGetUniformLocation(particles.name, "radius"), look.particleRadiusPx);
+  setColor(gl, particles.name, "particleColor", look.colors.particle);
+  setColor(gl, particles.name, "fixedColor", look.colors.fixedParticle);
+  drawInstances(particles, particleCount_);
 }
 
 }  // namespace particles::render

@@ -67,14 +67,17 @@ class ResidentProgram {
 
  private:
   enum Buffer { kPositions, kFixed, kEnds, kRest, kBufferCount };
+  struct Program {
+    unsigned name = 0;
+    int corner = -1;  // its `corner` attribute's location
+  };
   // Fills buffer `b` with `bytes` (growing its store when needed, as the tile path does).
   void fill(Buffer b, const void* data, size_t bytes);
-  void drawInstances(int cornerAttr, size_t instances) const;
+  void drawInstances(const Program& program, size_t instances) const;
 
   const GlFunctions& gl_;
-  unsigned springs_ = 0, particles_ = 0;  // the programs
-  unsigned freeParticles_ = 0;            // the particles' for a frame with none fixed: discs only
-  int springCorner_ = -1, particleCorner_ = -1, freeParticleCorner_ = -1;
+  Program springs_, particles_;
+  Program freeParticles_;  // the particles' for a frame with none fixed: discs only
   unsigned buffers_[kBufferCount] = {};
   unsigned textures_[kBufferCount] = {};
   size_t capacity_[kBufferCount] = {};

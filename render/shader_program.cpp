@@ -38,7 +38,8 @@ void main() {
 // Compiled once per sample count (SAMPLE_COUNT, SAMPLES and Y_SIGN are defined before this text) so
 // the loop unrolls and llvmpipe's vectorised code has no branches: both shape kinds are evaluated
 // and one is selected, unless the program draws one kind only (EDGES_ONLY, DISCS_ONLY: the
-// compiler drops the other's arithmetic). dFdy is along GL's window y; times Y_SIGN, along image rows (y down).
+// compiler drops the other's arithmetic). dFdy is along GL's window y; times Y_SIGN, along image
+// rows (y down).
 constexpr const char* kFragmentShader = R"(
 flat in vec4 vColor;
 in vec4 vShape;
