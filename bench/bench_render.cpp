@@ -6,8 +6,10 @@
 // inside it, as `particles render` does per frame.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -15,7 +17,9 @@
 #include "render/frame_mesh.hpp"
 #include "render/renderer.hpp"
 #include "render/tile_bins.hpp"
+#include "render/tile_composite.hpp"
 #include "core/drawing.hpp"
+#include "core/worker_pool.hpp"
 #include "core/system.hpp"
 #include "scenario/scenario.hpp"
 #include "core/solver.hpp"
@@ -51,8 +55,9 @@ void BM_Render(benchmark::State& state, const std::string& file, double at) {
 // The cloth demo at n × n particles (its springs, 2n(n − 1), grow with it) over the same 1.92 m
 // square, so larger grids are denser in the same frame: 25 (625 particles, the demo), 100 (10,000)
 // and 316 (99,856, issue 14's large scene), drawn at 1 s, 4 samples, 1280×720, through each raster
-// path (render/render_options.hpp). The counters give the cost per primitive the renderer draws
-// (particles, springs, guides and the cursor).
+// path (render/render_options.hpp), each frame's shapes built (and on the cpu path composited) on a
+// pool of one thread per CPU, as `particles render` does. The counters give the cost per primitive
+// the renderer draws (particles, springs, guides and the cursor).
 void BM_RenderLargeCloth(benchmark::State& state) {
   const int n = int(state.range(0));
   const std::vector<scenario::Override> overrides = {
@@ -76,9 +81,10 @@ void BM_RenderLargeCloth(benchmark::State& state) {
                                    first.guideLines.size() + first.guideCircles.size() + first.cursors.size() +
                                    first.halfPlanes.size() + first.disks.size() + first.bodies.size());
   Drawing frame;  // reused, with its springs by index, as `particles render` draws it
+  WorkerPool pool(int(std::max(1u, std::thread::hardware_concurrency())));
   for (auto _ : state) {
     s.system.draw(frame, SpringDetail::topology);
-    const render::Image& image = renderer.render(frame, camera);
+    const render::Image& image = renderer.render(frame, camera, &pool);
     benchmark::DoNotOptimize(image.rgba.data());
   }
   state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
@@ -88,9 +94,9 @@ void BM_RenderLargeCloth(benchmark::State& state) {
                          benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
-// Second argument: 1 triangles, 2 tiles, 3 resident (render::Raster).
+// Second argument: 1 triangles, 2 tiles, 3 resident, 4 cpu (render::Raster).
 BENCHMARK(BM_RenderLargeCloth)
-    ->ArgsProduct({{25, 40, 60, 80, 100, 316}, {1, 2, 3}})
+    ->ArgsProduct({{25, 40, 60, 80, 100, 316}, {1, 2, 3, 4}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
@@ -144,22 +150,33 @@ BENCHMARK_CAPTURE(BM_Render, rigid_chain, std::string("rigid_chain.yaml"), 3.0)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+// The cloth demo's frame at 2.5 s, its springs by index (as `particles render` draws it), with its
+// camera and the demo's look: 1280×720, 4 samples.
+struct ClothDemoFrame {
+  Drawing drawing;
+  render::Camera camera;
+  render::RenderOptions options;
+};
+ClothDemoFrame clothDemoFrame() {
+  scenario::Scenario s = scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/cloth.yaml");
+  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(2.5);
+  ClothDemoFrame f;
+  s.system.draw(f.drawing, SpringDetail::topology);
+  f.camera = {s.render.viewCenter, s.render.viewHeight};
+  f.options.width = 1280;
+  f.options.height = 720;
+  f.options.msaa = 4;
+  return f;
+}
+
 // What a frame of the cloth demo (at 2.5 s, 4 samples, 1280×720) costs by part, on the resident
 // path: the whole frame (0), without its springs (1), without springs and particles (2: the guide,
 // the cursor, the clear and the read-back) and an empty drawing (3: the clear and the read-back).
 // The differences are the springs' and the particles' share; bench/README.md, "The resident path".
 void BM_RenderDemoParts(benchmark::State& state) {
-  scenario::Scenario s = scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/cloth.yaml");
-  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(2.5);
-  render::RenderOptions options;
-  options.width = 1280;
-  options.height = 720;
-  options.msaa = 4;
+  auto [drawing, camera, options] = clothDemoFrame();
   options.raster = render::Raster::resident;
   render::Renderer renderer(options, glRequestFromEnvironment());
-  const render::Camera camera{s.render.viewCenter, s.render.viewHeight};
-  Drawing drawing;
-  s.system.draw(drawing, SpringDetail::topology);
   const int part = int(state.range(0));
   if (part >= 1) drawing.springTopology = nullptr;
   if (part >= 2) {
@@ -176,5 +193,28 @@ void BM_RenderDemoParts(benchmark::State& state) {
 }
 
 BENCHMARK(BM_RenderDemoParts)->DenseRange(0, 3)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The cloth demo's frame (as BM_RenderDemoParts) drawn by the program's own thread, without GL
+// (the cpu raster path, render/tile_composite.hpp): the shapes' records and their sort into tiles,
+// then the tiles composited into the image (0), or the records and the sort alone (1).
+void BM_CpuTilesDemo(benchmark::State& state) {
+  const auto [drawing, camera, options] = clothDemoFrame();
+  const render::Theme colors = render::theme(options.themeName);
+  render::TileBins bins;
+  render::CompositedFrame image;
+  image.image = render::Image(options.width, options.height);
+  const bool composite = state.range(0) == 0;
+  state.SetLabel(composite ? "records, bins and composite" : "records and bins");
+  for (auto _ : state) {
+    bins.reset(options.width, options.height);
+    render::buildFrameTiles(drawing, camera, options, colors, bins);
+    bins.bin();
+    if (composite) render::compositeTiles(bins, options.msaa, colors.background, false, image);
+    benchmark::DoNotOptimize(image.image.rgba.data());
+  }
+  state.counters["listed"] = double(bins.items().size());
+}
+
+BENCHMARK(BM_CpuTilesDemo)->DenseRange(0, 1)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 }  // namespace

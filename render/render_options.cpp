@@ -21,7 +21,8 @@ constexpr NameTableRow<Raster> kRasterNames[] = {
     {Raster::automatic, "auto"},
     {Raster::triangles, "triangles"},
     {Raster::tiles, "tiles"},
-    {Raster::resident, "resident"}};
+    {Raster::resident, "resident"},
+    {Raster::cpu, "cpu"}};
 // RenderOptions::transparentBackground's two values: the theme's colour, or none.
 constexpr NameTableRow<bool> kBackgroundNames[] = {{false, "theme"}, {true, "transparent"}};
 
@@ -139,6 +140,11 @@ std::string_view themeNameOf(ThemeName theme) {
 
 std::string_view rasterNameOf(Raster raster) {
   return nameOf(kRasterNames, raster, "?");
+}
+
+Raster rasterTaken(Raster raster, bool gpu) {
+  if (raster != Raster::automatic) return raster;
+  return gpu ? Raster::resident : Raster::cpu;
 }
 
 std::vector<std::string> rasterNames() {

@@ -43,12 +43,14 @@ std::string sampleCountsText();
 // shape; tiles, shapes binned into screen tiles on the CPU and one full-screen pass
 // (render/tile_bins.hpp); resident, the scene's springs and particles kept in GL's buffers, only
 // their positions sent each frame, particles drawn as instances and springs expanded in the
-// vertex shader (render/resident_program.hpp); automatic, resident on a GPU, else tiles from
-// kTilesFromShapes shapes in a frame.
-enum class Raster { automatic, triangles, tiles, resident };
-// The shape count from which automatic draws with tiles: about where the two cost the same for
-// the cloth at 1280×720 on llvmpipe, between the 80 × 80 and the 100 × 100 cloth (bench/README.md, "Measurements behind choices in the source").
-// Below it the triangle path, which the goldens were drawn with, is faster.
+// vertex shader (render/resident_program.hpp); cpu, the tiles composited by the program's own
+// threads into the image, without GL (render/tile_composite.hpp); automatic, resident on a GPU,
+// else cpu.
+enum class Raster { automatic, triangles, tiles, resident, cpu };
+// The shape count from which the GL paths' automatic choice (where the cpu path is not taken: a
+// GPU's resident path that cannot hold the frame) draws with tiles: about where the two cost the
+// same for the cloth at 1280×720 on llvmpipe, between the 80 × 80 and the 100 × 100 cloth
+// (bench/README.md, "Measurements behind choices in the source").
 inline constexpr size_t kTilesFromShapes = 20000;
 
 struct RenderOptions {
@@ -78,7 +80,11 @@ std::optional<ThemeName> themeFromName(std::string_view name);
 std::optional<Raster> rasterFromName(std::string_view name);
 std::string_view themeNameOf(ThemeName theme);
 std::string_view rasterNameOf(Raster raster);
-std::vector<std::string> rasterNames();  // "auto", "triangles", "tiles", "resident"
+std::vector<std::string> rasterNames();  // "auto", "triangles", "tiles", "resident", "cpu"
+// The path a frame of `raster` is drawn on, with or without a GPU asked for: automatic is resident
+// with a GPU (which draws a scene the resident path cannot hold with tiles from kTilesFromShapes
+// shapes, else triangles), else cpu; the others are themselves.
+Raster rasterTaken(Raster raster, bool gpu);
 
 // The look options of `particles render`, one row each: its command-line word, what its text may
 // be, how the text sets RenderOptions and how RenderOptions writes it back. The render command

@@ -1,5 +1,8 @@
 #include "render/renderer.hpp"
 
+#include <algorithm>
+#include <array>
+#include <deque>
 #include <stdexcept>
 #include <vector>
 
@@ -10,6 +13,7 @@
 #include "render/shader_program.hpp"
 #include "render/shape_mesh.hpp"
 #include "render/tile_bins.hpp"
+#include "render/tile_composite.hpp"
 #include "render/tile_program.hpp"
 
 namespace particles::render {
@@ -44,6 +48,13 @@ struct Renderer::Impl {
   std::vector<float> pixels;                  // its particles' positions in pixels
   const bool gpu;                             // a GPU was asked for: automatic draws resident
   Image straight;                      // a transparent frame with its colour unpremultiplied
+  // The cpu path's images: two, so that a frame read ahead (EGL's two pixel-pack buffers) and one
+  // composited after it can both wait to be collected. Made when first needed.
+  std::array<CompositedFrame, 2> composited;
+  // The frames submitted and not yet collected, oldest first: the index of a composited image, or
+  // kFromGl for one GL is reading back.
+  static constexpr int kFromGl = -1;
+  std::deque<int> pending;
 
   Impl(const RenderOptions& o, const GlRequest& gl)
       : options(o),
@@ -71,6 +82,23 @@ struct Renderer::Impl {
     program.draw(mesh, breaks.springsEnd, breaks.particlesAt);
     resident->drawParticles(look);
     program.draw(mesh, breaks.particlesAt, mesh.vertices().size());
+  }
+
+  // The frame on the cpu path: its shapes' records built and binned on the pool, then composited
+  // into the first image not waiting to be collected. Returns that image's index.
+  int drawCpu(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+    int free = 0;
+    while (std::find(pending.begin(), pending.end(), free) != pending.end()) ++free;  // at most one waits
+    CompositedFrame& out = composited[size_t(free)];
+    if (out.image.rgba.empty()) {
+      out.image = allocateImage(options.width, options.height, "the frame");
+      out.forget();
+    }
+    bins.reset(options.width, options.height);
+    buildFrameTiles(frame, camera, options, colors, bins, pool);
+    bins.bin(pool);
+    compositeTiles(bins, options.msaa, colors.background, options.transparentBackground, out, pool);
+    return free;
   }
 
   // The frame built on the CPU: as triangles, or as tiles (the automatic choice, RenderOptions).
@@ -126,13 +154,19 @@ const GlInfo& Renderer::gl() const {
 
 void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
   Impl& m = *impl_;
+  if (m.pending.size() >= (readsAhead() ? 2u : 1u)) {
+    throw std::logic_error("Renderer::submit: a frame must be collected first");
+  }
+  // cpu: asked for, or automatic without a GPU, where it costs less than llvmpipe drawing the same
+  // frame (bench/README.md, "The cpu raster"); resident: asked for, or automatic with a GPU (what
+  // the path is for).
+  const Raster raster = rasterTaken(m.options.raster, m.gpu);
+  if (raster == Raster::cpu) {
+    m.pending.push_back(m.drawCpu(frame, camera, pool));
+    return;
+  }
   const bool transparent = m.options.transparentBackground;
-  // resident: asked for, or automatic with a GPU (what the path is for), or automatic below the
-  // tiles' threshold, where on llvmpipe it costs about what the triangles do, with less of this
-  // thread's CPU (bench/README.md, "The resident path").
-  const Raster raster = m.options.raster;
-  bool resident = raster == Raster::resident ||
-                  (raster == Raster::automatic && (m.gpu || frameShapeCount(frame) < kTilesFromShapes));
+  bool resident = raster == Raster::resident;
   if (resident) {
     m.context->beginFrame(m.colors.background, transparent);  // current, for a program made now
     if (!m.resident) {
@@ -147,11 +181,16 @@ void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* po
     m.drawBuilt(frame, camera, pool);
   }
   m.context->startRead();
+  m.pending.push_back(Impl::kFromGl);
 }
 
 const Image& Renderer::collect() {
   Impl& m = *impl_;
-  const Image& image = m.context->collectFrame();
+  if (m.pending.empty()) throw std::logic_error("Renderer::collect: no frame was submitted");
+  const int source = m.pending.front();
+  m.pending.pop_front();
+  const Image& image =
+      source == Impl::kFromGl ? m.context->collectFrame() : m.composited[size_t(source)].image;
   if (!m.options.transparentBackground) return image;
   m.straight = image;
   unpremultiply(m.straight);

@@ -13,9 +13,11 @@
 // the shader's cost grows only with the pixels shapes touch. msaa = 1 tests the
 // pixel centre only: hard edges.
 //
-// On the resident path (Raster::resident, render/resident_program.hpp) a scene's springs and
-// particles stay in GL's buffers and each frame sends their positions only; everything else is
-// built as below.
+// Without a GPU the frames are drawn without GL by default: the cpu path (Raster::cpu,
+// render/tile_composite.hpp) composites the tile path's records on the program's own threads,
+// straight into the image, with the shader's coverage and blending. On the resident path
+// (Raster::resident, render/resident_program.hpp) a scene's springs and particles stay in GL's
+// buffers and each frame sends their positions only; everything else is built as below.
 //
 // Every shape is built on the CPU as triangles in pixel coordinates (lines as quads of a given
 // pixel width, discs as fans), pushed out by a 1 px fringe where they are smoothed, and drawn in a
@@ -59,7 +61,7 @@ class Renderer {
   // (GlContext::startRead): submit draws the frame and starts its read-back; collect returns the
   // oldest frame submitted and not collected (valid until the next call). Where readsAhead (EGL),
   // up to two frames may be submitted before the first is collected; elsewhere each must be
-  // collected before the next is submitted.
+  // collected before the next is submitted. Either misuse throws std::logic_error.
   void submit(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr);
   const Image& collect();
   bool readsAhead() const;

@@ -78,7 +78,7 @@ TEST_CASE("cli help: every command that reads files states the default --max-inp
 TEST_CASE("cli help: render states the renderer's and the encoders' numbers") {
   using namespace particles::render;
   const std::string help = helpOf("render");
-  CHECK(numberAt(help, R"(auto \(with --gpu resident, else tiles from (\d+) shapes)") == double(kTilesFromShapes));
+  CHECK(numberAt(help, R"(auto \(with --gpu resident, and tiles from (\d+) shapes)") == double(kTilesFromShapes));
 
   const auto keyint = numbersAt(help, R"(--keyint FLOAT:FLOAT in \[([\d.]+) - ([\d.]+)\]=([\d.]+))");
   REQUIRE(keyint.size() == 3);

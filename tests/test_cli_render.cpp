@@ -295,10 +295,10 @@ TEST_CASE("cli render --keyint: a keyframe at least every 2 s by default, or as 
   CHECK(!fs::exists(s.dir / "bad.mp4"));
 }
 
-TEST_CASE("cli render --raster: the four paths by name, anything else refused") {
+TEST_CASE("cli render --raster: the five paths by name, anything else refused") {
   Scratch s;
   s.write("s.yaml", kSwing);
-  for (const char* raster : {"auto", "triangles", "tiles", "resident"}) {
+  for (const char* raster : {"auto", "triangles", "tiles", "resident", "cpu"}) {
     CAPTURE(raster);
     const Result r = s.run(std::string("render s.yaml -o f.png --at 0.5 --quiet --raster ") + raster);
     CHECK_MESSAGE(r.code == 0, r.err);

@@ -198,7 +198,7 @@ TEST_CASE("golden settings: names the renderer does not take are refused where t
   CHECK(messageOf("defaults:\n  render: {theme: sepia}\nframes:\n  - {scenario: a.yaml, times: [1]}\n") ==
         "defaults.render.theme: expected dark or light, got 'sepia'");
   CHECK(messageOf("frames:\n  - {scenario: a.yaml, times: [1], render: {raster: dots}}\n") ==
-        "frames[0].render.raster: expected auto, triangles, tiles, resident, got 'dots'");
+        "frames[0].render.raster: expected auto, triangles, tiles, resident, cpu, got 'dots'");
   CHECK(messageOf("frames:\n  - {scenario: a.yaml, times: [1], render: {background: none}}\n") ==
         "frames[0].render.background: expected theme or transparent, got 'none'");
   CHECK(messageOf("frames:\n  - {scenario: a.yaml, times: [1], render: {theme: light, background: transparent, "

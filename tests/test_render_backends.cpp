@@ -81,6 +81,7 @@ TEST_CASE("GL backends: every backend built draws the demos' frames to the same 
         options.height = height;
         options.msaa = msaa;
         options.transparentBackground = transparent;
+        options.raster = Raster::resident;  // drawn by GL (without a GPU, auto draws on the CPU)
         std::optional<Image> first;
         for (GlBackend backend : backends) {
           CAPTURE(glBackendName(backend));
@@ -109,6 +110,7 @@ TEST_CASE("GL backends: frames read back ahead (two pixel-pack buffers) are the 
       CAPTURE(transparent);
       RenderOptions o = particles::test::smallRenderOptions();
       o.transparentBackground = transparent;
+      o.raster = Raster::resident;  // a GL path (without a GPU, auto draws on the CPU: tests/test_render_cpu.cpp)
       GlRequest request{backend};
       request.readBack = GlRequest::ReadBack::ahead;
       Renderer renderer(o, request);
@@ -136,7 +138,8 @@ TEST_CASE("GL backends: renderers of both take turns in one thread, each drawing
   Drawing b = a;
   b.particles[0] += Vec2(0.3, 0);
   const Camera camera{Vec2(0.1, 0), 2.4};
-  const RenderOptions options = particles::test::smallRenderOptions();
+  RenderOptions options = particles::test::smallRenderOptions();
+  options.raster = Raster::triangles;  // drawn by GL (without a GPU, auto draws on the CPU)
   const Image expectedA = Renderer(options, {GlBackend::osmesa}).render(a, camera);
   const Image expectedB = Renderer(options, {GlBackend::osmesa}).render(b, camera);
   REQUIRE(expectedA != expectedB);
@@ -252,7 +255,7 @@ TEST_CASE("cli render --gl: each backend draws the same PNG, and the option wins
     const std::string name(glBackendName(backend));
     // PARTICLES_GL names the other backend, or nonsense: --gl decides.
     const Result r =
-        s.run("render s.yaml -o " + name + ".png --at 0.5 --verbose --gl " + name, "PARTICLES_GL=nonsense");
+        s.run("render s.yaml -o " + name + ".png --at 0.5 --verbose --raster resident --gl " + name, "PARTICLES_GL=nonsense");
     REQUIRE_MESSAGE(r.code == 0, r.err);
     CHECK_MESSAGE(contains(r.err, "GL: " + name + ", "), r.err);
     const std::string png = slurp(s.dir / (name + ".png"));

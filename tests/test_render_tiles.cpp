@@ -282,21 +282,18 @@ TEST_CASE("tile path: the demos' pixels are the triangle path's within the golde
   particles::test::checkDemoFramesOnPath(Raster::tiles, false, 2, 0.002);
 }
 
-TEST_CASE("tile path: the same frame twice is the same bytes, and auto takes it for large scenes only (resident below)") {
-  // The cloth at 100 × 100: 10,000 particles and 19,800 springs, past kTilesFromShapes; the demo's
-  // 25 × 25 is below it.
+TEST_CASE("tile path: the same frame twice is the same bytes, within the golden bound of the triangle path's") {
+  // The cloth at 100 × 100: 10,000 particles and 19,800 springs, past kTilesFromShapes (where the
+  // GL paths' automatic choice takes the tiles, RenderOptions).
   const DemoFrame large = demoFrame("cloth", 0.5,
                                     {scenario::parseOverride("grids.0.size=[100, 100]"),
                                      scenario::parseOverride(fmt::format("grids.0.spacing=[{0}, {0}]", 1.92 / 99))});
-  const DemoFrame small = demoFrame("cloth", 0.5);
   REQUIRE(large.drawing.particles.size() + large.drawing.springs.size() >= kTilesFromShapes);
-  REQUIRE(small.drawing.particles.size() + small.drawing.springs.size() < kTilesFromShapes);
-  Renderer automatic(rasterOptions(640, 360, 4, Raster::automatic));
   Renderer tiles(rasterOptions(640, 360, 4, Raster::tiles));
   Renderer triangles(rasterOptions(640, 360, 4, Raster::triangles));
   const Image largeTiles = tiles.render(large.drawing, large.camera);
   CHECK(tiles.render(large.drawing, large.camera).rgba == largeTiles.rgba);
-  CHECK(automatic.render(large.drawing, large.camera).rgba == largeTiles.rgba);
+  CHECK(tiles.render(large.byIndex, large.camera).rgba == largeTiles.rgba);  // springs by index: the same
   const Image largeTriangles = triangles.render(large.drawing, large.camera);
   CHECK(largeTriangles.rgba != largeTiles.rgba);  // the two paths can be told apart here
   // The rail lies at y = 28.125 px, so both its edges run through a row of samples (27.375 and
@@ -304,15 +301,13 @@ TEST_CASE("tile path: the same frame twice is the same bytes, and auto takes it 
   // the other right of it (216 pixels over 16, measured). Hence the bound of 1 sample per pixel.
   const ImageComparison c = compareImages(largeTriangles, largeTiles, {16, 0.0015});
   CHECK_MESSAGE(c.passed, c.differing, " pixels differ by more than 16");
-  // Small, then large, then small again from one renderer: each frame its own path (below the
-  // threshold the resident path, render/resident_program.hpp), nothing left over from the other
-  // (the tile pass turns blending off; the next frame turns it on).
-  Renderer resident(rasterOptions(640, 360, 4, Raster::resident));
-  const Image smallResident = resident.render(small.drawing, small.camera);
-  CHECK(automatic.render(small.drawing, small.camera).rgba == smallResident.rgba);
-  CHECK(automatic.render(large.drawing, large.camera).rgba == largeTiles.rgba);
-  CHECK(automatic.render(small.drawing, small.camera).rgba == smallResident.rgba);
-  CHECK(automatic.render(large.byIndex, large.camera).rgba == largeTiles.rgba);  // springs by index: the same
+  // A small frame between two large ones: nothing left over (the tile pass turns blending off; the
+  // triangles turn it on).
+  const DemoFrame small = demoFrame("cloth", 0.5);
+  Renderer smallTiles(rasterOptions(640, 360, 4, Raster::tiles));
+  const Image expectedSmall = smallTiles.render(small.drawing, small.camera);
+  CHECK(tiles.render(small.drawing, small.camera).rgba == expectedSmall.rgba);
+  CHECK(tiles.render(large.drawing, large.camera).rgba == largeTiles.rgba);
 }
 
 TEST_CASE("tile path: an empty frame is the background, and a frame of one odd size draws") {

@@ -36,7 +36,7 @@ struct RenderSettings {
   std::string theme = "dark";        // dark or light
   int msaa = 4;                      // samples per pixel: 1 (off), 2, 4, 8 or 16
   std::string background = "theme";  // theme, or transparent (alpha = coverage)
-  std::string raster = "auto";       // auto, triangles, tiles or resident
+  std::string raster = "auto";       // auto, triangles, tiles, resident or cpu
   std::string gl = "auto";           // the GL backend: auto (EGL, else OSMesa), egl or osmesa
   bool gpu = false;                  // a hardware EGL device instead of llvmpipe
 

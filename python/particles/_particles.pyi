@@ -75,7 +75,7 @@ class Energy:
 
 Theme = Literal["dark", "light"]
 Background = Literal["theme", "transparent"]
-Raster = Literal["auto", "triangles", "tiles", "resident"]
+Raster = Literal["auto", "triangles", "tiles", "resident", "cpu"]
 GlBackend = Literal["auto", "egl", "osmesa"]
 
 class Simulation:

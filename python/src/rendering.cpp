@@ -141,7 +141,7 @@ a Renderer of your own can draw several simulations with one GL context.
            "raster"_a = "auto", "gl"_a = "auto", "gpu"_a = false,
            R"doc(size: (width, height) in pixels, or None for each scenario's render.size; theme:
 dark or light; msaa: samples per pixel, 1, 2, 4, 8 or 16; background: theme, or transparent
-(alpha = coverage); raster: auto, triangles, tiles or resident; gl: auto (EGL, else OSMesa), egl or osmesa;
+(alpha = coverage); raster: auto, triangles, tiles, resident or cpu; gl: auto (EGL, else OSMesa), egl or osmesa;
 gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)doc")
       .def(
           "render",

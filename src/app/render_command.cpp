@@ -177,11 +177,17 @@ void checkPngLevel(const RenderCommandOptions& options) {
   }
 }
 
-// Adds --stats/--trace, --verbose's GL line and --hud to the render's hooks.
+// Adds --stats/--trace, --verbose's GL and raster lines and --hud to the render's hooks.
 void addProgramHooks(render::RenderHooks& hooks, const scenario::Scenario& s, const RenderCommandOptions& options,
                      const render::RenderOptions& look, CsvRecorder& recorder, long& framesReached) {
   if (options.verbose) {
-    hooks.glReady = [](const render::GlInfo& info) { fmt::print(stderr, "GL: {}\n", render::describe(info)); };
+    const render::Raster taken = render::rasterTaken(look.raster, options.gpu);
+    hooks.glReady = [taken, asked = look.raster](const render::GlInfo& info) {
+      fmt::print(stderr, "GL: {}\n", render::describe(info));
+      fmt::print(stderr, "raster: {}{}\n", render::rasterNameOf(taken),
+                 taken == render::Raster::cpu ? " (the program's threads, not GL)"
+                 : asked == render::Raster::automatic ? " (auto)" : "");
+    };
   }
   hooks.onFrame = [&](const System& system) {
     recorder.record(system);
@@ -303,10 +309,11 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
       ->capture_default_str();
   renderCmd
       ->add_option("--raster", render.raster,
-                   fmt::format("How shapes become pixels: triangles (one GL primitive each), tiles (sorted into "
-                               "screen tiles on the CPU, one pass; fast for large scenes), resident (springs and "
-                               "particles kept in GL's buffers, only positions sent each frame; the GPU's path) or "
-                               "auto (with --gpu resident, else tiles from {} shapes and resident below)",
+                   fmt::format("How shapes become pixels: cpu (sorted into screen tiles and composited by "
+                               "particles' own threads, no GL), triangles (one GL primitive each), tiles (the same "
+                               "tiles drawn by one GL pass), resident (springs and particles kept in GL's buffers, "
+                               "only positions sent each frame; the GPU's path) or auto (with --gpu resident, and "
+                               "tiles from {} shapes where its buffers cannot hold the scene; else cpu)",
                                render::kTilesFromShapes))
       ->check(CLI::IsMember(render::rasterNames()))
       ->capture_default_str();

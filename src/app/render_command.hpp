@@ -26,7 +26,7 @@ struct RenderCommandOptions {
   std::string size;                  // --size WxH; empty: the scenario's render.size
   std::optional<double> fps;         // --fps; none: the scenario's render.fps (render::defaultFps)
   int msaa = render::RenderOptions{}.msaa;  // anti-aliasing samples per pixel: one of render::kSampleCounts
-  std::string raster = "auto";       // --raster auto | triangles | tiles
+  std::string raster = "auto";       // --raster auto | triangles | tiles | resident | cpu
   std::string theme = "dark";        // dark | light
   std::string background = "theme";  // --background theme | transparent (formats that keep alpha)
   std::string particleRadius;        // "4px" or "0.02m"; empty: the renderer's default

@@ -256,7 +256,7 @@ Json goldenRenderSchema() {
               {"msaa", withDescription({{"enum", msaa}}, "samples per pixel (1: off)")},
               {"theme", withDescription(text(), "the renderer's theme: dark or light")},
               {"background", withDescription(text(), "theme or transparent")},
-              {"raster", withDescription(text(), "auto, triangles, tiles or resident")}},
+              {"raster", withDescription(text(), "auto, triangles, tiles, resident or cpu")}},
              {}),
       "as `particles render`'s options; what is not set is render's default");
 }

@@ -25,7 +25,7 @@ def test_render_gives_the_bytes_of_particles_render_at(run_particles, tmp_path, 
     assert (tmp_path / "api.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
 
 
-@pytest.mark.parametrize("raster", ["triangles", "tiles", "resident"])
+@pytest.mark.parametrize("raster", ["triangles", "tiles", "resident", "cpu"])
 def test_each_raster_path_gives_the_bytes_of_particles_render(run_particles, tmp_path, raster):
     # The resident path (springs and particles kept in GL's buffers) included: the library draws
     # the command's springs by index too.
