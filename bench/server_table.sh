@@ -8,8 +8,9 @@
 #        PARTICLES=/opt/pb/particles bench/server_table.sh   a program elsewhere (a server bundle,
 #                                                           ../shared/device/README.md)
 #        THREADS="1 16" ROWS="sympl rk4" bench/server_table.sh   some counts, some rows
-# Rows: sympl rk4 beuler million stability render316 render316tri render316res render1000 frames1000
-# demo (all by default). frames1000 is drawing-bound (12 frames of the 1000² cloth, 10 steps
+# Rows: sympl rk4 beuler million stability render316 render316tiles render316tri render316res
+# render1000 frames1000 demo (all by default). The render rows without --raster draw on `auto`'s
+# path: cpu on llvmpipe, resident with --gpu. frames1000 is drawing-bound (12 frames of the 1000² cloth, 10 steps
 # each): its GPU cell against its 16-thread cell is issue 42's "GPU path ≥ 3× llvmpipe per frame".
 # The scenarios are the checkout's: run it from there, or set SCENARIOS=dir.
 set -euo pipefail
@@ -19,7 +20,7 @@ scenarios="${SCENARIOS:-$root/scenarios}"
 [ -x "$particles" ] || { echo "no program at $particles (cmake --build build --target particles)" >&2; exit 2; }
 cores=$(nproc)
 threads_wanted=(${THREADS:-1 2 4 8 16})
-rows=(${ROWS:-sympl rk4 beuler million stability render316 render316tri render316res render1000 frames1000 demo})
+rows=(${ROWS:-sympl rk4 beuler million stability render316 render316tiles render316tri render316res render1000 frames1000 demo})
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 
@@ -38,8 +39,10 @@ describe() {
       args=(run "$scenarios/cloth_million.yaml" --duration 0.1) ;;
     stability) label="stability study of the cloth"
       args=(stability "${cloth[@]}" --csv "$tmp/stability.csv") ;;
-    render316) label="316² cloth, 2 s to MP4 (render, tiles)"
+    render316) label="316² cloth, 2 s to MP4 (render, auto)"
       args=(render "${cloth[@]}" "${big[@]}" --duration 2 -o "$tmp/out.mp4") ;;
+    render316tiles) label="316² cloth, 2 s to MP4, --raster tiles"
+      args=(render "${cloth[@]}" "${big[@]}" --duration 2 --raster tiles -o "$tmp/out.mp4") ;;
     render316tri) label="316² cloth, 2 s to MP4, --raster triangles"
       args=(render "${cloth[@]}" "${big[@]}" --duration 2 --raster triangles -o "$tmp/out.mp4") ;;
     render316res) label="316² cloth, 2 s to MP4, --raster resident"
