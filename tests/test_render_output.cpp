@@ -342,7 +342,7 @@ Probe renderedFalling(bool transparent, Raster raster = Raster::triangles) {
 
 TEST_CASE("a transparent background: alpha 0 where nothing is drawn, 255 on a particle, straight colour between") {
   const Theme colors = theme(ThemeName::dark);
-  for (const Raster raster : {Raster::triangles, Raster::tiles}) {
+  for (const Raster raster : {Raster::triangles, Raster::tiles, Raster::cpu}) {
     CAPTURE(int(raster));
     const Probe opaque = renderedFalling(false, raster);
     const Probe clear = renderedFalling(true, raster);
