@@ -18,8 +18,7 @@
 // or an overlay adds a copy of the frame (B), allocated up front with allocateImage; the tile path
 // a table of 8 bytes per 4 × 4 px tile (B / 8) on the CPU and in GL, whose failures are a
 // std::bad_alloc and GL_OUT_OF_MEMORY. The cpu path (render/tile_composite.hpp) draws into an image
-// of its own (B, two when frames are read ahead), allocated with allocateImage at its first frame,
-// and the tile table on the CPU only.
+// of its own (B), allocated with allocateImage at its first frame, and the tile table on the CPU only.
 
 #include <cstddef>
 #include <string>

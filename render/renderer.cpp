@@ -1,8 +1,5 @@
 #include "render/renderer.hpp"
 
-#include <algorithm>
-#include <array>
-#include <deque>
 #include <stdexcept>
 #include <vector>
 
@@ -48,20 +45,20 @@ struct Renderer::Impl {
   std::vector<float> pixels;                  // its particles' positions in pixels
   const bool gpu;                             // a GPU was asked for: automatic draws resident
   Image straight;                      // a transparent frame with its colour unpremultiplied
-  // The cpu path's images: two, so that a frame read ahead (EGL's two pixel-pack buffers) and one
-  // composited after it can both wait to be collected. Made when first needed.
-  std::array<CompositedFrame, 2> composited;
-  // The frames submitted and not yet collected, oldest first: the index of a composited image, or
-  // kFromGl for one GL is reading back.
-  static constexpr int kFromGl = -1;
-  std::deque<int> pending;
+  // Whether every frame is drawn on the cpu path: the options' raster path and the GPU request
+  // decide it (rasterTaken), once for the renderer. Its image is made at the first frame; it is
+  // ready when drawn, so the renderer does not read ahead.
+  const bool onCpu;
+  CompositedFrame composited;
+  int submitted = 0;  // frames submitted and not yet collected
 
   Impl(const RenderOptions& o, const GlRequest& gl)
       : options(o),
         colors(theme(o.themeName)),
         context(makeGlContext(gl, o.width, o.height)),
         program(context->gl(), o.msaa, o.width, o.height, context->flipsY()),
-        gpu(gl.gpu) {
+        gpu(gl.gpu),
+        onCpu(rasterTaken(o.raster, gl.gpu) == Raster::cpu) {
     // Allocated now, with the frame (render/frame_memory.hpp): later copies of the frame reuse it.
     if (o.transparentBackground) straight = allocateImage(o.width, o.height, "the frame's unpremultiplied copy");
   }
@@ -84,21 +81,13 @@ struct Renderer::Impl {
     program.draw(mesh, breaks.particlesAt, mesh.vertices().size());
   }
 
-  // The frame on the cpu path: its shapes' records built and binned on the pool, then composited
-  // into the first image not waiting to be collected. Returns that image's index.
-  int drawCpu(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
-    int free = 0;
-    while (std::find(pending.begin(), pending.end(), free) != pending.end()) ++free;  // at most one waits
-    CompositedFrame& out = composited[size_t(free)];
-    if (out.image.rgba.empty()) {
-      out.image = allocateImage(options.width, options.height, "the frame");
-      out.forget();
-    }
+  // The frame on the cpu path: its shapes' records built and binned on the pool, then composited.
+  void drawCpu(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+    if (composited.image.rgba.empty()) composited.image = allocateImage(options.width, options.height, "the frame");
     bins.reset(options.width, options.height);
     buildFrameTiles(frame, camera, options, colors, bins, pool);
     bins.bin(pool);
-    compositeTiles(bins, options.msaa, colors.background, options.transparentBackground, out, pool);
-    return free;
+    compositeTiles(bins, options.msaa, colors.background, options.transparentBackground, composited, pool);
   }
 
   // The frame built on the CPU: as triangles, or as tiles (the automatic choice, RenderOptions).
@@ -154,17 +143,16 @@ const GlInfo& Renderer::gl() const {
 
 void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
   Impl& m = *impl_;
-  if (m.pending.size() >= (readsAhead() ? 2u : 1u)) {
-    throw std::logic_error("Renderer::submit: a frame must be collected first");
-  }
+  if (m.submitted >= (readsAhead() ? 2 : 1)) throw std::logic_error("Renderer::submit: a frame must be collected first");
   // cpu: asked for, or automatic without a GPU, where it costs less than llvmpipe drawing the same
   // frame (bench/README.md, "The cpu raster"); resident: asked for, or automatic with a GPU (what
   // the path is for).
-  const Raster raster = rasterTaken(m.options.raster, m.gpu);
-  if (raster == Raster::cpu) {
-    m.pending.push_back(m.drawCpu(frame, camera, pool));
+  if (m.onCpu) {
+    m.drawCpu(frame, camera, pool);
+    ++m.submitted;
     return;
   }
+  const Raster raster = rasterTaken(m.options.raster, m.gpu);
   const bool transparent = m.options.transparentBackground;
   bool resident = raster == Raster::resident;
   if (resident) {
@@ -181,16 +169,14 @@ void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* po
     m.drawBuilt(frame, camera, pool);
   }
   m.context->startRead();
-  m.pending.push_back(Impl::kFromGl);
+  ++m.submitted;
 }
 
 const Image& Renderer::collect() {
   Impl& m = *impl_;
-  if (m.pending.empty()) throw std::logic_error("Renderer::collect: no frame was submitted");
-  const int source = m.pending.front();
-  m.pending.pop_front();
-  const Image& image =
-      source == Impl::kFromGl ? m.context->collectFrame() : m.composited[size_t(source)].image;
+  if (m.submitted == 0) throw std::logic_error("Renderer::collect: no frame was submitted");
+  --m.submitted;
+  const Image& image = m.onCpu ? m.composited.image : m.context->collectFrame();
   if (!m.options.transparentBackground) return image;
   m.straight = image;
   unpremultiply(m.straight);
@@ -198,7 +184,7 @@ const Image& Renderer::collect() {
 }
 
 bool Renderer::readsAhead() const {
-  return impl_->context->readsAhead();
+  return !impl_->onCpu && impl_->context->readsAhead();
 }
 
 const Image& Renderer::render(const Drawing& frame, const Camera& camera, WorkerPool* pool) {

@@ -59,9 +59,10 @@ class Renderer {
   const Image& render(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr);
   // render in two steps, for a frame loop that draws frame k + 1 while frame k is read back
   // (GlContext::startRead): submit draws the frame and starts its read-back; collect returns the
-  // oldest frame submitted and not collected (valid until the next call). Where readsAhead (EGL),
-  // up to two frames may be submitted before the first is collected; elsewhere each must be
-  // collected before the next is submitted. Either misuse throws std::logic_error.
+  // oldest frame submitted and not collected (valid until the next call). Where readsAhead (EGL
+  // asked to, on a GL path: the cpu path's frame is whole when drawn), up to two frames may be
+  // submitted before the first is collected; elsewhere each must be collected before the next is
+  // submitted. Either misuse throws std::logic_error.
   void submit(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr);
   const Image& collect();
   bool readsAhead() const;

@@ -30,14 +30,13 @@ namespace particles::render {
 
 // An image compositeTiles draws into, and what it knows of the image's content: which tiles hold
 // more than the background (a frame's tiles without shapes keep the background from an earlier
-// frame, and only those that held shapes then are set to it again), over which background. A frame
-// made anew (tilesDrawn empty) or whose image was written by someone else must forget: forget().
+// frame, and only those that held shapes then are set to it again), over which background. Empty
+// tilesDrawn (a frame made anew, or an image someone else wrote: clear it) rewrites every tile.
 struct CompositedFrame {
   Image image;
   std::vector<std::uint8_t> tilesDrawn;  // per tile, row by row: 1 where it may hold shapes
   Rgb background{};
   bool transparent = false;
-  void forget() { tilesDrawn.clear(); }
 };
 
 // Draws `bins`' shapes (binned, TileBins::bin) over `background` into `frame`'s image, which must
