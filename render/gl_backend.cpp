@@ -61,6 +61,7 @@ void validate(const GlRequest& request) {
 }
 
 std::string describe(const GlInfo& info) {
+  if (!info.made) return "none (the cpu raster)";
   std::string text =
       fmt::format("{}, {}: {}, OpenGL {}", glBackendName(info.backend), info.device, info.renderer, info.version);
   if (!info.fallback.empty()) text += fmt::format(" (EGL: {})", info.fallback);

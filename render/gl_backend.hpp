@@ -51,6 +51,9 @@ void validate(const GlRequest& request);
 
 // What a context runs on.
 struct GlInfo {
+  // false where no context was made: the cpu raster path draws without GL (render/renderer.hpp),
+  // and the fields below are empty.
+  bool made = true;
   GlBackend backend = GlBackend::automatic;  // egl or osmesa once made
   std::string device;    // "software device", "surfaceless platform", "hardware device /dev/dri/…", …
   std::string renderer;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
@@ -59,7 +62,7 @@ struct GlInfo {
 };
 
 // "egl, software device: llvmpipe (LLVM 15.0.6, 256 bits), OpenGL 4.5 (Compatibility Profile) Mesa 22.3.6"
-// and, after an automatic fallback, "(EGL: REASON)".
+// and, after an automatic fallback, "(EGL: REASON)"; where no context was made, "none (the cpu raster)".
 std::string describe(const GlInfo& info);
 
 // Makes a 1 × 1 context as the renderer would and says what it runs on. Throws RenderError when

@@ -1,5 +1,6 @@
 #include "render/renderer.hpp"
 
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -30,35 +31,50 @@ void unpremultiply(Image& image) {
   }
 }
 
+// What Renderer::gl says on the cpu path, which makes no GL context.
+const GlInfo kNoGl = [] {
+  GlInfo none;
+  none.made = false;
+  return none;
+}();
+
 }  // namespace
 
 struct Renderer::Impl {
   // Members in the order they are made: the program is compiled in the context, current once made.
   RenderOptions options;
   Theme colors;
-  std::unique_ptr<GlContext> context;
-  ShaderProgram program;
+  // Whether every frame is drawn on the cpu path: the options' raster path and the GPU request
+  // decide it (rasterTaken), once for the renderer. Its image is made at the first frame; it is
+  // ready when drawn, so the renderer does not read ahead. It needs no GL context: none is made, so
+  // Mesa's driver is not loaded nor llvmpipe's threads started, and it draws where GL cannot start.
+  const bool onCpu;
+  std::unique_ptr<GlContext> context;    // none on the cpu path
+  std::optional<ShaderProgram> program;  // with the context
   ShapeMesh mesh;  // the frame's triangles, storage reused from frame to frame
   TileBins bins;   // or its shapes in tiles
   std::unique_ptr<TileProgram> tiles;  // made when first needed
   std::unique_ptr<ResidentProgram> resident;  // on the resident path
   std::vector<float> pixels;                  // its particles' positions in pixels
   const bool gpu;                             // a GPU was asked for: automatic draws resident
-  Image straight;                      // a transparent frame with its colour unpremultiplied
-  // Whether every frame is drawn on the cpu path: the options' raster path and the GPU request
-  // decide it (rasterTaken), once for the renderer. Its image is made at the first frame; it is
-  // ready when drawn, so the renderer does not read ahead.
-  const bool onCpu;
+  Image straight;                             // a transparent frame with its colour unpremultiplied
   CompositedFrame composited;
   int submitted = 0;  // frames submitted and not yet collected
 
   Impl(const RenderOptions& o, const GlRequest& gl)
-      : options(o),
-        colors(theme(o.themeName)),
-        context(makeGlContext(gl, o.width, o.height)),
-        program(context->gl(), o.msaa, o.width, o.height, context->flipsY()),
-        gpu(gl.gpu),
-        onCpu(rasterTaken(o.raster, gl.gpu) == Raster::cpu) {
+      : options(o), colors(theme(o.themeName)), onCpu(rasterTaken(o.raster, gl.gpu) == Raster::cpu), gpu(gl.gpu) {
+    if (onCpu) {
+      // The request is still checked, so that a bad one fails alike on every path.
+      validate(gl);
+      if (gl.gpu) {
+        throw std::invalid_argument(
+            "the cpu raster draws without GL, so it cannot use the GPU asked for: drop the GPU request, or choose "
+            "the resident, tiles or triangles raster");
+      }
+    } else {
+      context = makeGlContext(gl, o.width, o.height);
+      program.emplace(context->gl(), o.msaa, o.width, o.height, context->flipsY());
+    }
     // Allocated now, with the frame (render/frame_memory.hpp): later copies of the frame reuse it.
     if (o.transparentBackground) straight = allocateImage(o.width, o.height, "the frame's unpremultiplied copy");
   }
@@ -74,11 +90,11 @@ struct Renderer::Impl {
                             .pixelsPerUnit = pixelsPerUnit(camera, options),
                             .strainForFullColor = options.strainForFullColor,
                             .colors = colors};
-    program.draw(mesh, 0, breaks.springsEnd);
+    program->draw(mesh, 0, breaks.springsEnd);
     resident->drawSprings(look);
-    program.draw(mesh, breaks.springsEnd, breaks.particlesAt);
+    program->draw(mesh, breaks.springsEnd, breaks.particlesAt);
     resident->drawParticles(look);
-    program.draw(mesh, breaks.particlesAt, mesh.vertices().size());
+    program->draw(mesh, breaks.particlesAt, mesh.vertices().size());
   }
 
   // The frame on the cpu path: its shapes' records built and binned on the pool, then composited.
@@ -117,7 +133,7 @@ struct Renderer::Impl {
       tiles->draw(bins, colors.background, transparent);
     } else {
       buildFrameMesh(frame, camera, options, colors, mesh);
-      program.draw(mesh);
+      program->draw(mesh);
     }
   }
 };
@@ -135,10 +151,12 @@ const RenderOptions& Renderer::options() const {
 int Renderer::samples() const {
   return impl_->options.msaa;
 }
-void Renderer::releaseFromThread() { impl_->context->releaseFromThread(); }
+void Renderer::releaseFromThread() {
+  if (impl_->context) impl_->context->releaseFromThread();
+}
 
 const GlInfo& Renderer::gl() const {
-  return impl_->context->info();
+  return impl_->context ? impl_->context->info() : kNoGl;
 }
 
 void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* pool) {

@@ -320,7 +320,11 @@ TEST_CASE("api: render() draws the pixels of particles render --at, and Image::s
     frame.savePng((scratch.dir / "api.png").string());
     CHECK(particles::render::readPng(scratch.dir / "api.png").rgba == expected.rgba);
   }
-  CHECK(renderer.glDescription().find("llvmpipe") != std::string::npos);
+  CHECK(renderer.glDescription() == "none (the cpu raster)");  // auto without a GPU: no GL context
+  particles::Renderer onGl({.width = 320, .height = 180, .msaa = 1, .raster = "resident"});
+  particles::Simulation swingOnGl(particles::Scenario::fromText(kSwingScenario, "swing.yaml"));
+  onGl.render(swingOnGl);
+  CHECK(onGl.glDescription().find("llvmpipe") != std::string::npos);
 
   // Without a size, the scenario's own.
   particles::Renderer bySceneSize({.msaa = 1});

@@ -88,11 +88,14 @@ TEST_CASE("issue 26 row 16: a 16384² render under a 2 GiB cap ends in exit 3 (o
   if (kSanitized) return particles::test::skipTest("no address-space cap under ASan: the frame would be drawn");
   Scratch s;
   s.write("s.yaml", kSwingScenario);
+  // GL's memory is the subject, so a GL raster is named: the cpu path needs no GL buffer and draws
+  // this frame within 2 GiB (its own case below).
   for (const auto backend : {particles::render::GlBackend::egl, particles::render::GlBackend::osmesa}) {
     if (!particles::render::glBackendBuilt(backend)) continue;
     for (const int msaa : {1, 16}) {
-      const std::string args = fmt::format("render s.yaml -o x.png --at 0.1 --size 16384x16384 --gl {} --msaa {}",
-                                           particles::render::glBackendName(backend), msaa);
+      const std::string args =
+          fmt::format("render s.yaml -o x.png --at 0.1 --size 16384x16384 --raster resident --gl {} --msaa {}",
+                      particles::render::glBackendName(backend), msaa);
       CAPTURE(args);
       Scratch::Usage usage;
       const Result r = s.runBounded(args, usage);
@@ -103,6 +106,23 @@ TEST_CASE("issue 26 row 16: a 16384² render under a 2 GiB cap ends in exit 3 (o
                     r.err);
       CHECK(!fs::exists(s.dir / "x.png"));
     }
+  }
+}
+
+TEST_CASE("issue 26 row 16 on the cpu path: a 16384² frame under a 1 GiB cap ends in exit 3, naming the frame") {
+  if (kSanitized) return particles::test::skipTest("no address-space cap under ASan: the frame would be drawn");
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  for (const int msaa : {1, 16}) {
+    const std::string args =
+        fmt::format("render s.yaml -o x.png --at 0.1 --size 16384x16384 --raster cpu --msaa {}", msaa);
+    CAPTURE(args);
+    Scratch::Usage usage;
+    const Result r = s.runBounded(args, usage, rlim_t(1) << 30);  // the image alone is 1 GiB
+    CHECK(r.code == 3);
+    CHECK_MESSAGE(contains(r.err, "error: out of memory: the frame (16384x16384 pixels) needs 1024 MiB"), r.err);
+    CHECK(!contains(r.err, "internal error"));
+    CHECK(!fs::exists(s.dir / "x.png"));
   }
 }
 

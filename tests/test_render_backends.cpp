@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <optional>
 #include <regex>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -159,7 +160,9 @@ TEST_CASE("GL backends: renderers of both take turns in one thread, each drawing
 }
 
 TEST_CASE("GL backends: auto draws with EGL's software device, llvmpipe, and says so") {
-  Renderer renderer(particles::test::smallRenderOptions());
+  RenderOptions options = particles::test::smallRenderOptions();
+  options.raster = Raster::resident;  // a GL path: the cpu path makes no context
+  Renderer renderer(options);
   const GlInfo& info = renderer.gl();
   CAPTURE(describe(info));
   CHECK(info.renderer.starts_with("llvmpipe"));
@@ -268,16 +271,23 @@ TEST_CASE("cli render --gl: each backend draws the same PNG, and the option wins
   // Without --gl, PARTICLES_GL decides; empty is unset, and unset is auto.
   for (GlBackend backend : builtBackends()) {
     const std::string name(glBackendName(backend));
-    const Result r = s.run("render s.yaml -o env.png --at 0.5 --verbose", "PARTICLES_GL=" + name);
+    const Result r = s.run("render s.yaml -o env.png --at 0.5 --verbose --raster resident", "PARTICLES_GL=" + name);
     REQUIRE_MESSAGE(r.code == 0, r.err);
     CHECK_MESSAGE(contains(r.err, "GL: " + name + ", "), r.err);
   }
   const std::string autoName = glBackendBuilt(GlBackend::egl) ? "egl" : "osmesa";
   for (const char* environment : {"-u PARTICLES_GL", "PARTICLES_GL=", "PARTICLES_GL=auto"}) {
     CAPTURE(environment);
-    const Result r = s.run("render s.yaml -o auto.png --at 0.5 --verbose", environment);
+    const Result r = s.run("render s.yaml -o auto.png --at 0.5 --verbose --raster resident", environment);
     REQUIRE_MESSAGE(r.code == 0, r.err);
     CHECK_MESSAGE(contains(r.err, "GL: " + autoName + ", "), r.err);
+  }
+  // The cpu path (auto's without a GPU) makes no GL context, whatever names one.
+  for (const char* environment : {"-u PARTICLES_GL", "PARTICLES_GL=osmesa"}) {
+    CAPTURE(environment);
+    const Result r = s.run("render s.yaml -o cpu.png --at 0.5 --verbose", environment);
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK_MESSAGE(contains(r.err, "GL: none (the cpu raster)\nraster: cpu"), r.err);
   }
 }
 
@@ -327,6 +337,52 @@ TEST_CASE("cli render --gpu: without a GPU, a clear error, exit 3 and no output"
   }
 }
 
+// The loader's own account of what it starts (LD_DEBUG=libs: "calling init: PATH"), which Mesa's
+// driver, LLVM and OSMesa appear in only when a GL context is made.
+namespace {
+bool loaderStarted(const std::string& loaderLog, const std::string& library) {
+  std::istringstream lines(loaderLog);
+  for (std::string line; std::getline(lines, line);) {
+    if (contains(line, "calling init: ") && contains(line, library)) return true;
+  }
+  return false;
+}
+}  // namespace
+
+TEST_CASE("cli render: the cpu path loads no GL driver, LLVM or OSMesa, and a GL path loads its own") {
+  Scratch s;
+  s.write("s.yaml", particles::test::kSwingScenario);
+  Result r = s.run("render s.yaml -o cpu.png --at 0.5 --quiet", "-u PARTICLES_GL LD_DEBUG=libs");
+  REQUIRE(r.code == 0);
+  CHECK_MESSAGE(loaderStarted(r.err, "libc.so"), r.err);  // the log is there
+  for (const char* library : {"libOSMesa", "libLLVM", "_dri.so"}) {
+    CAPTURE(library);
+    CHECK(!loaderStarted(r.err, library));
+  }
+  if (glBackendBuilt(GlBackend::osmesa)) {
+    r = s.run("render s.yaml -o osmesa.png --at 0.5 --quiet --raster resident --gl osmesa", "LD_DEBUG=libs");
+    REQUIRE(r.code == 0);
+    CHECK(loaderStarted(r.err, "libOSMesa"));
+#ifdef PARTICLES_OSMESA_SONAME
+    // A library that cannot be opened (here an empty file found first) is an error naming it, exit
+    // 3 and no output; the cpu path does not notice.
+    fs::create_directory(s.dir / "lib");
+    s.write("lib/" PARTICLES_OSMESA_SONAME, "");
+    r = s.run("render s.yaml -o broken.png --at 0.5 --raster resident --gl osmesa", "LD_LIBRARY_PATH=lib");
+    CHECK(r.code == 3);
+    CHECK_MESSAGE(r.err.starts_with("error: OSMesa's library " PARTICLES_OSMESA_SONAME " could not be loaded ("), r.err);
+    CHECK(!fs::exists(s.dir / "broken.png"));
+    r = s.run("render s.yaml -o cpu2.png --at 0.5", "LD_LIBRARY_PATH=lib PARTICLES_GL=osmesa");
+    CHECK_MESSAGE(r.code == 0, r.err);
+#endif
+  }
+  if (glBackendBuilt(GlBackend::egl)) {
+    r = s.run("render s.yaml -o egl.png --at 0.5 --quiet --raster resident --gl egl", "LD_DEBUG=libs");
+    REQUIRE(r.code == 0);
+    CHECK(!loaderStarted(r.err, "libOSMesa"));  // OSMesa is opened only for its own contexts
+  }
+}
+
 TEST_CASE("cli render: EGL that cannot start fails --gl egl with exit 3, and auto falls back to OSMesa") {
   if (!glBackendBuilt(GlBackend::egl))
     return particles::test::skipTest("needs EGL, this build has " + glBuildDescription());
@@ -334,11 +390,16 @@ TEST_CASE("cli render: EGL that cannot start fails --gl egl with exit 3, and aut
   s.write("s.yaml", particles::test::kSwingScenario);
   // GLVND's libEGL finds no vendor library (Mesa's) to load: EGL offers no platform at all.
   const std::string noEgl = "-u PARTICLES_GL __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/egl_vendor.json";
-  Result r = s.run("render s.yaml -o egl.png --at 0.5 --gl egl", noEgl);
+  Result r = s.run("render s.yaml -o egl.png --at 0.5 --gl egl --raster resident", noEgl);
   CHECK(r.code == 3);
   CHECK_MESSAGE(r.err.starts_with("error: EGL lists no devices"), r.err);
   CHECK(s.files() == std::vector<std::string>{"s.yaml"});
-  r = s.run("render s.yaml -o auto.png --at 0.5 --verbose", noEgl);
+  // The cpu path needs no GL, so it draws where EGL cannot start, --gl egl or not.
+  r = s.run("render s.yaml -o cpu.png --at 0.5 --gl egl --verbose", noEgl);
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  CHECK_MESSAGE(contains(r.err, "GL: none (the cpu raster)"), r.err);
+  CHECK(fs::exists(s.dir / "cpu.png"));
+  r = s.run("render s.yaml -o auto.png --at 0.5 --verbose --raster resident", noEgl);
   if (glBackendBuilt(GlBackend::osmesa)) {
     REQUIRE_MESSAGE(r.code == 0, r.err);
     CHECK_MESSAGE(contains(r.err, "GL: osmesa, off-screen buffer: llvmpipe"), r.err);

@@ -57,7 +57,8 @@ class PARTICLES_API Renderer {
   // The simulation's state now, seen through its scenario's view. Throws Error when the GL context
   // cannot be made (naming the failing call).
   Image render(const Simulation& simulation);
-  // What draws the frames, once one was drawn: "egl, software device: llvmpipe (…), OpenGL 4.5 …".
+  // What draws the frames, once one was drawn: "egl, software device: llvmpipe (…), OpenGL 4.5 …",
+  // or "none (the cpu raster)" where the frames are drawn without GL.
   std::string glDescription() const;
 
   struct Impl;  // the library's own, opaque here

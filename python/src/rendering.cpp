@@ -156,7 +156,8 @@ gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)
           },
           "simulation"_a, "The simulation's state now, drawn: a Frame (h, w, 4) uint8.")
       .def_property_readonly("gl_description", &Renderer::glDescription,
-                             "The GL backend, device and renderer that drew the last frame ('' before the first).");
+                             "The GL backend, device and renderer that drew the last frame ('' before the first; "
+                             "'none (the cpu raster)' where no GL drew it).");
 
   // Simulation.render: defined here, beside the Renderer it keeps.
   const py::object simulation = module.attr("Simulation");

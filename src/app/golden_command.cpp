@@ -34,7 +34,8 @@ void addRunOptions(CLI::App& command, GoldenRunOptions& o) {
       ->check(CLI::Range(1, golden::kMaxJobs));
   command
       .add_option("--gl", o.gl,
-                  fmt::format("GL backend: auto (EGL, else OSMesa), egl or osmesa (default: ${}, else auto)",
+                  fmt::format("GL backend of the GL raster paths (the cpu path uses none): auto (EGL, else OSMesa), "
+                              "egl or osmesa (default: ${}, else auto)",
                               kGlEnvironmentVariable))
       ->check(CLI::IsMember(render::glBackendNames()));
   addMaxInputOption(command, o.maxInputMiB, "a manifest, scenario or reference");

@@ -339,7 +339,8 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
   renderCmd->add_flag("--verbose", render.verbose, "Name the GL backend and renderer; show libav/x264's own log");
   renderCmd
       ->add_option("--gl", render.gl,
-                   fmt::format("GL backend: auto (EGL, else OSMesa), egl or osmesa (default: ${}, else auto)",
+                   fmt::format("GL backend of the GL raster paths (the cpu path uses none): auto (EGL, else OSMesa), "
+                               "egl or osmesa (default: ${}, else auto)",
                                kGlEnvironmentVariable))
       ->check(CLI::IsMember(render::glBackendNames()));
   renderCmd->add_flag("--gpu", render.gpu,

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 
 namespace particles {
 
@@ -21,13 +22,20 @@ void cpuRelax() {
 #endif
 }
 
-// Polls `done` for up to kSpinTime; true when it turned true.
+// Polls `done` for up to kSpinTime; true when it turned true. After the first few polls it yields
+// between them: where every CPU has work (a render's stepping, drawing and encoding threads all at
+// once), the polling thread gives its CPU to one that has some, which a pause never does; on an
+// idle CPU, yield returns at once (bench/README.md, "Polling that yields").
 template <typename Done>
 bool spinUntil(Done&& done) {
   const auto until = std::chrono::steady_clock::now() + kSpinTime;
   for (unsigned i = 1;; ++i) {
     if (done()) return true;
-    cpuRelax();
+    if (i < 64) {
+      cpuRelax();
+    } else {
+      std::this_thread::yield();
+    }
     if (i % 64 == 0 && std::chrono::steady_clock::now() > until) return false;
   }
 }
