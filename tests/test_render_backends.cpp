@@ -283,7 +283,9 @@ TEST_CASE("cli render --gl: each backend draws the same PNG, and the option wins
     CHECK_MESSAGE(contains(r.err, "GL: " + autoName + ", "), r.err);
   }
   // The cpu path (auto's without a GPU) makes no GL context, whatever names one.
-  for (const char* environment : {"-u PARTICLES_GL", "PARTICLES_GL=osmesa"}) {
+  std::vector<std::string> environments = {"-u PARTICLES_GL"};
+  for (GlBackend backend : builtBackends()) environments.push_back("PARTICLES_GL=" + std::string(glBackendName(backend)));
+  for (const std::string& environment : environments) {
     CAPTURE(environment);
     const Result r = s.run("render s.yaml -o cpu.png --at 0.5 --verbose", environment);
     REQUIRE_MESSAGE(r.code == 0, r.err);
