@@ -44,11 +44,12 @@ struct Renderer::Impl {
   // Members in the order they are made: the program is compiled in the context, current once made.
   RenderOptions options;
   Theme colors;
-  // Whether every frame is drawn on the cpu path: the options' raster path and the GPU request
-  // decide it (rasterTaken), once for the renderer. Its image is made at the first frame; it is
-  // ready when drawn, so the renderer does not read ahead. It needs no GL context: none is made, so
-  // Mesa's driver is not loaded nor llvmpipe's threads started, and it draws where GL cannot start.
-  const bool onCpu;
+  // The path every frame is drawn on: the options' raster path and the GPU request decide it
+  // (rasterTaken), once for the renderer. On the cpu path the image is made at the first frame and
+  // is ready when drawn, so the renderer does not read ahead; and it needs no GL context: none is
+  // made, so Mesa's driver is not loaded nor llvmpipe's threads started, and it draws where GL
+  // cannot start.
+  const Raster taken;
   std::unique_ptr<GlContext> context;    // none on the cpu path
   std::optional<ShaderProgram> program;  // with the context
   ShapeMesh mesh;  // the frame's triangles, storage reused from frame to frame
@@ -56,14 +57,13 @@ struct Renderer::Impl {
   std::unique_ptr<TileProgram> tiles;  // made when first needed
   std::unique_ptr<ResidentProgram> resident;  // on the resident path
   std::vector<float> pixels;                  // its particles' positions in pixels
-  const bool gpu;                             // a GPU was asked for: automatic draws resident
   Image straight;                             // a transparent frame with its colour unpremultiplied
   CompositedFrame composited;
   int submitted = 0;  // frames submitted and not yet collected
 
   Impl(const RenderOptions& o, const GlRequest& gl)
-      : options(o), colors(theme(o.themeName)), onCpu(rasterTaken(o.raster, gl.gpu) == Raster::cpu), gpu(gl.gpu) {
-    if (onCpu) {
+      : options(o), colors(theme(o.themeName)), taken(rasterTaken(o.raster, gl.gpu)) {
+    if (onCpu()) {
       // The request is still checked, so that a bad one fails alike on every path.
       validate(gl);
       if (gl.gpu) {
@@ -96,6 +96,8 @@ struct Renderer::Impl {
     resident->drawParticles(look);
     program->draw(mesh, breaks.particlesAt, mesh.vertices().size());
   }
+
+  bool onCpu() const { return taken == Raster::cpu; }
 
   // The frame on the cpu path: its shapes' records built and binned on the pool, then composited.
   void drawCpu(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
@@ -165,14 +167,13 @@ void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* po
   // cpu: asked for, or automatic without a GPU, where it costs less than llvmpipe drawing the same
   // frame (bench/README.md, "The cpu raster"); resident: asked for, or automatic with a GPU (what
   // the path is for).
-  if (m.onCpu) {
+  if (m.onCpu()) {
     m.drawCpu(frame, camera, pool);
     ++m.submitted;
     return;
   }
-  const Raster raster = rasterTaken(m.options.raster, m.gpu);
   const bool transparent = m.options.transparentBackground;
-  bool resident = raster == Raster::resident;
+  bool resident = m.taken == Raster::resident;
   if (resident) {
     m.context->beginFrame(m.colors.background, transparent);  // current, for a program made now
     if (!m.resident) {
@@ -194,7 +195,7 @@ const Image& Renderer::collect() {
   Impl& m = *impl_;
   if (m.submitted == 0) throw std::logic_error("Renderer::collect: no frame was submitted");
   --m.submitted;
-  const Image& image = m.onCpu ? m.composited.image : m.context->collectFrame();
+  const Image& image = m.onCpu() ? m.composited.image : m.context->collectFrame();
   if (!m.options.transparentBackground) return image;
   m.straight = image;
   unpremultiply(m.straight);
@@ -202,7 +203,7 @@ const Image& Renderer::collect() {
 }
 
 bool Renderer::readsAhead() const {
-  return !impl_->onCpu && impl_->context->readsAhead();
+  return !impl_->onCpu() && impl_->context->readsAhead();
 }
 
 const Image& Renderer::render(const Drawing& frame, const Camera& camera, WorkerPool* pool) {

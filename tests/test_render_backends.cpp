@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <optional>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -343,8 +342,7 @@ TEST_CASE("cli render --gpu: without a GPU, a clear error, exit 3 and no output"
 // driver, LLVM and OSMesa appear in only when a GL context is made.
 namespace {
 bool loaderStarted(const std::string& loaderLog, const std::string& library) {
-  std::istringstream lines(loaderLog);
-  for (std::string line; std::getline(lines, line);) {
+  for (const std::string& line : lines(loaderLog)) {
     if (contains(line, "calling init: ") && contains(line, library)) return true;
   }
   return false;
