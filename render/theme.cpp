@@ -42,9 +42,22 @@ Theme theme(ThemeName name) {
   };
 }
 
+namespace {
+
+// std::lround's value (halves away from zero) for |v| < 2^31, inline: g++ calls libm's for
+// std::lround, and mix runs for each channel of every spring of every frame. v − trunc(v) is
+// v's fraction, which a double holds exactly, so the comparisons with ±0.5 are exact.
+long roundHalfAwayFromZero(double v) {
+  const long whole = static_cast<long>(v);
+  const double fraction = v - static_cast<double>(whole);
+  return whole + (fraction >= 0.5 ? 1 : 0) - (fraction <= -0.5 ? 1 : 0);
+}
+
+}  // namespace
+
 Rgb mix(Rgb a, Rgb b, double t) {
   auto m = [t](unsigned char x, unsigned char y) {
-    return static_cast<unsigned char>(std::lround(double(x) + (double(y) - double(x)) * t));
+    return static_cast<unsigned char>(roundHalfAwayFromZero(double(x) + (double(y) - double(x)) * t));
   };
   return {m(a.r, b.r), m(a.g, b.g), m(a.b, b.b)};
 }

@@ -150,6 +150,36 @@ TEST_CASE("frame mesh: a spring's colour follows its strain") {
   CHECK(colorAt(0.05) == text(springColor(colors, 0.05, 0.4)));
 }
 
+TEST_CASE("theme: mix rounds each channel as std::lround does, halves away from zero") {
+  // Every pair of channel values against fractions that land on exact halves, just either side of
+  // them, and on whole levels; plus every t in steps of 1/1024.
+  std::vector<double> fractions = {0.0, 1.0, 0.5, 0.25, 0.75, 1.0 / 3.0, 2.0 / 3.0};
+  for (int k = 1; k < 1024; ++k) fractions.push_back(double(k) / 1024.0);
+  for (int level = 1; level < 255; ++level) {
+    const double half = (double(level) - 0.5) / 255.0;  // x = 0, y = 255: a level's lower half
+    fractions.insert(fractions.end(), {half, std::nextafter(half, 0.0), std::nextafter(half, 1.0)});
+  }
+  long checked = 0, halves = 0;
+  for (int x = 0; x < 256; x += 7) {
+    for (int y = 0; y < 256; y += 5) {
+      for (double t : fractions) {
+        const double exact = double(x) + (double(y) - double(x)) * t;
+        const auto expected = static_cast<unsigned char>(std::lround(exact));
+        const Rgb got = mix(Rgb{static_cast<unsigned char>(x), 0, 0}, Rgb{static_cast<unsigned char>(y), 0, 0}, t);
+        if (got.r != expected)
+          FAIL("mix(" << x << ", " << y << ", " << t << ") = " << int(got.r) << ", std::lround gives "
+                      << int(expected));
+        ++checked;
+        if (exact - std::floor(exact) == 0.5) ++halves;
+      }
+    }
+  }
+  CHECK(checked > 1'000'000);
+  CHECK(halves > 1000);  // the halves themselves were tried, not only values near them
+  // The channels are independent.
+  CHECK(mix(Rgb{0, 100, 255}, Rgb{255, 0, 0}, 0.5) == Rgb{128, 50, 128});
+}
+
 namespace {
 
 // A 2 px guide line through world (0.3, 0.4): the box around its quad, and where the camera puts
