@@ -5,24 +5,24 @@
 // advanced to a representative time), so simulation is outside the clock; System::draw() is called
 // inside it, as `particles render` does per frame.
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include <fmt/format.h>
-
+#include "core/drawing.hpp"
+#include "core/solver.hpp"
+#include "core/system.hpp"
+#include "core/worker_pool.hpp"
 #include "render/frame_mesh.hpp"
 #include "render/renderer.hpp"
 #include "render/tile_bins.hpp"
 #include "render/tile_composite.hpp"
-#include "core/drawing.hpp"
-#include "core/worker_pool.hpp"
-#include "core/system.hpp"
 #include "scenario/scenario.hpp"
-#include "core/solver.hpp"
 
 namespace {
 
@@ -100,36 +100,73 @@ BENCHMARK(BM_RenderLargeCloth)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
-// Building one frame of the 1000² cloth (scenarios/cloth_million.yaml, drawn as `bench/million.sh`
-// renders it: 0.1 px particles) for the tile path, without GL: System::draw, the shapes' records
-// (render/frame_mesh.hpp's buildFrameTiles) and their sort into tiles (TileBins::bin), on a pool of
-// the argument's threads (issue 42: 2 threads ≥ 1.8× one). The cloth is stepped 0.01 s first, so
-// that its springs are strained (coloured) as in a render.
-void BM_BuildFrameMillion(benchmark::State& state) {
-  const int threads = int(state.range(0));
-  scenario::Scenario s =
-      scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/cloth_million.yaml");
-  s.system.setThreads(threads);
-  Stepper(s.system, s.simulation.integrator, s.simulation.dt).advanceTo(0.01);
+// The 1000² cloth (scenarios/cloth_million.yaml) stepped 0.01 s on `threads` threads, so that its
+// springs are strained (coloured) as in a render, and how `bench/million.sh` renders it: 1280×720,
+// 4 samples, 0.1 px particles.
+struct MillionFrame {
+  scenario::Scenario scene;
   render::RenderOptions options;
-  options.width = 1280;
-  options.height = 720;
-  options.particleRadius = {0.1, render::Length::Unit::pixels};
-  const render::Theme colors = render::theme(options.themeName);
-  const render::Camera camera{s.render.viewCenter, s.render.viewHeight};
+  render::Theme colors;
+  render::Camera camera;
+};
+std::unique_ptr<MillionFrame> millionFrame(int threads) {
+  auto m = std::make_unique<MillionFrame>(MillionFrame{
+      scenario::loadScenarioFile(std::string(PARTICLES_SOURCE_DIR) + "/scenarios/cloth_million.yaml"), {}, {}, {}});
+  m->scene.system.setThreads(threads);
+  Stepper(m->scene.system, m->scene.simulation.integrator, m->scene.simulation.dt).advanceTo(0.01);
+  m->options.width = 1280;
+  m->options.height = 720;
+  m->options.msaa = 4;
+  m->options.particleRadius = {0.1, render::Length::Unit::pixels};
+  m->colors = render::theme(m->options.themeName);
+  m->camera = {m->scene.render.viewCenter, m->scene.render.viewHeight};
+  return m;
+}
+
+// Building one frame of the 1000² cloth for the tile path, without GL: System::draw, the shapes'
+// records (render/frame_mesh.hpp's buildFrameTiles) and their sort into tiles (TileBins::bin), on a
+// pool of the argument's threads (issue 42: 2 threads ≥ 1.8× one).
+void BM_BuildFrameMillion(benchmark::State& state) {
+  const auto m = millionFrame(int(state.range(0)));
+  System& system = m->scene.system;
   render::TileBins bins;
   Drawing frame;  // reused, as `particles render` does
   for (auto _ : state) {
-    s.system.draw(frame);
-    bins.reset(options.width, options.height);
-    render::buildFrameTiles(frame, camera, options, colors, bins, s.system.pool());
-    bins.bin(s.system.pool());
+    system.draw(frame);
+    bins.reset(m->options.width, m->options.height);
+    render::buildFrameTiles(frame, m->camera, m->options, m->colors, bins, system.pool());
+    bins.bin(system.pool());
     benchmark::DoNotOptimize(bins.items().data());
   }
   state.counters["shapes"] = double(bins.shapes().size());
   state.counters["listed"] = double(bins.items().size());
 }
 BENCHMARK(BM_BuildFrameMillion)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// Compositing that frame on the cpu path (render/tile_composite.hpp), its records and bins built
+// once, on a pool of the argument's threads: what a frame of `bench/million.sh` or the server
+// table's frames1000 row spends beyond building the frame.
+void BM_CompositeMillion(benchmark::State& state) {
+  const auto m = millionFrame(2);
+  System& system = m->scene.system;
+  render::TileBins bins;
+  Drawing frame;
+  system.draw(frame);
+  bins.reset(m->options.width, m->options.height);
+  render::buildFrameTiles(frame, m->camera, m->options, m->colors, bins, system.pool());
+  bins.bin(system.pool());
+  render::CompositedFrame image;
+  image.image = render::Image(m->options.width, m->options.height);
+  WorkerPool pool(int(state.range(0)));
+  for (auto _ : state) {
+    render::compositeTiles(bins, m->options.msaa, m->colors.background, false, image, &pool);
+    benchmark::DoNotOptimize(image.image.rgba.data());
+  }
+  state.counters["listed"] = double(bins.items().size());
+  state.counters["ns_per_listed"] = benchmark::Counter(double(state.iterations()) * double(bins.items().size()) * 1e-9,
+                                                       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_CompositeMillion)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 BENCHMARK_CAPTURE(BM_Render, cloth, std::string("cloth.yaml"), 2.5)
     ->Arg(1)
