@@ -32,11 +32,23 @@ Row splat(float v) {
   return Row{v, v, v, v};
 }
 
-// The next float above a finite t (std::nextafter(t, ∞) without a call into libm).
-float nextUp(float t) {
-  if (t == 0.0f) return std::numeric_limits<float>::denorm_min();
-  const auto bits = std::bit_cast<std::uint32_t>(t);
-  return std::bit_cast<float>(t > 0.0f ? bits + 1u : bits - 1u);
+Row loadRow(const float (&v)[4]) {
+  Row row;
+  std::memcpy(&row, v, sizeof row);
+  return row;
+}
+
+void storeRow(Row row, float (&v)[4]) {
+  std::memcpy(v, &row, sizeof row);
+}
+
+// The next float above each finite lane of t (std::nextafter(t, ∞) without a call into libm or a
+// branch): the bits one up for a positive lane, one down for a negative one, the least subnormal
+// (bits 1) for ±0.
+Row nextUp(Row t) {
+  const RowWord bits = std::bit_cast<RowWord>(t);
+  const RowWord moved = t > 0.0f ? bits + 1u : bits - 1u;
+  return std::bit_cast<Row>(t == 0.0f ? RowWord{1u, 1u, 1u, 1u} : moved);
 }
 
 Row lesser(Row a, Row b) {
@@ -60,25 +72,24 @@ struct Offsets {
 // edge that is not smoothed is decided at the pixel centre, by the same rule, for all its samples.
 template <int S>
 void convexCoverage(const ShapeRecord& r, Row x, float y0, const Offsets<S>& o, RowMask (&count)[kRows]) {
-  constexpr float kInfinity = std::numeric_limits<float>::infinity();
-  const unsigned smoothed = unsigned(r.texel[3][1]);
-  float b[4], centreAt[4], sampleAt[S][4];
+  // The four edges' thresholds side by side, edge k in lane k (one vector operation where there
+  // were four of each, and no branch): the same float operations lane by lane.
+  const Row a = loadRow(r.texel[0]), b = loadRow(r.texel[1]);
+  const RowWord edgeBit = {1u, 2u, 4u, 8u};
+  const RowMask tested = (RowWord(RowMask{} + int(r.texel[3][1])) & edgeBit) != 0u;
+  const RowMask topOrLeft = (a > 0.0f) | ((a == 0.0f) & (b > 0.0f));  // inward normal right, or down (y down)
+  // The least distance inside: the threshold itself, or the next float above it.
+  const auto least = [&](Row threshold) { return topOrLeft ? threshold : nextUp(threshold); };
+  const Row untested = splat(-std::numeric_limits<float>::infinity());
+  float centreAt[4], sampleAt[S][4];
+  storeRow(tested ? untested : least(splat(0.0f)), centreAt);
+  for (int s = 0; s < S; ++s) storeRow(tested ? least(-(a * o.x[s] + b * o.y[s])) : untested, sampleAt[s]);
   Row cx[4];  // c + a·x: the distance's part that is the same in every row
-  for (int k = 0; k < 4; ++k) {
-    const float a = r.texel[0][k];
-    b[k] = r.texel[1][k];
-    cx[k] = splat(r.texel[2][k]) + splat(a) * x;
-    const bool topOrLeft = a > 0.0f || (a == 0.0f && b[k] > 0.0f);  // inward normal right, or down (y down)
-    // The least distance inside: the threshold itself, or the next float above it.
-    auto least = [&](float threshold) { return topOrLeft ? threshold : nextUp(threshold); };
-    const bool tested = (smoothed >> k & 1u) != 0;
-    centreAt[k] = tested ? -kInfinity : least(0.0f);
-    for (int s = 0; s < S; ++s) sampleAt[s][k] = tested ? least(-(a * o.x[s] + b[k] * o.y[s])) : -kInfinity;
-  }
+  for (int k = 0; k < 4; ++k) cx[k] = splat(r.texel[2][k]) + splat(a[k]) * x;
   for (int row = 0; row < kRows; ++row) {
-    const float y = y0 + float(row);
+    const Row by = b * (y0 + float(row));
     Row d[4];
-    for (int k = 0; k < 4; ++k) d[k] = cx[k] + splat(b[k] * y);
+    for (int k = 0; k < 4; ++k) d[k] = cx[k] + splat(by[k]);
     const RowMask centreInside = (d[0] >= centreAt[0]) & (d[1] >= centreAt[1]) & (d[2] >= centreAt[2]) &
                                  (d[3] >= centreAt[3]);
     RowMask inside = RowMask{};
