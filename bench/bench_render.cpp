@@ -123,19 +123,25 @@ std::unique_ptr<MillionFrame> millionFrame(int threads) {
   return m;
 }
 
+// One frame of it into `bins`, as a render builds it: drawn, its records built and binned on the
+// cloth's threads.
+void buildMillionTiles(MillionFrame& m, Drawing& frame, render::TileBins& bins) {
+  System& system = m.scene.system;
+  system.draw(frame);
+  bins.reset(m.options.width, m.options.height);
+  render::buildFrameTiles(frame, m.camera, m.options, m.colors, bins, system.pool());
+  bins.bin(system.pool());
+}
+
 // Building one frame of the 1000² cloth for the tile path, without GL: System::draw, the shapes'
 // records (render/frame_mesh.hpp's buildFrameTiles) and their sort into tiles (TileBins::bin), on a
 // pool of the argument's threads (issue 42: 2 threads ≥ 1.8× one).
 void BM_BuildFrameMillion(benchmark::State& state) {
   const auto m = millionFrame(int(state.range(0)));
-  System& system = m->scene.system;
   render::TileBins bins;
   Drawing frame;  // reused, as `particles render` does
   for (auto _ : state) {
-    system.draw(frame);
-    bins.reset(m->options.width, m->options.height);
-    render::buildFrameTiles(frame, m->camera, m->options, m->colors, bins, system.pool());
-    bins.bin(system.pool());
+    buildMillionTiles(*m, frame, bins);
     benchmark::DoNotOptimize(bins.items().data());
   }
   state.counters["shapes"] = double(bins.shapes().size());
@@ -148,13 +154,9 @@ BENCHMARK(BM_BuildFrameMillion)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::
 // table's frames1000 row spends beyond building the frame.
 void BM_CompositeMillion(benchmark::State& state) {
   const auto m = millionFrame(2);
-  System& system = m->scene.system;
   render::TileBins bins;
   Drawing frame;
-  system.draw(frame);
-  bins.reset(m->options.width, m->options.height);
-  render::buildFrameTiles(frame, m->camera, m->options, m->colors, bins, system.pool());
-  bins.bin(system.pool());
+  buildMillionTiles(*m, frame, bins);
   render::CompositedFrame image;
   image.image = render::Image(m->options.width, m->options.height);
   WorkerPool pool(int(state.range(0)));

@@ -1,7 +1,6 @@
 #include "render/theme.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace particles::render {
 

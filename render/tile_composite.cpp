@@ -51,6 +51,11 @@ Row nextUp(Row t) {
   return std::bit_cast<Row>(t == 0.0f ? RowWord{1u, 1u, 1u, 1u} : moved);
 }
 
+// Whether any of the four lanes is true.
+bool anyLane(RowMask m) {
+  return (m[0] | m[1] | m[2] | m[3]) != 0;
+}
+
 Row lesser(Row a, Row b) {
   return a < b ? a : b;
 }
@@ -189,8 +194,7 @@ void compositeRows(const TileBins& bins, const Offsets<S>& o, Rgb background, bo
         // A shape listed here that covers none of the tile's samples (a thin spring's box reaches
         // tiles it misses; a 0.1 px particle covers a sample now and then) changes nothing: every
         // share below would be +0 and every transmitted factor 1.
-        const RowMask anyCount = count[0] | count[1] | count[2] | count[3];
-        if (!(anyCount[0] | anyCount[1] | anyCount[2] | anyCount[3])) continue;
+        if (!anyLane(count[0] | count[1] | count[2] | count[3])) continue;
         const auto code = std::uint32_t(r.texel[3][0]);
         const float shapeColor[3] = {float(code & 0xFFu), float(code >> 8 & 0xFFu), float(code >> 16 & 0xFFu)};
         RowMask showing = RowMask{};
@@ -204,7 +208,7 @@ void compositeRows(const TileBins& bins, const Offsets<S>& o, Rgb background, bo
           transmitted[row] *= 1.0f - alpha;
           showing |= transmitted[row] > 0.0f;
         }
-        if (!(showing[0] | showing[1] | showing[2] | showing[3])) break;
+        if (!anyLane(showing)) break;
       }
       for (int row = 0; row < rows; ++row) {
         // The shader's output, floor(colour + 0.5) / 255 and its alpha, as GL stores them in 8 bits.
