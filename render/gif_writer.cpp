@@ -190,6 +190,7 @@ void validateGifOptions(const FrameWriterOptions& o) {
   if (o.video.fps < 1)
     throw std::invalid_argument("GIF frame rate " + std::to_string(o.video.fps) + " is not positive");
   checkFps(outputFormat(OutputKind::gif), o.video.fps);
+  checkFrameSize(outputFormat(OutputKind::gif), o.width, o.height, o.alpha);
   if (o.width < 1 || o.height < 1 || o.width > 65535 || o.height > 65535) {
     throw std::invalid_argument("GIF size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                                 " is out of range");

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <cstdlib>
 #include <string>
 
+#include "core/worker_pool.hpp"
 #include "render/errors.hpp"
 #include "render/frame_memory.hpp"
 #if PARTICLES_WITH_EGL
@@ -112,6 +114,17 @@ const Image& GlContext::collectFrame() {
 
 std::unique_ptr<GlContext> makeGlContext(const GlRequest& request, int width, int height) {
   validate(request);
+  // Mesa keeps the threads of a display's rasteriser (llvmpipe's) from its first context on, and a
+  // fork()ed child has none of them: the child's first frame waited for them forever. So a process
+  // forked after GL was set up is refused a context, at once (the fork count: core/worker_pool.hpp).
+  static std::atomic<long> firstContextAtFork{-1};
+  long first = -1;
+  if (!firstContextAtFork.compare_exchange_strong(first, long(forkCount())) && first != long(forkCount())) {
+    throw RenderError(
+        "no GL context can be made in a process forked after its parent set GL up: the GL driver's threads stayed "
+        "in the parent. Draw here with the cpu raster (raster cpu, or auto without --gpu), or start this process "
+        "fresh instead of by fork() (Python: multiprocessing's 'spawn' or 'forkserver')");
+  }
   // LP_NUM_THREADS counts the threads besides the calling one: 0 rasterises on it.
   if (request.threads > 0 && std::getenv("LP_NUM_THREADS") == nullptr) {
     const std::string value = std::to_string(request.threads == 1 ? 0 : request.threads);

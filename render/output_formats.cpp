@@ -39,6 +39,7 @@ const std::array<OutputFormat, 5> kOutputFormats{{
      .splits = true,
      .joinedByConcat = true,
      .halvedChroma = "yuv420p",
+     .maxSide = 16384,
      .open = &openWriter<Mp4Writer>},
     {.kind = OutputKind::webm,
      .extension = ".webm",
@@ -55,6 +56,7 @@ const std::array<OutputFormat, 5> kOutputFormats{{
      .splits = false,
      .halvedChroma = "yuv420p",
      .halvedChromaAlpha = "yuva420p",
+     .maxSide = 65536,
      .open = &openWriter<WebmWriter>},
     {.kind = OutputKind::gif,
      .extension = ".gif",
@@ -69,6 +71,7 @@ const std::array<OutputFormat, 5> kOutputFormats{{
      // A 60 fps GIF would play at 10 fps in browsers; without --fps the demos' 60 become 30, every
      // other frame of the MP4 (render/gif_writer.hpp).
      .fpsCap = FpsCap{50, 30, "its delays are whole centiseconds, and browsers slow delays under 2 cs down to 10 cs"},
+     .maxSide = 65535,
      .open = &openWriter<GifWriter>},
     {.kind = OutputKind::pngSequence,
      .extension = "/",
@@ -202,6 +205,10 @@ void checkFormatOptions(const OutputFormat& format, const std::filesystem::path&
 }
 
 void checkFrameSize(const OutputFormat& format, int width, int height, bool alpha) {
+  if (format.maxSide > 0 && (width > format.maxSide || height > format.maxSide)) {
+    throw std::invalid_argument(fmt::format("{} ({}) frames are at most {} px a side; {}x{} is larger (write PNG frames)",
+                                            format.name, format.codec, format.maxSide, width, height));
+  }
   if (format.halvedChroma.empty() || (width >= 2 && height >= 2 && width % 2 == 0 && height % 2 == 0)) return;
   const std::string_view pixels = alpha && format.keepsAlpha ? format.halvedChromaAlpha : format.halvedChroma;
   throw std::invalid_argument(fmt::format(

@@ -61,6 +61,9 @@ struct OutputFormat {
   std::string_view halvedChroma = {};
   std::string_view halvedChromaAlpha = {};
   std::optional<FpsCap> fpsCap = std::nullopt;  // nothing: any rate the command line takes
+  // The widest and tallest frame its encoder takes, px (x264: 16384; VP9 stores 16 bits; GIF's
+  // screen is 16 bits); checkFrameSize refuses more before the encoder is opened.
+  int maxSide = 0;
   // One frame at a time given by --at (which is then required); every other format is a run of
   // frames, and refuses --at.
   bool oneFrameAt = false;
@@ -94,7 +97,7 @@ void checkAlpha(const OutputFormat& format, const std::filesystem::path& path, b
 // The frame rate against the format's cap (std::invalid_argument).
 void checkFps(const OutputFormat& format, int fps);
 // A frame size the format can store: even sides where its chroma is halved (std::invalid_argument,
-// suggesting the next even size).
+// suggesting the next even size), neither side past maxSide.
 void checkFrameSize(const OutputFormat& format, int width, int height, bool alpha);
 // The joined video of `particles concat`: a path of a format joinedByConcat (std::invalid_argument).
 void checkConcatOutput(const std::filesystem::path& path);

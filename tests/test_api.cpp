@@ -68,12 +68,12 @@ TEST_CASE("api: a scenario loads with its settings, and set() takes --set's key 
   CHECK(cloth.dt() == 0.01);
   CHECK(cloth.particleCount() == 625);
   CHECK(cloth.bodyCount() == 0);
-  CHECK(cloth.validate().find("ok: 'cloth'") != std::string::npos);
+  CHECK(cloth.summary().find("ok: 'cloth'") != std::string::npos);
   {
     Scratch scratch;  // one text for both: scenario::checkSummary
     const Result r = scratch.run("check " + scenarioPath("cloth"));
     REQUIRE(r.code == 0);
-    CHECK(r.out == cloth.validate() + "\n");
+    CHECK(r.out == cloth.summary() + "\n");
   }
 
   cloth.set("dt", 0.005).set("integrator", "midpoint").set("simulation.duration", "2");
@@ -490,7 +490,15 @@ TEST_CASE("api: a bad video path, setting or frame is an ArgumentError") {
   const std::string mp4 = (scratch.dir / "v.mp4").string();
   CHECK_THROWS_AS(particles::VideoWriter((scratch.dir / "v.avi").string()), particles::ArgumentError);
   CHECK_THROWS_AS(particles::VideoWriter((scratch.dir / "v.png").string()), particles::ArgumentError);
-  CHECK_THROWS_AS(particles::VideoWriter(mp4, {.fps = 0}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::VideoWriter(mp4, {.fps = -1}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::VideoWriter(mp4, {.fps = 1001}), particles::ArgumentError);
+  // fps 0 is the format's default; GIF's default and its most are its own (no --fps in the message).
+  CHECK_NOTHROW(particles::VideoWriter(mp4, {.fps = 0}));
+  CHECK_NOTHROW(particles::VideoWriter((scratch.dir / "v.gif").string()));
+  CHECK_THROWS_WITH_AS(particles::VideoWriter((scratch.dir / "v.gif").string(), {.fps = 60}),
+                       "VideoWriter: fps for GIF must be 1 to 50 (or 0, the format's default): its delays are whole "
+                       "centiseconds, and browsers slow delays under 2 cs down to 10 cs, got 60",
+                       particles::ArgumentError);
   CHECK_THROWS_AS(particles::VideoWriter(mp4, {.crf = 99}), particles::ArgumentError);
   CHECK_THROWS_AS(particles::VideoWriter(mp4, {.preset = "warp"}), particles::ArgumentError);
   CHECK_THROWS_AS(particles::VideoWriter(mp4, {.keyintSeconds = std::nan("")}), particles::ArgumentError);

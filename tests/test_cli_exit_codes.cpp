@@ -153,7 +153,7 @@ TEST_CASE("cli exit codes: scene limits and --limit") {
       {"check grid.yaml --limit particles=599 --limit particles=600 --quiet", 0, ""},
       {"run grid.yaml --limit particle=5", 2,
        "command line: error: (--limit particle=5): unknown limit 'particle'; expected one of particles, springs, "
-       "constraints, endpoints, entries\n"},
+       "constraints, endpoints, entries, nodes\n"},
       {"stability grid.yaml --limit springs=-1", 2,
        "command line: error: (--limit springs=-1): expected a whole number from 1 to 1000000000 after '=', got "
        "'-1'\n"},

@@ -1,7 +1,6 @@
 // The rule of issue 39 (output/confined_folder.hpp): every file a command writes, replaces or
 // removes in a folder it owns lies beneath that folder once resolved. Each case puts a decoy outside
-// the folder and checks it untouched; and output/printable_text.hpp, which keeps control bytes
-// from files off the terminal.
+// the folder and checks it untouched.
 #include <doctest/doctest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -13,7 +12,6 @@
 #include "output/confined_folder.hpp"
 #include "output/output_error.hpp"
 #include "output/pending_output.hpp"
-#include "output/printable_text.hpp"
 
 using namespace particles::output;
 using particles::test::Scratch;
@@ -150,15 +148,4 @@ TEST_CASE("confined folder: relativeBeneath, by names") {
   CHECK(relativeBeneath("/a/../b/c.txt", "/a").empty());
   CHECK(relativeBeneath("/a", "/a").empty());
   CHECK(relativeBeneath("/ab/c", "/a").empty());
-}
-
-TEST_CASE("printable text: control bytes from files are escaped, text is kept") {
-  CHECK(printableText("plain name_t0.5\tand a\nline") == "plain name_t0.5\tand a\nline");
-  CHECK(printableText("\x1b[2Jcleared") == "\\x1b[2Jcleared");
-  CHECK(printableText("bell\a del\x7f") == "bell\\x07 del\\x7f");
-  CHECK(printableText("caf\xc3\xa9 \xe2\x86\x92 \xf0\x9f\x99\x82") == "caf\xc3\xa9 \xe2\x86\x92 \xf0\x9f\x99\x82");
-  CHECK(printableText("csi \xc2\x9b"
-                      "31m") == "csi \\xc2\\x9b31m");        // a C1 control
-  CHECK(printableText("bad \xff\xc3") == "bad \\xff\\xc3");  // not UTF-8, cut short
-  CHECK(printableText("overlong \xc0\xaf") == "overlong \\xc0\\xaf");
 }

@@ -42,7 +42,7 @@ BudgetRefusal refusalOf(const std::string& yaml, const SceneLimits& limits) {
 
 // What a loaded scene holds, in the budget's categories.
 SceneLimits countsOf(const System& system) {
-  SceneLimits n{0, 0, 0, 0, 0};
+  SceneLimits n{0, 0, 0, 0, 0, 0};  // endpoints, entries and nodes are not counted from the system
   n.particles = system.layout().numParticles + system.layout().numBodies;
   for (const auto& f : system.forces()) {
     if (f->kind() != "mouse") n.springs += static_cast<long long>(f->count());
@@ -85,7 +85,7 @@ TEST_CASE("scene budget: each demo loads at limits equal to what it builds and i
     const SceneLimits built = countsOf(loadScenarioFile(entry.path()).system);
     for (const SceneLimitName& l : kSceneLimitNames) {
       const long long n = built.*l.member;
-      if (n == 0) continue;  // endpoints and entries are not counted from the system
+      if (n == 0) continue;
       CAPTURE(l.name);
       SceneLimits exact;
       exact.*l.member = n;
@@ -204,8 +204,9 @@ TEST_CASE("scene budget: --limit NAME=N") {
   applyLimitOption(limits, "particles=1");
   CHECK(limits.particles == 1);
   const std::pair<const char*, const char*> bad[] = {
-      {"springs", "expected NAME=N with NAME one of particles, springs, constraints, endpoints, entries"},
-      {"spring=5", "unknown limit 'spring'; expected one of particles, springs, constraints, endpoints, entries"},
+      {"springs", "expected NAME=N with NAME one of particles, springs, constraints, endpoints, entries, nodes"},
+      {"spring=5", "unknown limit 'spring'; expected one of particles, springs, constraints, endpoints, entries, "
+                   "nodes"},
       {"springs=0", "expected a whole number from 1 to 1000000000 after '=', got '0'"},
       {"springs=1e6", "expected a whole number from 1 to 1000000000 after '=', got '1e6'"},
       {"springs=99999999999999999999999", "expected a whole number from 1 to 1000000000 after '=', got "
@@ -221,5 +222,25 @@ TEST_CASE("scene budget: --limit NAME=N") {
       CHECK(e.message() == message);
       CHECK(e.origin() == std::string("--limit ") + text);
     }
+  }
+}
+
+TEST_CASE("scene budget: the YAML nodes of a file, counted before any is built") {
+  // A map of 3 keys: the map, 3 keys, "a", a list, its map, its 2 keys, "p", a list and its 2 numbers.
+  const std::string text = "name: a\nparticles:\n  - {name: p, pos: [0, 0]}\n";
+  SceneLimits exact;
+  exact.nodes = 12;
+  CHECK_NOTHROW(loadScenarioText(text, "s.yaml", {}, exact));
+  SceneLimits below;
+  below.nodes = 11;
+  CHECK_THROWS_WITH_AS(loadScenarioText(text, "s.yaml", {}, below), doctest::Contains("--limit nodes=N"), ScenarioError);
+  // A flow list longer than the limit is refused at its bracket, before yaml-cpp's scanner holds it.
+  try {
+    loadScenarioText("name: a\ndescription: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13]\n", "s.yaml", {}, below);
+    FAIL("accepted");
+  } catch (const ScenarioError& e) {
+    CHECK(e.line() == 2);
+    CHECK(e.column() == 14);
+    CHECK(std::string(e.what()).find("more than 11 values, keys and lists") != std::string::npos);
   }
 }

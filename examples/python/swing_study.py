@@ -12,10 +12,10 @@ swings = []
 for scale in scales:
     springs = {"grids[0].springs.structural.ks": f"[{25 * scale}, {scale}]", "dt": 0.0025}  # RK4 stays stable
     sim = particles.Simulation(particles.Scenario.load(cloth, set=springs), threads=1)
-    corner = sim.index("cloth[24][12]")  # the bottom row's middle, where the mouse grabs
+    corner = sim.particle_index("cloth[24][12]")  # the bottom row's middle, where the mouse grabs
     rest_x, largest = sim.positions[corner, 0], 0.0
     sim.advance(3.5)  # the mouse lets go at t = 3.5 s
-    while sim.t < 10.0 - 1e-9:
+    while sim.time < 10.0 - 1e-9:
         sim.advance(0.02)
         largest = max(largest, abs(sim.positions[corner, 0] - rest_x))
     swings.append(largest)

@@ -23,7 +23,8 @@ class PARTICLES_API Scenario {
   // Reads and validates a scenario file. Throws ScenarioError (a missing or unreadable file, bad
   // YAML, a bad key or value), naming the file, line and column.
   static Scenario load(const std::string& path);
-  // The same from text in memory; `label` names it in messages, as a file would be named.
+  // The same from text in memory (at most 64 MiB, as a file); `label` names it in messages, as a
+  // file would be named.
   static Scenario fromText(std::string_view yaml, const std::string& label = "<text>");
 
   Scenario(const Scenario& other);
@@ -46,11 +47,12 @@ class PARTICLES_API Scenario {
   // What `particles check` prints for a valid scenario: its name, contents, integrator, dt,
   // duration and steps. A Scenario is checked whole when it is made and at each set(), so this
   // only reports.
-  std::string validate() const;
+  std::string summary() const;
 
-  const std::string& name() const;
-  const std::string& description() const;
-  const std::string& file() const;    // the path or label it was loaded from
+  // Copies: a later set() replaces what they were read from.
+  std::string name() const;
+  std::string description() const;
+  std::string file() const;           // the path or label it was loaded from
   std::string integrator() const;     // as scenarios name it: rk4, backward_euler, …
   double dt() const;                  // s
   double duration() const;            // simulated seconds

@@ -63,8 +63,15 @@ class PARTICLES_API Simulation {
   // n steps of dt (n ≥ 0). Throws SimulationError when a step blows up: the simulation stays at
   // the last good state.
   void step(long n = 1);
-  // Steps until time() is the last multiple of dt at or before time() + seconds (finite, ≥ 0).
+  // Moves the simulation's clock on by `seconds` (finite, ≥ 0) and steps to the last multiple of
+  // dt at or before it. The clock keeps what a step could not cover: advance(1.0 / fps) once per
+  // frame lands frame k on the step `particles render` draws at t = k / fps, whatever dt is (with
+  // dt = 0.005, 90 calls of 1/30 end at t = 3.0 s, not 2.7). step() and advanceTo() set the clock
+  // to the time they reach.
   void advance(double seconds);
+  // Steps to the last multiple of dt at or before t (finite, not behind time()): the step
+  // `particles render` draws at t, so advanceTo(k / fps) gives its frame k exactly.
+  void advanceTo(double t);
   // The same, asking keepGoing() before each step: when it returns false the call stops there, at
   // a whole step, and returns false (true when every step was taken). For a caller that must be
   // able to stop a long call: a GUI's cancel button, Python's Ctrl-C. The steps taken are the
@@ -72,6 +79,7 @@ class PARTICLES_API Simulation {
   using KeepGoing = std::function<bool()>;
   bool step(long n, const KeepGoing& keepGoing);
   bool advance(double seconds, const KeepGoing& keepGoing);
+  bool advanceTo(double t, const KeepGoing& keepGoing);
   double time() const;       // s: t₀ + k·dt after k steps, computed afresh (no drift from summing)
   long steps() const;        // steps taken since the simulation was made
   double dt() const;         // s

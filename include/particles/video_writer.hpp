@@ -5,8 +5,8 @@
 // that name untouched.
 //
 //   particles::VideoWriter video("cloth.mp4", {.fps = 30});
-//   for (int i = 0; i < 60; ++i) { sim.advance(1.0 / 30); video.write(renderer.render(sim)); }
-//   video.finish();
+//   for (int i = 0; i < 60; ++i) { video.write(renderer.render(sim)); sim.advance(1.0 / 30); }
+//   video.finish();   // the frames of `particles render cloth.yaml --fps 30 --duration 2`
 
 #include <memory>
 #include <string>
@@ -17,7 +17,9 @@
 namespace particles {
 
 struct VideoSettings {
-  int fps = 60;                  // frames per second of the video, 1 to 1000
+  // Frames per second of the video, 1 to 1000 (GIF: 1 to 50); 0: the format's default, as
+  // `particles render` takes it: 60, and 30 for GIF.
+  int fps = 0;
   int crf = -1;                  // quality (the encoder's constant rate factor); −1: the format's default
   std::string preset = "medium"; // MP4's x264 preset: ultrafast … placebo
   double keyintSeconds = 2.0;    // the longest time between keyframes, s
@@ -30,7 +32,8 @@ struct VideoSettings {
 class PARTICLES_API VideoWriter {
  public:
   // Checks the path's format and the settings (ArgumentError naming what is wrong); the file is
-  // opened at the first frame, whose size every frame must then have (MP4 and WebM: even sides).
+  // opened at the first frame, whose size every frame must then have (MP4 and WebM: even sides;
+  // MP4 at most 16384 px a side).
   VideoWriter(const std::string& path, const VideoSettings& settings = {});
   VideoWriter(VideoWriter&& other) noexcept;
   VideoWriter& operator=(VideoWriter&& other) noexcept;
@@ -40,11 +43,15 @@ class PARTICLES_API VideoWriter {
   ~VideoWriter();
 
   // Queues one frame for the encoder (copied). Throws ArgumentError for a frame of another size or
-  // malformed, OutputError when the file cannot be written (the writer is then aborted).
+  // malformed, or after abort(); OutputError when the file cannot be written (the writer is then
+  // aborted).
   void write(const Image& frame);
-  // Encodes what is queued and moves the video into place. Throws OutputError.
+  // Encodes what is queued and moves the video into place. Throws OutputError; ArgumentError after
+  // abort() or before any frame.
   void finish();
-  // Stops and removes everything written so far. Never throws; does nothing after finish().
+  // Stops and removes everything written so far; later write() and finish() calls are refused.
+  // Never throws; does nothing after finish(). Safe from another thread while write() or finish()
+  // runs: it waits for that call to end, then stops (a finish() that completed has its file).
   void abort() noexcept;
   long frames() const;  // frames written so far
 

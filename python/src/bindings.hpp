@@ -1,18 +1,27 @@
 #pragma once
 // The Python module particles._particles (pybind11), built on the public C++ API alone
 // (include/particles/): what Python sees of it is described in python/particles/_particles.pyi and
-// docs/api.md. One file per part: module.cpp (the module, errors, Scenario), simulation.cpp
-// (Simulation and its numpy views), rendering.cpp (Renderer, frames, VideoWriter), golden.cpp
-// (golden checks).
+// docs/api.md. One file per part: module.cpp (the module, errors, Scenario, the conversions below),
+// simulation.cpp (Simulation and its numpy views), rendering.cpp (Renderer, frames, VideoWriter),
+// golden.cpp (golden checks).
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
 #include <chrono>
+#include <exception>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#if defined(__GLIBCXX__)
+#include <cxxabi.h>
+#endif
 
 #include <particles/particles.hpp>
 
@@ -26,21 +35,109 @@ void bindSimulation(py::module_& module);
 void bindRendering(py::module_& module);
 void bindGolden(py::module_& module);
 
+// Text from the library as a Python str. Scenarios are read as bytes, so a name, a description or
+// a message quoting them may hold bytes that are not UTF-8 (a Latin-1 file): those are shown as
+// \xNN (backslashreplace) instead of the str failing with UnicodeDecodeError.
+py::str text(std::string_view bytes);
+// A path from the library as os.fsdecode gives it: bytes that are not UTF-8 as surrogates
+// (surrogateescape), so that the str names the same file when given back.
+py::str pathText(std::string_view bytes);
+// Each as text().
+py::list textList(const std::vector<std::string>& items);
+
+// A whole number from Python: an int or anything with __index__ (numpy's integers), not a bool
+// and not a float. One beyond `long long`'s range becomes its largest or smallest, which is out of
+// every range a call takes (the call then says so). ArgumentError "CALL: WHAT is a whole number,
+// not TYPE" otherwise.
+long long wholeNumber(const py::handle& value, const char* call, const char* what);
+// The same within int's range; ArgumentError naming the value otherwise.
+int wholeInt(const py::handle& value, const char* call, const char* what);
+// The name of a value's type, for messages.
+std::string typeName(const py::handle& value);
+
+// What pybind11 gives `Cls.__new__(Cls)`: a Python object whose C++ value no constructor made
+// (pybind11 allocates its storage on first use, uninitialised), so that reading it crashes. Every
+// class of this module is therefore a struct with this base, which keeps the address of each
+// object from its constructor to its destructor, and every method first asks require(): an
+// address no constructor made is refused with ArgumentError. Only addresses are compared.
+class Registered {
+ public:
+  Registered();
+  Registered(const Registered&);
+  Registered& operator=(const Registered&) = default;
+  ~Registered();
+  // ArgumentError unless `self` is a constructed object; `cls` names its Python class.
+  static void require(const void* self, const char* cls);
+};
+
+// A value the module hands to Python as a class of its own (a Scenario, an Energy, a golden check's
+// results), behind the check above.
+template <class T>
+struct Object : Registered {
+  T value;
+  explicit Object(T v) : value(std::move(v)) {}
+};
+// The value of a constructed Object, else ArgumentError (Registered::require).
+template <class T>
+T& valueOf(Object<T>& object, const char* cls) {
+  Registered::require(&object, cls);
+  return object.value;
+}
+template <class T>
+const T& valueOf(const Object<T>& object, const char* cls) {
+  Registered::require(&object, cls);
+  return object.value;
+}
+
+using ScenarioObject = Object<Scenario>;
+
 // A Python Simulation: the C++ one, shared with the numpy views of its state (a view keeps the
 // state's memory alive: one may outlive close()), and the renderer of its last render() call.
-struct SimulationHandle {
+struct SimulationHandle : Registered {
+  SimulationHandle(std::shared_ptr<Simulation> s) : simulation(std::move(s)) {}
   std::shared_ptr<Simulation> simulation;  // null after close()
   std::optional<std::pair<RenderSettings, Renderer>> lastRenderer;  // with the settings it was made with
 
-  // The simulation, or particles.Error when it was closed. `call` names the method.
+  // The simulation, or ArgumentError when it was closed (or never made). `call` names the method.
   const std::shared_ptr<Simulation>& get(const char* call) const;
 };
 
 // A frame as Python gets it: a particles.Frame (an (h, w, 4) uint8 numpy array) owning the pixels.
 py::object frameOf(Image&& image);
 // A numpy-like (h, w, 4) or (h, w, 3) uint8 array as an Image; ArgumentError for another shape or
-// dtype. `call` names the method in the message.
+// dtype, MemoryError when numpy cannot make its contiguous copy. `call` names the method.
 Image imageOf(const py::handle& frame, const char* call);
+
+// Runs call() with the GIL released and returns what it returns. The GIL is taken back by a plain
+// call, not by a destructor as py::gil_scoped_release does: at interpreter exit CPython ends a
+// daemon thread that asks for the GIL back (pthread_exit, unwinding with abi::__forced_unwind), and
+// that unwinding through a destructor, which is noexcept, aborted the process. Here the thread ends
+// quietly (pybind11 passes the unwinding on too).
+template <class Call>
+auto withoutGil(Call&& call) -> decltype(call()) {
+  using Result = decltype(call());
+  PyThreadState* const state = PyEval_SaveThread();
+  std::exception_ptr failure;
+  std::optional<std::conditional_t<std::is_void_v<Result>, char, Result>> result;
+  try {
+    if constexpr (std::is_void_v<Result>) {
+      call();
+    } else {
+      result.emplace(call());
+    }
+  }
+#if defined(__GLIBCXX__)
+  catch (abi::__forced_unwind&) {  // the thread is ending (InterruptCheck asked for the GIL): let it
+    throw;
+  }
+#endif
+  catch (...) {
+    failure = std::current_exception();
+  }
+  PyEval_RestoreThread(state);
+  if (failure) std::rethrow_exception(failure);
+  if constexpr (!std::is_void_v<Result>) return std::move(*result);
+}
 
 // Stops a long call at Ctrl-C: made with the GIL held, asked without it between steps (from the
 // main thread only, where Python runs signal handlers) at most every 50 ms. When a handler raised,

@@ -12,50 +12,63 @@ namespace particles::python {
 
 using namespace pybind11::literals;
 
+namespace {
+
+// Each result as a Python object of its own (a copy).
+template <class T>
+py::list objectsOf(const std::vector<T>& results) {
+  py::list out;
+  for (const T& r : results) out.append(py::cast(Object<T>(r)));
+  return out;
+}
+
+}  // namespace
+
 void bindGolden(py::module_& module) {
-  py::class_<golden::FrameCheck>(module, "FrameCheck", "One frame's result of a golden check (particles.golden.check).")
-      .def_readonly("name", &golden::FrameCheck::name, "The frame's name in the manifest (cloth_t2.5).")
-      .def_readonly("scenario", &golden::FrameCheck::scenario, "Its scenario, as the manifest writes it.")
-      .def_readonly("time", &golden::FrameCheck::time, "Its time, s, as the manifest writes it.")
-      .def_readonly("control", &golden::FrameCheck::control, "An `expect: differ` control: passes when it differs.")
-      .def_readonly("outcome", &golden::FrameCheck::outcome, "'passed', 'failed', 'missing' or 'error'.")
-      .def_readonly("message", &golden::FrameCheck::message, "Why, in one line; '' when it passed.")
-      .def_readonly("differing", &golden::FrameCheck::differing, "Pixels beyond the threshold.")
-      .def_readonly("pixels", &golden::FrameCheck::pixels, "Pixels compared: width × height.")
-      .def_readonly("largest", &golden::FrameCheck::largest, "The largest channel difference, 0 to 255.")
-      .def_readonly("actual", &golden::FrameCheck::actual, "The frame drawn, relative to the report folder ('' when not kept).")
-      .def_readonly("expected", &golden::FrameCheck::expected, "The reference, as kept in the report folder.")
-      .def_readonly("diff", &golden::FrameCheck::diff, "The difference picture, as kept in the report folder.")
-      .def_readonly("reproduce", &golden::FrameCheck::reproduce, "Shell commands that reproduce the result.")
-      .def("__repr__", [](const golden::FrameCheck& f) { return "<FrameCheck " + f.name + ": " + f.outcome + ">"; });
-  py::class_<golden::StateCheck>(module, "StateCheck", "One state's result of a golden check (particles.golden.check).")
-      .def_readonly("name", &golden::StateCheck::name, "The state's name in the manifest.")
-      .def_readonly("scenario", &golden::StateCheck::scenario, "Its scenario, as the manifest writes it.")
-      .def_readonly("times", &golden::StateCheck::times, "Its times, as the manifest writes them.")
-      .def_readonly("outcome", &golden::StateCheck::outcome, "'passed', 'failed', 'missing' or 'error'.")
-      .def_readonly("message", &golden::StateCheck::message, "Why, in one line; '' when it passed.")
-      .def_readonly("values", &golden::StateCheck::values, "Values compared.")
-      .def_readonly("point", &golden::StateCheck::point, "The first value beyond its tolerance (else the largest): its point.")
-      .def_readonly("quantity", &golden::StateCheck::quantity, "... its quantity: x, y, vx, vy, angle or omega.")
-      .def_readonly("expected", &golden::StateCheck::expected, "... the reference's value.")
-      .def_readonly("actual", &golden::StateCheck::actual, "... this run's value.")
-      .def_readonly("difference", &golden::StateCheck::difference, "... actual − expected.")
-      .def_readonly("tolerance", &golden::StateCheck::tolerance, "... the tolerance it was held to.")
-      .def_readonly("reproduce", &golden::StateCheck::reproduce, "Shell commands that reproduce the result.")
-      .def("__repr__", [](const golden::StateCheck& s) { return "<StateCheck " + s.name + ": " + s.outcome + ">"; });
-  py::class_<golden::Report>(module, "GoldenReport", "What a golden check found (particles.golden.check).")
-      .def_readonly("frames", &golden::Report::frames, "Each frame's FrameCheck, in manifest order.")
-      .def_readonly("states", &golden::Report::states, "Each state's StateCheck, in manifest order.")
-      .def_readonly("passed", &golden::Report::passed, "How many checks passed.")
-      .def_readonly("failed", &golden::Report::failed, "How many failed.")
-      .def_readonly("missing", &golden::Report::missing, "How many have no reference yet.")
-      .def_readonly("errors", &golden::Report::errors, "How many could not be checked.")
-      .def_readonly("bad_reference", &golden::Report::badReference, "A reference was not a usable file.")
-      .def_readonly("html", &golden::Report::html, "report.html's path: expected, actual and diff of each failure.")
-      .def_readonly("summary", &golden::Report::summary, "The line `particles golden check` prints last.")
-      .def_property_readonly("all_passed", &golden::Report::allPassed, "Every check passed.")
-      .def("__bool__", &golden::Report::allPassed)
-      .def("__repr__", [](const golden::Report& r) { return "<GoldenReport " + r.summary + ">"; });
+  py::class_<Object<golden::FrameCheck>>(module, "FrameCheck", "One frame's result of a golden check (particles.golden.check).")
+      .def_property_readonly("name", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.name); }, "The frame's name in the manifest (cloth_t2.5).")
+      .def_property_readonly("scenario", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.scenario); }, "Its scenario, as the manifest writes it.")
+      .def_property_readonly("time", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.time); }, "Its time, s, as the manifest writes it.")
+      .def_property_readonly("control", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").control; }, "An `expect: differ` control: passes when it differs.")
+      .def_property_readonly("outcome", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.outcome); }, "'passed', 'failed', 'missing' or 'error'.")
+      .def_property_readonly("message", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.message); }, "Why, in one line; '' when it passed.")
+      .def_property_readonly("differing", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").differing; }, "Pixels beyond the threshold.")
+      .def_property_readonly("pixels", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").pixels; }, "Pixels compared: width × height.")
+      .def_property_readonly("largest", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").largest; }, "The largest channel difference, 0 to 255.")
+      .def_property_readonly("actual", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return pathText(c.actual); }, "The frame drawn, relative to the report folder ('' when not kept).")
+      .def_property_readonly("expected", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return pathText(c.expected); }, "The reference, as kept in the report folder.")
+      .def_property_readonly("diff", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return pathText(c.diff); }, "The difference picture, as kept in the report folder.")
+      .def_property_readonly("reproduce", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return textList(c.reproduce); }, "Shell commands that reproduce the result.")
+      .def("__repr__", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& f = valueOf(o, "FrameCheck"); return text("<FrameCheck " + f.name + ": " + f.outcome + ">"); });
+  py::class_<Object<golden::StateCheck>>(module, "StateCheck", "One state's result of a golden check (particles.golden.check).")
+      .def_property_readonly("name", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.name); }, "The state's name in the manifest.")
+      .def_property_readonly("scenario", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.scenario); }, "Its scenario, as the manifest writes it.")
+      .def_property_readonly("times", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return textList(c.times); }, "Its times, as the manifest writes them.")
+      .def_property_readonly("outcome", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.outcome); }, "'passed', 'failed', 'missing' or 'error'.")
+      .def_property_readonly("message", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.message); }, "Why, in one line; '' when it passed.")
+      .def_property_readonly("values", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").values; }, "Values compared.")
+      .def_property_readonly("point", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.point); }, "The first value beyond its tolerance (else the largest): its point.")
+      .def_property_readonly("quantity", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.quantity); }, "... its quantity: x, y, vx, vy, angle or omega.")
+      .def_property_readonly("expected", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").expected; }, "... the reference's value.")
+      .def_property_readonly("actual", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").actual; }, "... this run's value.")
+      .def_property_readonly("difference", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").difference; }, "... actual − expected.")
+      .def_property_readonly("tolerance", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").tolerance; }, "... the tolerance it was held to.")
+      .def_property_readonly("reproduce", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return textList(c.reproduce); }, "Shell commands that reproduce the result.")
+      .def("__repr__", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& s = valueOf(o, "StateCheck"); return text("<StateCheck " + s.name + ": " + s.outcome + ">"); });
+  py::class_<Object<golden::Report>>(module, "GoldenReport", "What a golden check found (particles.golden.check).")
+      .def_property_readonly("frames", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").frames); }, "Each frame's FrameCheck, in manifest order.")
+      .def_property_readonly("states", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").states); }, "Each state's StateCheck, in manifest order.")
+      .def_property_readonly("passed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").passed; }, "How many checks passed.")
+      .def_property_readonly("failed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").failed; }, "How many failed.")
+      .def_property_readonly("missing", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").missing; }, "How many have no reference yet.")
+      .def_property_readonly("errors", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").errors; }, "How many could not be checked.")
+      .def_property_readonly("bad_reference", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").badReference; }, "A reference was not a usable file.")
+      .def_property_readonly("html", [](const Object<golden::Report>& o) { const golden::Report& c = valueOf(o, "GoldenReport"); return pathText(c.html); }, "report.html's path: expected, actual and diff of each failure.")
+      .def_property_readonly("summary", [](const Object<golden::Report>& o) { const golden::Report& c = valueOf(o, "GoldenReport"); return text(c.summary); }, "The line `particles golden check` prints last.")
+      .def_property_readonly(
+          "all_passed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").allPassed(); }, "Every check passed.")
+      .def("__bool__", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").allPassed(); })
+      .def("__repr__", [](const Object<golden::Report>& o) { const golden::Report& r = valueOf(o, "GoldenReport"); return text("<GoldenReport " + r.summary + ">"); });
 
   module.def(
       "_golden_check",
@@ -72,8 +85,7 @@ void bindGolden(py::module_& module) {
         options.threshold = threshold;
         options.maxShare = maxShare;
         options.jobs = jobs;
-        py::gil_scoped_release released;
-        return golden::check(manifest, options);
+        return Object<golden::Report>(withoutGil([&] { return golden::check(manifest, options); }));
       },
       "manifest"_a, "output"_a, "only"_a, "shard"_a, "gl"_a, "gpu"_a, "raster"_a, "threshold"_a, "max_share"_a,
       "jobs"_a,

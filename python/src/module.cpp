@@ -1,9 +1,13 @@
-// particles._particles: the module, its exceptions and Scenario (python/src/bindings.hpp).
+// particles._particles: the module, its exceptions, Scenario, and the conversions every part uses
+// (python/src/bindings.hpp).
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <climits>
 #include <cmath>
 #include <filesystem>
+#include <mutex>
+#include <set>
 #include <string>
 #include <string_view>
 
@@ -34,40 +38,147 @@ PyObject* newExceptionClass(py::module_& module, const char* name, const char* d
 }
 
 // Raises `cls(what)` with the given attributes set on the exception.
-void raise(PyObject* cls, const char* what, const py::dict& attributes = {}) {
-  py::object exception = py::reinterpret_borrow<py::object>(cls)(what);
+void raise(PyObject* cls, std::string_view what, const py::dict& attributes = {}) {
+  py::object exception = py::reinterpret_borrow<py::object>(cls)(text(what));
   for (auto [name, value] : attributes) py::setattr(exception, name, value);
   PyErr_SetObject(cls, exception.ptr());
 }
 
-// A value Python passes to Scenario.set, as the text `--set` takes; ArgumentError for other types.
-std::string settingText(std::string_view path, const py::handle& value) {
-  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::int_>(value)) return py::str(value).cast<std::string>();
-  if (py::isinstance<py::float_>(value)) {
-    const double number = value.cast<double>();
-    if (!std::isfinite(number)) {
-      throw ArgumentError("Scenario.set: " + std::string(path) + " must be finite, got " + py::repr(value).cast<std::string>());
-    }
-    return py::repr(value).cast<std::string>();  // the shortest text that reads back as the same double
-  }
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
-  throw ArgumentError("Scenario.set: the value of " + std::string(path) + " must be a str, int, float or bool, not " +
-                      py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>());
+// Python's decoding of library text with an error handler; a failure here would only be out of
+// memory, which pybind11 reports as MemoryError.
+py::str decoded(std::string_view bytes, const char* errors) {
+  PyObject* str = PyUnicode_DecodeUTF8(bytes.data(), Py_ssize_t(bytes.size()), errors);
+  if (str == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(str);
 }
 
-void setAll(Scenario& scenario, const py::object& settings) {
-  if (settings.is_none()) return;
-  if (!py::isinstance<py::dict>(settings)) {
-    throw ArgumentError("Scenario: set= takes a dict of key path → value, not " +
-                        py::str(py::type::handle_of(settings).attr("__name__")).cast<std::string>());
+// The deepest a Scenario.set value's lists and dicts may nest: a list that holds itself is
+// refused instead of recursing until the stack runs out.
+constexpr int kMostNesting = 64;
+
+// A str as a YAML double-quoted scalar: `"` and `\` escaped, control characters as \xNN or \uNNNN,
+// everything else as its UTF-8.
+void appendQuoted(std::string& out, const py::handle& str, std::string_view path) {
+  Py_ssize_t size = 0;
+  const char* utf8 = PyUnicode_AsUTF8AndSize(str.ptr(), &size);
+  if (utf8 == nullptr) {
+    PyErr_Clear();
+    throw ArgumentError("Scenario.set: a text in the value of " + std::string(path) +
+                        " is not valid Unicode (a lone surrogate)");
   }
-  for (auto [key, value] : settings.cast<py::dict>()) {
-    if (!py::isinstance<py::str>(key)) throw ArgumentError("Scenario: the keys of set= are key paths (str), like \"forces[0].ks\"");
-    const std::string path = key.cast<std::string>();
-    scenario.set(path, settingText(path, value));
+  out += '"';
+  for (const char c : std::string_view(utf8, size_t(size))) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (byte < 0x20 || byte == 0x7F) {
+      const char* const hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[byte >> 4];
+      out += hex[byte & 0xF];
+    } else {
+      out += c;
+    }
+  }
+  out += '"';
+}
+
+// A value Python gives Scenario.set as the YAML text --set would take, exactly: at the top a str
+// is YAML text as written (`"[50, 2]"`), inside a list or dict a str is a string; bool, int (or
+// anything with __index__), float (its repr, the shortest text that reads back as the same
+// double), None, lists and tuples, dicts and other mappings, and numpy's scalars and arrays (as
+// their .item() and .tolist(), which widen exactly). ArgumentError for anything else.
+void appendYaml(std::string& out, const py::handle& value, std::string_view path, int depth) {
+  if (depth > kMostNesting) {
+    throw ArgumentError("Scenario.set: the value of " + std::string(path) + " nests more than " +
+                        std::to_string(kMostNesting) + " lists or dicts deep");
+  }
+  static const py::handle numpyGeneric = py::object(py::module_::import("numpy").attr("generic")).release();
+  static const py::handle numpyArray = py::object(py::module_::import("numpy").attr("ndarray")).release();
+  static const py::handle mapping = py::object(py::module_::import("collections.abc").attr("Mapping")).release();
+  if (value.is_none()) {
+    out += depth == 0 ? "" : "null";  // at the top: no value, which the loader refuses by name
+  } else if (py::isinstance<py::bool_>(value)) {
+    out += value.ptr() == Py_True ? "true" : "false";
+  } else if (py::isinstance(value, numpyGeneric)) {
+    appendYaml(out, value.attr("item")(), path, depth);
+  } else if (py::isinstance(value, numpyArray)) {
+    appendYaml(out, value.attr("tolist")(), path, depth);
+  } else if (py::isinstance<py::float_>(value)) {
+    const double number = PyFloat_AsDouble(value.ptr());
+    if (!std::isfinite(number)) {
+      throw ArgumentError("Scenario.set: " + std::string(path) + " must be finite, got " +
+                          py::repr(value).cast<std::string>());
+    }
+    out += py::repr(value).cast<std::string>();
+  } else if (PyIndex_Check(value.ptr())) {
+    out += py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()))).cast<std::string>();
+  } else if (py::isinstance<py::str>(value)) {
+    if (depth == 0) {
+      out += value.cast<std::string>();
+    } else {
+      appendQuoted(out, value, path);
+    }
+  } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    out += '[';
+    bool first = true;
+    for (const py::handle item : value) {
+      if (!first) out += ", ";
+      first = false;
+      appendYaml(out, item, path, depth + 1);
+    }
+    out += ']';
+  } else if (py::isinstance(value, mapping)) {
+    out += '{';
+    bool first = true;
+    for (const py::handle item : value.attr("items")()) {
+      const py::tuple pair = py::reinterpret_borrow<py::tuple>(item);
+      if (!py::isinstance<py::str>(pair[0])) {
+        throw ArgumentError("Scenario.set: the keys of a dict in the value of " + std::string(path) + " are str, not " +
+                            typeName(pair[0]));
+      }
+      if (!first) out += ", ";
+      first = false;
+      appendQuoted(out, pair[0], path);
+      out += ": ";
+      appendYaml(out, pair[1], path, depth + 1);
+    }
+    out += '}';
+  } else {
+    throw ArgumentError("Scenario.set: the value of " + std::string(path) +
+                        " must be a str, int, float, bool, None, a list, tuple or dict of those, or a numpy scalar or "
+                        "array; not " + typeName(value));
   }
 }
+
+std::string settingText(std::string_view path, const py::handle& value) {
+  std::string out;
+  appendYaml(out, value, path, 0);
+  return out;
+}
+
+// set='s key paths and values, applied in order; any mapping (a dict, MappingProxyType).
+void setAll(Scenario& scenario, const py::object& settings) {
+  if (settings.is_none()) return;
+  if (!py::isinstance(settings, py::module_::import("collections.abc").attr("Mapping"))) {
+    throw ArgumentError("Scenario: set= takes a dict (or another mapping) of key path → value, not " +
+                        typeName(settings));
+  }
+  for (const py::handle item : settings.attr("items")()) {
+    const py::tuple pair = py::reinterpret_borrow<py::tuple>(item);
+    if (!py::isinstance<py::str>(pair[0])) {
+      throw ArgumentError("Scenario: the keys of set= are key paths (str), like \"forces[0].ks\", not " +
+                          typeName(pair[0]));
+    }
+    const std::string path = pair[0].cast<std::string>();
+    scenario.set(path, settingText(path, pair[1]));
+  }
+}
+
+// The Scenario behind a Python one (Registered::require).
+const Scenario& scenarioOf(const ScenarioObject& object) { return valueOf(object, "Scenario"); }
+Scenario& scenarioOf(ScenarioObject& object) { return valueOf(object, "Scenario"); }
 
 std::string describeScenario(const Scenario& scenario) {
   return "<particles.Scenario '" + scenario.name() + "' from " + scenario.file() + ": " + scenario.integrator() +
@@ -78,7 +189,71 @@ std::string describeScenario(const Scenario& scenario) {
 
 unsigned long mainThreadId = 0;
 
+// The constructed objects' addresses (Registered), under their mutex: objects are made and freed on
+// any thread (a frame's, a golden check's results).
+std::mutex registryMutex;
+std::set<const void*>& registry() {
+  static std::set<const void*>* const addresses = new std::set<const void*>;  // outlives every object
+  return *addresses;
+}
+
 }  // namespace
+
+Registered::Registered() {
+  const std::lock_guard lock(registryMutex);
+  registry().insert(this);
+}
+Registered::Registered(const Registered&) : Registered() {}
+Registered::~Registered() {
+  const std::lock_guard lock(registryMutex);
+  registry().erase(this);
+}
+
+void Registered::require(const void* self, const char* cls) {
+  {
+    const std::lock_guard lock(registryMutex);
+    if (registry().count(self) != 0) return;
+  }
+  throw ArgumentError(std::string("this particles.") + cls +
+                      " was never initialised (made by __new__ without __init__); make one by calling its class or "
+                      "the function that returns it");
+}
+
+py::str text(std::string_view bytes) { return decoded(bytes, "backslashreplace"); }
+py::str pathText(std::string_view bytes) { return decoded(bytes, "surrogateescape"); }
+
+py::list textList(const std::vector<std::string>& items) {
+  py::list out(items.size());
+  for (size_t i = 0; i < items.size(); ++i) out[i] = text(items[i]);
+  return out;
+}
+
+std::string typeName(const py::handle& value) {
+  return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
+}
+
+long long wholeNumber(const py::handle& value, const char* call, const char* what) {
+  if (py::isinstance<py::bool_>(value) || py::isinstance<py::float_>(value) || !PyIndex_Check(value.ptr())) {
+    throw ArgumentError(std::string(call) + ": " + what + " is a whole number, not " + typeName(value));
+  }
+  const auto number = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+  if (!number) throw py::error_already_set();
+  int overflow = 0;
+  const long long n = PyLong_AsLongLongAndOverflow(number.ptr(), &overflow);
+  if (overflow > 0) return LLONG_MAX;
+  if (overflow < 0) return LLONG_MIN;
+  if (n == -1 && PyErr_Occurred()) throw py::error_already_set();
+  return n;
+}
+
+int wholeInt(const py::handle& value, const char* call, const char* what) {
+  const long long n = wholeNumber(value, call, what);
+  if (n > INT_MAX || n < INT_MIN) {
+    throw ArgumentError(std::string(call) + ": " + what + " is out of range, got " +
+                        py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()))).cast<std::string>());
+  }
+  return int(n);
+}
 
 void rememberMainThread() {
   mainThreadId = py::module_::import("threading").attr("main_thread")().attr("ident").cast<unsigned long>();
@@ -93,8 +268,12 @@ bool InterruptCheck::keepGoing() {
   const auto now = std::chrono::steady_clock::now();
   if (now < next_) return true;
   next_ = now + std::chrono::milliseconds(50);
-  py::gil_scoped_acquire gil;
-  if (PyErr_CheckSignals() == 0) return true;
+  // The C API rather than py::gil_scoped_acquire: a thread ended at interpreter exit inside
+  // PyGILState_Ensure unwinds from here (withoutGil), with no destructor in the way.
+  const PyGILState_STATE gil = PyGILState_Ensure();
+  const bool signalled = PyErr_CheckSignals() != 0;
+  PyGILState_Release(gil);
+  if (!signalled) return true;
   interrupted_ = true;  // the handler's exception (KeyboardInterrupt) stays set for raiseIfInterrupted
   return false;
 }
@@ -111,7 +290,8 @@ void bindErrors(py::module_& module) {
   classes.scenarioError = newExceptionClass(
       module, "ScenarioError",
       "A scenario that cannot be loaded or a setting it does not take. Attributes: file, line and column (0 when "
-      "not from a place in the file), key_path (like 'forces[2].ks', or ''), reason (the message without the place).",
+      "not from a place in the file), key_path (like 'forces[2].ks', or ''), message (why, without the place), "
+      "origin (where the value came from: a set() call, a --set option; or '').",
       py::make_tuple(py::handle(classes.error), py::handle(PyExc_ValueError)));
   classes.simulationError = newExceptionClass(
       module, "SimulationError",
@@ -132,12 +312,12 @@ void bindErrors(py::module_& module) {
       if (thrown) std::rethrow_exception(thrown);
     } catch (const ScenarioError& e) {
       raise(classes.scenarioError, e.what(),
-            py::dict("file"_a = e.file(), "line"_a = e.line(), "column"_a = e.column(), "key_path"_a = e.keyPath(),
-                     "reason"_a = e.message()));
+            py::dict("file"_a = pathText(e.file()), "line"_a = e.line(), "column"_a = e.column(),
+                     "key_path"_a = text(e.keyPath()), "message"_a = text(e.message()), "origin"_a = text(e.origin())));
     } catch (const SimulationError& e) {
       raise(classes.simulationError, e.what(),
-            py::dict("step"_a = e.step(), "time"_a = e.time(), "integrator"_a = e.integrator(), "dt"_a = e.dt(),
-                     "reason"_a = e.reason()));
+            py::dict("step"_a = e.step(), "time"_a = e.time(), "integrator"_a = text(e.integrator()), "dt"_a = e.dt(),
+                     "reason"_a = text(e.reason())));
     } catch (const OutputError& e) {
       raise(classes.outputError, e.what());
     } catch (const ArgumentError& e) {
@@ -149,7 +329,7 @@ void bindErrors(py::module_& module) {
 }
 
 void bindScenario(py::module_& module) {
-  py::class_<Scenario>(module, "Scenario", R"doc(A scenario: what `particles run` reads from a YAML file, with settings changed
+  py::class_<ScenarioObject>(module, "Scenario", R"doc(A scenario: what `particles run` reads from a YAML file, with settings changed
 as `--set` changes them. A Simulation is made from it; changing the scenario afterwards does not
 change simulations made before.
 
@@ -159,50 +339,68 @@ change simulations made before.
       .def_static(
           "load",
           [](const std::filesystem::path& path, const py::object& set) {
-            Scenario scenario = Scenario::load(path.string());
+            // Reading may wait on a pipe's writer: the other Python threads go on meanwhile.
+            Scenario scenario = withoutGil([&] { return Scenario::load(path.string()); });
             setAll(scenario, set);
-            return scenario;
+            return ScenarioObject(std::move(scenario));
           },
           "path"_a, py::kw_only(), "set"_a = py::none(),
-          R"doc(Loads a scenario file (YAML). `set` is a dict of key path → value, applied in
+          R"doc(Loads a scenario file (YAML). `set` is a mapping of key path → value, applied in
 order as `--set KEY=VALUE` would be: key paths like "forces[2].ks", or the shorthands
 "integrator", "dt", "duration" and "implicit_solver". Raises ScenarioError naming the file, line,
-column and key.)doc")
+column and key. A FIFO with no writer is refused at once.)doc")
       .def_static(
           "from_text",
           [](std::string_view yaml, const std::string& label, const py::object& set) {
-            Scenario scenario = Scenario::fromText(yaml, label);
+            Scenario scenario = withoutGil([&] { return Scenario::fromText(yaml, label); });
             setAll(scenario, set);
-            return scenario;
+            return ScenarioObject(std::move(scenario));
           },
           "yaml"_a, "label"_a = "<text>", py::kw_only(), "set"_a = py::none(),
-          "A scenario from YAML text; `label` stands for the file name in messages. `set` as in load().")
+          "A scenario from YAML text (at most 64 MiB, as a file); `label` stands for the file name in messages. "
+          "`set` as in load().")
       .def(
           "set",
           [](py::object self, std::string_view path, const py::handle& value) {
-            self.cast<Scenario&>().set(path, settingText(path, value));
+            scenarioOf(self.cast<ScenarioObject&>()).set(path, settingText(path, value));
             return self;
           },
           "path"_a, "value"_a,
-          R"doc(Changes one setting as `--set PATH=VALUE` does (str, int, float or bool) and
-returns the scenario, so that calls chain. Checked at once: a bad key or value raises
-ScenarioError and leaves the scenario as it was.)doc")
-      .def("copy", [](const Scenario& scenario) { return Scenario(scenario); }, "An independent copy.")
-      .def("__copy__", [](const Scenario& scenario) { return Scenario(scenario); })
-      .def("__deepcopy__", [](const Scenario& scenario, const py::handle&) { return Scenario(scenario); }, "memo"_a)
-      .def("validate", &Scenario::validate,
-           "What `particles check` prints for it: a summary of a valid scenario. Raises ScenarioError otherwise.")
-      .def_property_readonly("name", &Scenario::name, "The scenario's name.")
-      .def_property_readonly("description", &Scenario::description, "Its description, or ''.")
-      .def_property_readonly("file", &Scenario::file, "The path it was loaded from, or from_text's label.")
-      .def_property_readonly("integrator", &Scenario::integrator, "The integrator, as scenarios name it (rk4, ...).")
-      .def_property_readonly("dt", &Scenario::dt, "The time step, s.")
-      .def_property_readonly("duration", &Scenario::duration, "The simulated seconds `particles run` covers.")
-      .def_property_readonly("steps", &Scenario::steps, "The steps of dt that cover the duration.")
-      .def_property_readonly("fps", &Scenario::fps, "Frames per simulated second when rendered.")
-      .def_property_readonly("particle_count", &Scenario::particleCount, "How many particles it has.")
-      .def_property_readonly("body_count", &Scenario::bodyCount, "How many rigid bodies it has.")
-      .def("__repr__", &describeScenario);
+          R"doc(Changes one setting as `--set PATH=VALUE` does and returns the scenario, so that
+calls chain. The value: a str is YAML text as --set takes it ("[50, 2]"); a bool, int, float
+(exactly: it reads back as the same double), None, list, tuple, dict or numpy scalar or array is
+written as the YAML of that value. Checked at once: a bad key or value raises ScenarioError and
+leaves the scenario as it was.)doc")
+      .def("copy", [](const ScenarioObject& s) { return ScenarioObject(scenarioOf(s)); }, "An independent copy.")
+      .def("__copy__", [](const ScenarioObject& s) { return ScenarioObject(scenarioOf(s)); })
+      .def(
+          "__deepcopy__", [](const ScenarioObject& s, const py::handle&) { return ScenarioObject(scenarioOf(s)); },
+          "memo"_a)
+      .def(
+          "summary", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return text(s.summary()); },
+          "What `particles check` prints for it: one line naming its contents, integrator, dt and duration.")
+      .def_property_readonly(
+          "name", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return text(s.name()); }, "The scenario's name.")
+      .def_property_readonly(
+          "description", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return text(s.description()); }, "Its description, or ''.")
+      .def_property_readonly(
+          "file", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return pathText(s.file()); },
+          "The path it was loaded from, or from_text's label.")
+      .def_property_readonly(
+          "integrator", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.integrator(); },
+          "The integrator, as scenarios name it (rk4, ...).")
+      .def_property_readonly("dt", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.dt(); }, "The time step, s.")
+      .def_property_readonly(
+          "duration", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.duration(); }, "The simulated seconds `particles run` covers.")
+      .def_property_readonly(
+          "steps", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.steps(); }, "The steps of dt that cover the duration.")
+      .def_property_readonly(
+          "fps", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.fps(); }, "Frames per simulated second when rendered.")
+      .def_property_readonly(
+          "particle_count", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.particleCount(); }, "How many particles it has.")
+      .def_property_readonly(
+          "body_count", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.bodyCount(); }, "How many rigid bodies it has.")
+      .def("__repr__", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return text(describeScenario(s)); });
 }
 
 }  // namespace particles::python

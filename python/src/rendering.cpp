@@ -21,10 +21,6 @@ namespace {
 // by the package when it imports this module.
 py::handle frameType;
 
-std::string typeName(const py::handle& value) {
-  return py::str(py::type::handle_of(value).attr("__name__")).cast<std::string>();
-}
-
 // render's keyword arguments as the API's settings; size None is the scenario's render.size (0 × 0).
 RenderSettings settingsOf(const py::object& size, std::string theme, int msaa, std::string background,
                           std::string raster, std::string gl, bool gpu) {
@@ -44,15 +40,24 @@ RenderSettings settingsOf(const py::object& size, std::string theme, int msaa, s
   return settings;
 }
 
-struct VideoHandle {
+struct VideoHandle : Registered {
+  VideoHandle(std::unique_ptr<VideoWriter> w, std::string p) : writer(std::move(w)), path(std::move(p)) {}
   std::unique_ptr<VideoWriter> writer;
   std::string path;
 };
 
-VideoWriter& writerOf(VideoHandle& handle, const char* call) {
-  if (!handle.writer) throw ArgumentError(std::string("VideoWriter.") + call + ": the writer was closed");
-  return *handle.writer;
+VideoHandle& handleOf(VideoHandle& handle) {
+  Registered::require(&handle, "VideoWriter");
+  return handle;
 }
+const VideoHandle& handleOf(const VideoHandle& handle) {
+  Registered::require(&handle, "VideoWriter");
+  return handle;
+}
+
+VideoWriter& writerOf(VideoHandle& handle) { return *handleOf(handle).writer; }
+
+Renderer& rendererOf(Object<Renderer>& renderer) { return valueOf(renderer, "Renderer"); }
 
 }  // namespace
 
@@ -83,11 +88,12 @@ Image imageOf(const py::handle& frame, const char* call) {
   if (array.shape(0) > 1 << 20 || array.shape(1) > 1 << 20) {
     throw ArgumentError(std::string(call) + ": a frame is at most 1048576 pixels a side");
   }
-  const auto contiguous = py::array_t<std::uint8_t, py::array::c_style>::ensure(array);
-  if (!contiguous) throw py::error_already_set();
+  // numpy's own copy when the array is not one block of rows (a slice, a broadcast view): its
+  // MemoryError, when it cannot allocate that, reaches the caller as it is.
+  const py::array contiguous = py::module_::import("numpy").attr("ascontiguousarray")(array);
   Image image{int(array.shape(1)), int(array.shape(0)), {}};
   const std::size_t pixels = std::size_t(image.width) * std::size_t(image.height);
-  const std::uint8_t* in = contiguous.data();
+  const auto* in = static_cast<const std::uint8_t*>(contiguous.data());
   if (array.shape(2) == 4) {
     image.rgba.assign(in, in + pixels * 4);
   } else {
@@ -108,11 +114,7 @@ void bindRendering(py::module_& module) {
       "_encode_png",
       [](const py::handle& frame, bool alpha) {
         Image image = imageOf(frame, "Frame.png");
-        std::vector<std::uint8_t> png;
-        {
-          py::gil_scoped_release released;
-          png = image.encodePng(alpha);
-        }
+        const std::vector<std::uint8_t> png = withoutGil([&] { return image.encodePng(alpha); });
         return py::bytes(reinterpret_cast<const char*>(png.data()), png.size());
       },
       "frame"_a, "alpha"_a = false, "The bytes of a PNG file of the frame.");
@@ -120,12 +122,11 @@ void bindRendering(py::module_& module) {
       "_save_png",
       [](const py::handle& frame, const std::filesystem::path& path, bool alpha) {
         Image image = imageOf(frame, "Frame.save");
-        py::gil_scoped_release released;
-        image.savePng(path.string(), alpha);
+        withoutGil([&] { image.savePng(path.string(), alpha); });
       },
       "frame"_a, "path"_a, "alpha"_a = false, "Writes the frame as a PNG, whole or not at all.");
 
-  py::class_<Renderer>(module, "Renderer", R"doc(Draws simulations off screen, as `particles render` does, into frames: (h, w, 4)
+  py::class_<Object<Renderer>>(module, "Renderer", R"doc(Draws simulations off screen, as `particles render` does, into frames: (h, w, 4)
 uint8 RGBA numpy arrays (particles.Frame). Simulation.render() keeps one for its last settings;
 a Renderer of your own can draw several simulations with one GL context.
 
@@ -134,8 +135,8 @@ a Renderer of your own can draw several simulations with one GL context.
 )doc")
       .def(py::init([](const py::object& size, std::string theme, int msaa, std::string background, std::string raster,
                        std::string gl, bool gpu) {
-             return Renderer(
-                 settingsOf(size, std::move(theme), msaa, std::move(background), std::move(raster), std::move(gl), gpu));
+             return Object<Renderer>(Renderer(
+                 settingsOf(size, std::move(theme), msaa, std::move(background), std::move(raster), std::move(gl), gpu)));
            }),
            py::kw_only(), "size"_a = py::none(), "theme"_a = "dark", "msaa"_a = 4, "background"_a = "theme",
            "raster"_a = "auto", "gl"_a = "auto", "gpu"_a = false,
@@ -145,17 +146,14 @@ dark or light; msaa: samples per pixel, 1, 2, 4, 8 or 16; background: theme, or 
 gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)doc")
       .def(
           "render",
-          [](Renderer& renderer, const SimulationHandle& handle) {
+          [](Object<Renderer>& object, const SimulationHandle& handle) {
+            Renderer& renderer = rendererOf(object);
             const std::shared_ptr<Simulation> simulation = handle.get("render");
-            Image image;
-            {
-              py::gil_scoped_release released;
-              image = renderer.render(*simulation);
-            }
-            return frameOf(std::move(image));
+            return frameOf(withoutGil([&] { return renderer.render(*simulation); }));
           },
           "simulation"_a, "The simulation's state now, drawn: a Frame (h, w, 4) uint8.")
-      .def_property_readonly("gl_description", &Renderer::glDescription,
+      .def_property_readonly(
+          "gl_description", [](Object<Renderer>& renderer) { return text(rendererOf(renderer).glDescription()); },
                              "The GL backend, device and renderer that drew the last frame ('' before the first; "
                              "'none (the cpu raster)' where no GL drew it).");
 
@@ -175,11 +173,7 @@ gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)
           Renderer renderer(settings);
           slot.emplace(std::move(settings), std::move(renderer));
         }
-        Image image;
-        {
-          py::gil_scoped_release released;
-          image = slot->second.render(*shared);
-        }
+        Image image = withoutGil([&] { return slot->second.render(*shared); });
         if (handle.simulation == shared) handle.lastRenderer = std::move(slot);
         return frameOf(std::move(image));
       },
@@ -195,37 +189,43 @@ exception, Ctrl-C, abort()) leaves nothing, and an existing file stays as it was
 
     with particles.VideoWriter("cloth.mp4", fps=30) as video:
         for _ in range(90):
-            sim.advance(1 / 30)
             video.write(sim.render(size=(640, 360)))
+            sim.advance(1 / 30)
 )doc")
-      .def(py::init([](const std::filesystem::path& path, int fps, const py::object& crf, std::string preset,
-                       double keyint, bool alpha, bool verbose) {
+      .def(py::init([](const std::filesystem::path& path, const py::object& fps, const py::object& crf,
+                       std::string preset, double keyintSeconds, bool alpha, bool verbose) {
              VideoSettings settings;
-             settings.fps = fps;
+             if (!fps.is_none()) {
+               settings.fps = wholeInt(fps, "VideoWriter", "fps (or None for the format's default)");
+               if (settings.fps < 1) {
+                 throw ArgumentError("VideoWriter: fps must be 1 or more, or None for the format's default; got " +
+                                     std::to_string(settings.fps));
+               }
+             }
              if (!crf.is_none()) {
-               if (!py::isinstance<py::int_>(crf)) throw ArgumentError("VideoWriter: crf is a whole number, or None");
-               settings.crf = crf.cast<int>();
-               if (settings.crf < 0) throw ArgumentError("VideoWriter: crf must be 0 or more, or None for the format's default");
+               const int quality = wholeInt(crf, "VideoWriter", "crf (or None for the format's default)");
+               if (quality < 0) throw ArgumentError("VideoWriter: crf must be 0 or more, or None for the format's default");
+               settings.crf = quality;  // the C++ constructor checks the format's range
              }
              settings.preset = std::move(preset);
-             settings.keyintSeconds = keyint;
+             settings.keyintSeconds = keyintSeconds;
              settings.alpha = alpha;
              settings.verbose = verbose;
-             return VideoHandle{std::make_unique<VideoWriter>(path.string(), settings), path.string()};
+             return VideoHandle(std::make_unique<VideoWriter>(path.string(), settings), path.string());
            }),
-           "path"_a, py::kw_only(), "fps"_a = 60, "crf"_a = py::none(), "preset"_a = "medium", "keyint"_a = 2.0,
-           "alpha"_a = false, "verbose"_a = false,
-           R"doc(path: a .mp4, .webm or .gif file; fps: frames per second (1 to 1000); crf:
-quality (the encoder's constant rate factor), None for the format's default; preset: MP4's x264
-preset; keyint: the longest time between keyframes, s; alpha: keep the frames' alpha (WebM only);
-verbose: libav's own messages on stderr.)doc")
+           "path"_a, py::kw_only(), "fps"_a = py::none(), "crf"_a = py::none(), "preset"_a = "medium",
+           "keyint_seconds"_a = 2.0, "alpha"_a = false, "verbose"_a = false,
+           R"doc(path: a .mp4, .webm or .gif file; fps: frames per second, 1 to 1000 (GIF: 1 to 50),
+or None for the format's default (60; GIF 30, as `particles render`); crf: quality (the encoder's
+constant rate factor), None for the format's default; preset: MP4's x264 preset; keyint_seconds:
+the longest time between keyframes, s; alpha: keep the frames' alpha (WebM only); verbose:
+libav's own messages on stderr.)doc")
       .def(
           "write",
           [](VideoHandle& handle, const py::handle& frame) {
-            VideoWriter& writer = writerOf(handle, "write");
+            VideoWriter& writer = writerOf(handle);
             const Image image = imageOf(frame, "VideoWriter.write");
-            py::gil_scoped_release released;
-            writer.write(image);
+            withoutGil([&] { writer.write(image); });
           },
           "frame"_a,
           "Adds a frame: an (h, w, 4) RGBA or (h, w, 3) RGB uint8 array, the size of the first (even sides for MP4 "
@@ -233,35 +233,39 @@ verbose: libav's own messages on stderr.)doc")
       .def(
           "finish",
           [](VideoHandle& handle) {
-            VideoWriter& writer = writerOf(handle, "finish");
-            py::gil_scoped_release released;
-            writer.finish();
+            VideoWriter& writer = writerOf(handle);
+            withoutGil([&] { writer.finish(); });
           },
           "Writes the rest and puts the file in place. OutputError if that fails (then nothing is left).")
       .def(
-          "abort", [](VideoHandle& handle) { if (handle.writer) handle.writer->abort(); },
-          "Stops without a file: what was written is removed.")
+          "abort",
+          [](VideoHandle& handle) {
+            VideoWriter& writer = writerOf(handle);
+            withoutGil([&] { writer.abort(); });  // waits for another thread's write() or finish()
+          },
+          "Stops without a file: what was written is removed, and later write() and finish() calls are refused. "
+          "Safe while another thread is in write() or finish(): it waits for that call to end.")
       .def_property_readonly(
-          "frames", [](const VideoHandle& handle) { return handle.writer ? handle.writer->frames() : 0L; },
+          "frames", [](const VideoHandle& handle) { return handleOf(handle).writer->frames(); },
           "Frames written so far.")
-      .def_property_readonly("path", [](const VideoHandle& handle) { return handle.path; }, "The video's path.")
+      .def_property_readonly(
+          "path", [](const VideoHandle& handle) { return pathText(handleOf(handle).path); }, "The video's path.")
       .def("__enter__", [](py::object self) { return self; })
       .def(
           "__exit__",
           [](VideoHandle& handle, const py::handle& type, const py::handle&, const py::handle&) {
-            if (!handle.writer) return false;
+            VideoWriter& writer = writerOf(handle);
             if (type.is_none()) {
-              VideoWriter& writer = *handle.writer;
-              py::gil_scoped_release released;
-              writer.finish();
+              withoutGil([&] { writer.finish(); });
             } else {
-              handle.writer->abort();
+              withoutGil([&] { writer.abort(); });
             }
             return false;
           },
           "exc_type"_a, "exc"_a, "traceback"_a, "Finishes the video, or aborts it when the block raised.")
-      .def("__repr__", [](const VideoHandle& handle) {
-        return "<particles.VideoWriter " + py::repr(py::str(handle.path)).cast<std::string>() + ", " +
+      .def("__repr__", [](const VideoHandle& given) {
+        const VideoHandle& handle = handleOf(given);
+        return "<particles.VideoWriter " + py::repr(pathText(handle.path)).cast<std::string>() + ", " +
                std::to_string(handle.writer ? handle.writer->frames() : 0) + " frames>";
       });
 }

@@ -2,6 +2,8 @@
 #include <pybind11/stl.h>
 
 #include <climits>
+#include <cstring>
+#include <type_traits>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -17,6 +19,8 @@ namespace {
 
 using SharedSimulation = std::shared_ptr<Simulation>;
 
+py::handle bodyDtype;  // x, y, angle, omega as float64: BodyState's layout
+
 // An (n, 2) float64 view of `values` (n × 2 doubles that `simulation` owns), read-only, that keeps
 // the simulation alive: its base is a capsule holding a share of it, and a capsule has no buffer
 // of its own, so numpy refuses to make the view writeable again.
@@ -25,28 +29,18 @@ py::array stateView(const SharedSimulation& simulation, std::span<const double> 
   const py::ssize_t rows = py::ssize_t(values.size() / 2);
   py::array view(py::dtype::of<double>(), {rows, py::ssize_t(2)},
                  {py::ssize_t(2 * sizeof(double)), py::ssize_t(sizeof(double))}, values.data(), keeper);
-  py::detail::array_proxy(view.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  view.attr("setflags")("write"_a = false);
   return view;
 }
 
-// A Python int as a C++ int for a call that checks its range: one beyond int's range becomes
-// INT_MAX or INT_MIN, which is out of every range such a call takes.
-int clampedToInt(const py::handle& value) {
-  int overflow = 0;
-  const long long n = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
-  if (overflow > 0 || n > INT_MAX) return INT_MAX;
-  if (overflow < 0 || n < INT_MIN) return INT_MIN;
-  return int(n);
-}
-
 // A particle named by its index or its name (the --trace names).
-int particleOf(const Simulation& simulation, const py::handle& particle) {
+int particleOf(const Simulation& simulation, const py::handle& particle, const char* call) {
   if (py::isinstance<py::str>(particle)) return simulation.particleIndex(particle.cast<std::string>());
-  if (py::isinstance<py::int_>(particle) && !py::isinstance<py::bool_>(particle)) {
-    return clampedToInt(particle);  // the C++ call checks the range and says it
+  if (py::isinstance<py::bool_>(particle) || !PyIndex_Check(particle.ptr())) {
+    throw ArgumentError(std::string(call) + ": a particle is named by its index (an int, numpy's too) or its name "
+                        "(str), not " + typeName(particle));
   }
-  throw ArgumentError("a particle is named by its index (int) or its name (str), not " +
-                      py::str(py::type::handle_of(particle).attr("__name__")).cast<std::string>());
+  return wholeInt(particle, call, "a particle's index");  // the C++ call checks the range and says it
 }
 
 Point pointOf(const py::handle& value, const char* what) {
@@ -55,8 +49,12 @@ Point pointOf(const py::handle& value, const char* what) {
     throw ArgumentError(std::string(what) + " takes (x, y): a sequence of two numbers");
   }
   const py::sequence pair = xy.cast<py::sequence>();
+  const auto number = [&](const py::handle& v) {
+    if (py::isinstance<py::bool_>(v) || py::isinstance<py::str>(v)) throw py::cast_error();
+    return v.cast<double>();  // a float, an int, numpy's scalars: anything with __float__
+  };
   try {
-    return Point{pair[0].cast<double>(), pair[1].cast<double>()};
+    return Point{number(pair[0]), number(pair[1])};
   } catch (const py::cast_error&) {
     throw ArgumentError(std::string(what) + " takes (x, y): a sequence of two numbers");
   }
@@ -64,30 +62,26 @@ Point pointOf(const py::handle& value, const char* what) {
 
 py::tuple tupleOf(Point p) { return py::make_tuple(p.x, p.y); }
 
+
 // A thread count: None is default_threads(); the C++ call checks the range and says it.
 int threadsOf(const py::object& threads, const char* call) {
   if (threads.is_none()) return defaultThreads();
-  if (!py::isinstance<py::int_>(threads) || py::isinstance<py::bool_>(threads)) {
-    throw ArgumentError(std::string(call) + ": threads is a whole number, or None for default_threads()");
-  }
-  return clampedToInt(threads);
+  return wholeInt(threads, call, "threads (or None for default_threads())");
 }
 
 // Runs a stepping call with the GIL released, stopping at Ctrl-C (InterruptCheck).
 template <class Call>
 void stepInterruptibly(const SharedSimulation& simulation, Call&& call) {
   InterruptCheck check;
-  {
-    py::gil_scoped_release released;
-    call(*simulation, [&check] { return check.keepGoing(); });
-  }
+  withoutGil([&] { call(*simulation, [&check] { return check.keepGoing(); }); });
   check.raiseIfInterrupted();
 }
 
 std::string describeSimulation(const SimulationHandle& handle) {
+  Registered::require(&handle, "Simulation");
   if (!handle.simulation) return "<particles.Simulation, closed>";
   const Simulation& s = *handle.simulation;
-  return "<particles.Simulation t = " + py::repr(py::float_(s.time())).cast<std::string>() + " s after " +
+  return "<particles.Simulation time = " + py::repr(py::float_(s.time())).cast<std::string>() + " s after " +
          std::to_string(s.steps()) + " steps: " + s.integrator() + ", dt = " + py::repr(py::float_(s.dt())).cast<std::string>() +
          " s, " + std::to_string(s.particleCount()) + " particles, " + std::to_string(s.bodyCount()) + " bodies, " +
          std::to_string(s.threads()) + " threads>";
@@ -96,18 +90,30 @@ std::string describeSimulation(const SimulationHandle& handle) {
 }  // namespace
 
 const std::shared_ptr<Simulation>& SimulationHandle::get(const char* call) const {
+  Registered::require(this, "Simulation");
   if (!simulation) throw ArgumentError(std::string("Simulation.") + call + ": the simulation was closed");
   return simulation;
 }
 
 void bindSimulation(py::module_& module) {
-  PYBIND11_NUMPY_DTYPE(BodyState, x, y, angle, omega);  // sim.bodies' fields
-  py::class_<Energy>(module, "Energy", "The energy now, J: kinetic, potential (gravity, springs, the mouse's spring, "
-                                       "the colliders' penalty) and their total.")
-      .def_readonly("kinetic", &Energy::kinetic, "The particles' and the rigid bodies' kinetic energy, J.")
-      .def_readonly("potential", &Energy::potential, "Gravity, springs, the mouse's spring, the colliders' penalty, J.")
-      .def_readonly("total", &Energy::total, "kinetic + potential, J.")
-      .def("__repr__", [](const Energy& e) {
+  // sim.bodies' fields, as a numpy dtype made from Python (PYBIND11_NUMPY_DTYPE reaches into pybind11's detail).
+  static_assert(sizeof(BodyState) == 4 * sizeof(double) && std::is_standard_layout_v<BodyState>);
+  py::list fields;
+  for (const char* field : {"x", "y", "angle", "omega"}) fields.append(py::make_tuple(field, "f8"));
+  bodyDtype = py::module_::import("numpy").attr("dtype")(fields).release();
+  py::class_<Object<Energy>>(module, "Energy",
+                             "The energy now, J: kinetic, potential (gravity, springs, the mouse's spring, the "
+                             "colliders' penalty) and their total.")
+      .def_property_readonly(
+          "kinetic", [](const Object<Energy>& e) { return valueOf(e, "Energy").kinetic; },
+          "The particles' and the rigid bodies' kinetic energy, J.")
+      .def_property_readonly(
+          "potential", [](const Object<Energy>& e) { return valueOf(e, "Energy").potential; },
+          "Gravity, springs, the mouse's spring, the colliders' penalty, J.")
+      .def_property_readonly(
+          "total", [](const Object<Energy>& e) { return valueOf(e, "Energy").total; }, "kinetic + potential, J.")
+      .def("__repr__", [](const Object<Energy>& object) {
+        const Energy& e = valueOf(object, "Energy");
         return "Energy(kinetic=" + py::repr(py::float_(e.kinetic)).cast<std::string>() +
                ", potential=" + py::repr(py::float_(e.potential)).cast<std::string>() +
                ", total=" + py::repr(py::float_(e.total)).cast<std::string>() + ")";
@@ -129,16 +135,19 @@ Stepping and rendering release the GIL: Python threads can drive simulations of 
 once. One Simulation is driven by one thread at a time; a second thread's call while one is under
 way raises particles.Error. Ctrl-C stops a long step() or advance() at a whole step.
 A Simulation is a context manager: `with particles.Simulation(s) as sim:` closes it at the end.)doc")
-      .def(py::init([](const Scenario& scenario, const py::object& threads) {
-             return SimulationHandle{std::make_shared<Simulation>(scenario, threadsOf(threads, "Simulation")), {}};
+      .def(py::init([](const ScenarioObject& scenario, const py::object& threads) {
+             const Scenario& s = valueOf(scenario, "Scenario");
+             return SimulationHandle(std::make_shared<Simulation>(s, threadsOf(threads, "Simulation")));
            }),
            "scenario"_a, "threads"_a = py::none(),
            "A simulation of `scenario` at t = 0 on `threads` threads (1 to 1024; None: default_threads()).")
       .def(
           "step",
-          [](SimulationHandle& handle, long n) {
+          [](SimulationHandle& handle, const py::handle& count) {
             const SharedSimulation simulation = handle.get("step");
-            stepInterruptibly(simulation, [n](Simulation& s, auto keepGoing) { s.step(n, keepGoing); });
+            const long long n = wholeNumber(count, "Simulation.step", "n");
+            const long steps = n > LONG_MAX ? LONG_MAX : n < LONG_MIN ? LONG_MIN : long(n);
+            stepInterruptibly(simulation, [steps](Simulation& s, auto keepGoing) { s.step(steps, keepGoing); });
           },
           "n"_a = 1,
           "Takes n steps of dt (n >= 0). Raises SimulationError when a step blows up; the simulation stays at the "
@@ -150,9 +159,20 @@ A Simulation is a context manager: `with particles.Simulation(s) as sim:` closes
             stepInterruptibly(simulation, [seconds](Simulation& s, auto keepGoing) { s.advance(seconds, keepGoing); });
           },
           "seconds"_a,
-          "Steps until t is the last multiple of dt at or before t + seconds (finite, >= 0).")
+          R"doc(Moves the simulation's clock on by `seconds` (finite, >= 0) and steps to the last
+multiple of dt at or before it. The clock keeps what a step could not cover, so advance(1 / fps)
+once per frame gives the frames of `particles render` at that fps, whatever dt is.)doc")
+      .def(
+          "advance_to",
+          [](SimulationHandle& handle, double t) {
+            const SharedSimulation simulation = handle.get("advance_to");
+            stepInterruptibly(simulation, [t](Simulation& s, auto keepGoing) { s.advanceTo(t, keepGoing); });
+          },
+          "t"_a,
+          "Steps to the last multiple of dt at or before time t, s (finite, not behind .time): the step "
+          "`particles render` draws at t, so advance_to(k / fps) is its frame k.")
       .def_property_readonly(
-          "t", [](const SimulationHandle& h) { return h.get("t")->time(); },
+          "time", [](const SimulationHandle& h) { return h.get("time")->time(); },
           "The simulated time, s: t0 + k*dt after k steps.")
       .def_property_readonly(
           "steps", [](const SimulationHandle& h) { return h.get("steps")->steps(); }, "Steps taken so far.")
@@ -193,28 +213,28 @@ view keeps the state's memory alive: after close() it still reads the last state
           "bodies",
           [](const SimulationHandle& h) {
             const std::vector<BodyState> bodies = h.get("bodies")->bodies();
-            py::array_t<BodyState> out(py::ssize_t(bodies.size()));
-            std::copy(bodies.begin(), bodies.end(), out.mutable_data());
+            py::array out = py::module_::import("numpy").attr("zeros")(bodies.size(), bodyDtype);
+            if (!bodies.empty()) std::memcpy(out.mutable_data(), bodies.data(), bodies.size() * sizeof(BodyState));
             return out;
           },
           "The rigid bodies now: a structured array (a copy) with fields x, y (m), angle (rad) and omega (rad/s).")
       .def(
           "position", [](const SimulationHandle& h, const py::handle& p) {
             const Simulation& s = *h.get("position");
-            return tupleOf(s.position(particleOf(s, p)));
+            return tupleOf(s.position(particleOf(s, p, "Simulation.position")));
           },
           "particle"_a, "A particle's (x, y), m; the particle by index or name.")
       .def(
           "velocity", [](const SimulationHandle& h, const py::handle& p) {
             const Simulation& s = *h.get("velocity");
-            return tupleOf(s.velocity(particleOf(s, p)));
+            return tupleOf(s.velocity(particleOf(s, p, "Simulation.velocity")));
           },
           "particle"_a, "A particle's (vx, vy), m/s; the particle by index or name.")
       .def(
           "set_position",
           [](SimulationHandle& h, const py::handle& p, const py::handle& xy) {
             Simulation& s = *h.get("set_position");
-            s.setPosition(particleOf(s, p), pointOf(xy, "Simulation.set_position"));
+            s.setPosition(particleOf(s, p, "Simulation.set_position"), pointOf(xy, "Simulation.set_position"));
           },
           "particle"_a, "xy"_a,
           "Moves a particle (by index or name) to (x, y) where the next step starts; constraints pull it back.")
@@ -222,7 +242,7 @@ view keeps the state's memory alive: after close() it still reads the last state
           "set_velocity",
           [](SimulationHandle& h, const py::handle& p, const py::handle& v) {
             Simulation& s = *h.get("set_velocity");
-            s.setVelocity(particleOf(s, p), pointOf(v, "Simulation.set_velocity"));
+            s.setVelocity(particleOf(s, p, "Simulation.set_velocity"), pointOf(v, "Simulation.set_velocity"));
           },
           "particle"_a, "velocity"_a, "Sets a particle's velocity (vx, vy), m/s.")
       .def_property_readonly(
@@ -230,25 +250,33 @@ view keeps the state's memory alive: after close() it still reads the last state
           "How many mice the scenario has (its `mouse` section).")
       .def(
           "set_mouse_target",
-          [](SimulationHandle& h, const py::handle& xy, int mouse) {
-            h.get("set_mouse_target")->setMouseTarget(pointOf(xy, "Simulation.set_mouse_target"), mouse);
+          [](SimulationHandle& h, const py::handle& xy, const py::handle& mouse) {
+            h.get("set_mouse_target")
+                ->setMouseTarget(pointOf(xy, "Simulation.set_mouse_target"),
+                                 wholeInt(mouse, "Simulation.set_mouse_target", "mouse"));
           },
           "xy"_a, "mouse"_a = 0,
           R"doc(Takes over a mouse of the scenario: from now on it pulls its grabbed point towards
 (x, y), its scripted path and time window replaced, until release_mouse(). A scenario without a
 mouse can be given one: Scenario.set("mouse", "[{grab: 'cloth[24][12]', from: 0, to: 1, path: [[0, 0]], ks: 2}]").)doc")
       .def(
-          "release_mouse", [](SimulationHandle& h, int mouse) { h.get("release_mouse")->releaseMouse(mouse); },
+          "release_mouse",
+          [](SimulationHandle& h, const py::handle& mouse) {
+            h.get("release_mouse")->releaseMouse(wholeInt(mouse, "Simulation.release_mouse", "mouse"));
+          },
           "mouse"_a = 0, "Lets the mouse go: it pulls no more.")
       .def(
           "mouse_target",
-          [](const SimulationHandle& h, int mouse) -> py::object {
-            const std::optional<Point> at = h.get("mouse_target")->mouseTarget(mouse);
+          [](const SimulationHandle& h, const py::handle& mouse) -> py::object {
+            const std::optional<Point> at =
+                h.get("mouse_target")->mouseTarget(wholeInt(mouse, "Simulation.mouse_target", "mouse"));
             if (!at) return py::none();
             return tupleOf(*at);
           },
           "mouse"_a = 0, "Where the mouse pulls now, (x, y); None while it holds no point.")
-      .def("energy", [](const SimulationHandle& h) { return h.get("energy")->energy(); }, "The energy now (Energy).")
+      .def(
+          "energy", [](const SimulationHandle& h) { return Object<Energy>(h.get("energy")->energy()); },
+          "The energy now (Energy).")
       .def(
           "constraint_error", [](const SimulationHandle& h) { return h.get("constraint_error")->constraintError(); },
           "The largest violation of a constraint now, m.")
@@ -256,14 +284,15 @@ mouse can be given one: Scenario.set("mouse", "[{grab: 'cloth[24][12]', from: 0,
           "penetration", [](const SimulationHandle& h) { return h.get("penetration")->penetration(); },
           "How deep the deepest point is inside a collider now, m.")
       .def_property_readonly(
-          "names", [](const SimulationHandle& h) { return h.get("names")->particleNames(); },
+          "particle_names", [](const SimulationHandle& h) { return textList(h.get("particle_names")->particleNames()); },
           "The particles' names, in index order: the names `particles run --trace` writes.")
       .def_property_readonly(
-          "body_names", [](const SimulationHandle& h) { return h.get("body_names")->bodyNames(); },
+          "body_names", [](const SimulationHandle& h) { return textList(h.get("body_names")->bodyNames()); },
           "The rigid bodies' names, in index order.")
       .def(
-          "index", [](const SimulationHandle& h, const std::string& name) { return h.get("index")->particleIndex(name); },
-          "name"_a, "The index of the particle of that name; ArgumentError (with the closest names) otherwise.")
+          "particle_index",
+          [](const SimulationHandle& h, const std::string& name) { return h.get("particle_index")->particleIndex(name); },
+          "name"_a, "The index of the particle of that name; ArgumentError (with the closest name) otherwise.")
       .def(
           "body_index",
           [](const SimulationHandle& h, const std::string& name) { return h.get("body_index")->bodyIndex(name); },
@@ -271,16 +300,23 @@ mouse can be given one: Scenario.set("mouse", "[{grab: 'cloth[24][12]', from: 0,
       .def(
           "close",
           [](SimulationHandle& h) {
+            Registered::require(&h, "Simulation");
             h.lastRenderer.reset();
             h.simulation.reset();
           },
           "Frees the simulation (views of its state keep their memory). Later calls raise ArgumentError.")
       .def_property_readonly(
-          "closed", [](const SimulationHandle& h) { return !h.simulation; }, "Whether close() was called.")
+          "closed",
+          [](const SimulationHandle& h) {
+            Registered::require(&h, "Simulation");
+            return !h.simulation;
+          },
+          "Whether close() was called.")
       .def("__enter__", [](py::object self) { return self; })
       .def(
           "__exit__",
           [](SimulationHandle& h, const py::handle&, const py::handle&, const py::handle&) {
+            Registered::require(&h, "Simulation");
             h.lastRenderer.reset();
             h.simulation.reset();
             return false;

@@ -8,6 +8,7 @@
 #include <particles/version.hpp>
 
 #include "api/guarded_call.hpp"
+#include "input/printable_text.hpp"
 #include "golden/check_report.hpp"
 #include "golden/results.hpp"
 #include "render/gl_backend.hpp"
@@ -29,15 +30,16 @@ ReportRequest requestOf(const std::string& manifest, const Options& o) {
   request.check.shard = shardFromText(o.shard, "shard");
   const auto backend = render::glBackendFromName(o.gl);
   if (!backend) {
-    throw ArgumentError(fmt::format("golden::check: gl takes {}, not '{}'", fmt::join(render::glBackendNames(), ", "), o.gl));
+    throw ArgumentError(fmt::format("golden::check: gl takes {}, not {}", fmt::join(render::glBackendNames(), ", "),
+                                    input::quotedValue(o.gl)));
   }
   request.check.gl = render::GlRequest{*backend, o.gpu};
   render::validate(request.check.gl);
   if (!o.raster.empty()) {
     const auto raster = render::rasterFromName(o.raster);
     if (!raster) {
-      throw ArgumentError(fmt::format("golden::check: raster takes {}, not '{}'", fmt::join(render::rasterNames(), ", "),
-                                      o.raster));
+      throw ArgumentError(fmt::format("golden::check: raster takes {}, not {}", fmt::join(render::rasterNames(), ", "),
+                                      input::quotedValue(o.raster)));
     }
     request.check.overrides.raster = *raster;
   }

@@ -11,6 +11,20 @@
 
 #include <particles/errors.hpp>
 
+// A thread that is ended while inside a call (pthread_exit, pthread_cancel: CPython ends a daemon
+// thread so when it asks for the GIL back during interpreter exit) unwinds with glibc's
+// abi::__forced_unwind, which a catch (...) must pass on: swallowed or replaced, it aborts the
+// process ("FATAL: exception not rethrown"). Put before a catch (...) that does not rethrow.
+#if defined(__GLIBCXX__)
+#include <cxxabi.h>
+#define PARTICLES_PASS_FORCED_UNWIND \
+  catch (abi::__forced_unwind&) {    \
+    throw;                           \
+  }
+#else
+#define PARTICLES_PASS_FORCED_UNWIND
+#endif
+
 namespace particles::api {
 
 // Rethrows the exception in flight as a particles::Error: the public types as they are (the
@@ -22,7 +36,7 @@ template <class Body>
 decltype(auto) guardedCall(std::string_view call, Body&& body) {
   try {
     return body();
-  } catch (...) {
+  } PARTICLES_PASS_FORCED_UNWIND catch (...) {
     rethrowAsPublicError(call);
   }
 }

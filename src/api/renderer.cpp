@@ -5,13 +5,16 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <optional>
 
 #include "api/checked_image.hpp"
+#include "input/printable_text.hpp"
 #include "api/exclusive_use.hpp"
 #include "api/guarded_call.hpp"
 #include "api/simulation_impl.hpp"
 #include "core/drawing.hpp"
+#include "core/worker_pool.hpp"
 #include "render/gl_backend.hpp"
 #include "render/png_io.hpp"
 #include "render/renderer.hpp"
@@ -25,7 +28,8 @@ namespace {
 void readLook(render::RenderOptions& look, std::string_view flag, std::string_view setting, const std::string& text) {
   const render::LookOption& row = render::lookOption(flag);
   if (!row.read(text, look)) {
-    throw ArgumentError(fmt::format("Renderer: {} (as {}) takes {}, not '{}'", setting, flag, row.expected, text));
+    throw ArgumentError(
+        fmt::format("Renderer: {} (as {}) takes {}, not {}", setting, flag, row.expected, input::quotedValue(text)));
   }
 }
 
@@ -35,7 +39,16 @@ struct Renderer::Impl {
   render::RenderOptions look;  // the size is set per frame
   bool sizeGiven = false;
   render::GlRequest gl;
-  std::optional<render::Renderer> renderer;  // made at the first frame, again for a new size
+  std::unique_ptr<render::Renderer> renderer;  // made at the first frame, again for a new size
+  unsigned madeAtFork = 0;                      // forkCount() when `renderer` was made
+
+  // A renderer made before this process was forked: its GL context's threads (llvmpipe's) stayed in
+  // the parent, and freeing it would wait for them forever. It is left as it is, never used or freed
+  // here, and the next frame makes one of this process's own.
+  void forgetInheritedRenderer() {
+    if (renderer && madeAtFork != forkCount()) (void)renderer.release();
+  }
+  ~Impl() { forgetInheritedRenderer(); }
   Drawing drawing;  // the frame's, its storage reused from frame to frame (System::draw)
   std::atomic<bool> busy{false};              // a frame is being drawn (ExclusiveUse)
 };
@@ -55,8 +68,8 @@ Renderer::Renderer(const RenderSettings& settings) {
     readLook(impl->look, "--raster", "raster", settings.raster);
     const std::optional<render::GlBackend> backend = render::glBackendFromName(settings.gl);
     if (!backend) {
-      throw ArgumentError(fmt::format("Renderer: gl takes {}, not '{}'", fmt::join(render::glBackendNames(), ", "),
-                                      settings.gl));
+      throw ArgumentError(fmt::format("Renderer: gl takes {}, not {}", fmt::join(render::glBackendNames(), ", "),
+                                      input::quotedValue(settings.gl)));
     }
     render::validate(impl->look);  // the size's range, as well as the rest
     impl->gl.backend = *backend;
@@ -81,11 +94,13 @@ Image Renderer::render(const Simulation& simulation) {
       impl_->look.width = view.width;
       impl_->look.height = view.height;
     }
+    impl_->forgetInheritedRenderer();
     if (!impl_->renderer || impl_->renderer->options().width != impl_->look.width ||
         impl_->renderer->options().height != impl_->look.height) {
       impl_->renderer.reset();
       render::validate(impl_->look);
-      impl_->renderer.emplace(impl_->look, impl_->gl);
+      impl_->renderer = std::make_unique<render::Renderer>(impl_->look, impl_->gl);
+      impl_->madeAtFork = forkCount();
     }
     // A large frame's shapes are built on the simulation's threads, idle while it is drawn (it is
     // this call's: `use` above).

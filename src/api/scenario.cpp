@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "api/guarded_call.hpp"
+#include "input/printable_text.hpp"
+#include "input/text_file.hpp"
 #include "api/scenario_impl.hpp"
 #include "scenario/summary.hpp"
 
@@ -49,14 +51,22 @@ Scenario Scenario::load(const std::string& path) {
 }
 
 Scenario Scenario::fromText(std::string_view yaml, const std::string& label) {
-  return api::guardedCall("Scenario::fromText", [&] { return Scenario(Impl::loadedFrom(std::string(yaml), label)); });
+  return api::guardedCall("Scenario::fromText", [&] {
+    // The limit of a file (input/text_file.hpp): text from memory is parsed the same way.
+    if (yaml.size() > input::kDefaultMaxInputMiB * 1024 * 1024) {
+      throw ScenarioError(label, 0, 0, "",
+                          fmt::format("the text is {} bytes, more than a scenario's limit of {} MiB", yaml.size(),
+                                      input::kDefaultMaxInputMiB));
+    }
+    return Scenario(Impl::loadedFrom(std::string(yaml), label));
+  });
 }
 
 Scenario& Scenario::set(std::string_view path, std::string_view value) {
   return api::guardedCall("Scenario::set", [&]() -> Scenario& {
     if (!impl_) throw ArgumentError("Scenario::set: this Scenario was moved from");
     if (path.empty()) throw ArgumentError("Scenario::set: the key path is empty");
-    const std::string origin = fmt::format("set(\"{}\", \"{}\")", path, value);
+    const std::string origin = fmt::format("set(\"{}\", \"{}\")", input::shownValue(path), input::shownValue(value));
     impl_->overrides.push_back({keyPathOf(path), std::string(value), origin});
     try {
       impl_->loaded = std::make_shared<const scenario::Scenario>(impl_->load());
@@ -77,16 +87,16 @@ const scenario::Scenario& loadedOf(const std::unique_ptr<Scenario::Impl>& impl, 
 }
 }  // namespace
 
-std::string Scenario::validate() const {
-  return api::guardedCall("Scenario::validate", [&] {
-    const scenario::Scenario& s = loadedOf(impl_, "validate");
+std::string Scenario::summary() const {
+  return api::guardedCall("Scenario::summary", [&] {
+    const scenario::Scenario& s = loadedOf(impl_, "summary");
     return scenario::checkSummary(s, s.file);
   });
 }
 
-const std::string& Scenario::name() const { return loadedOf(impl_, "name").name; }
-const std::string& Scenario::description() const { return loadedOf(impl_, "description").description; }
-const std::string& Scenario::file() const { return loadedOf(impl_, "file").file; }
+std::string Scenario::name() const { return loadedOf(impl_, "name").name; }
+std::string Scenario::description() const { return loadedOf(impl_, "description").description; }
+std::string Scenario::file() const { return loadedOf(impl_, "file").file; }
 std::string Scenario::integrator() const {
   return std::string(integratorName(loadedOf(impl_, "integrator").simulation.integrator));
 }

@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "api/exclusive_use.hpp"
+#include "input/printable_text.hpp"
 #include "api/guarded_call.hpp"
 #include "api/scenario_impl.hpp"
 #include "api/simulation_impl.hpp"
@@ -81,6 +82,7 @@ Simulation::~Simulation() = default;
 
 void Simulation::step(long n) { step(n, KeepGoing()); }
 void Simulation::advance(double seconds) { advance(seconds, KeepGoing()); }
+void Simulation::advanceTo(double t) { advanceTo(t, KeepGoing()); }
 
 namespace {
 
@@ -93,7 +95,7 @@ class StopCheck {
     if (!keepGoing_) return true;
     try {
       return keepGoing_();
-    } catch (...) {
+    } PARTICLES_PASS_FORCED_UNWIND catch (...) {
       thrown_ = std::current_exception();
       return false;
     }
@@ -127,26 +129,65 @@ bool Simulation::step(long n, const KeepGoing& keepGoing) {
       throw ArgumentError(fmt::format("Simulation::step: {} steps is more than {} at once", n, scenario::kMaxSteps));
     }
     ExclusiveUse use(impl.busy, "Simulation::step");
-    return stepTo(impl.stepper, impl.stepper.steps() + n, check);
+    const bool all = stepTo(impl.stepper, impl.stepper.steps() + n, check);
+    impl.clockAtSteps();
+    return all;
   });
   check.rethrowTheCallers();
   return done;
 }
 
+namespace {
+
+// Steps to the step at `target` s (Stepper::stepsAt: within 1e-9 of a step counts as reached),
+// refusing more than kMaxSteps at once; `call` names the API call in messages.
+bool stepToTime(Simulation::Impl& impl, std::string_view call, double target, StopCheck& check) {
+  const double dt = impl.scenario.simulation.dt;
+  if ((target - impl.system().time()) / dt > double(scenario::kMaxSteps)) {
+    throw ArgumentError(fmt::format("Simulation::{}: {} s is more than {} steps of dt = {} s ahead", call,
+                                    target - impl.system().time(), scenario::kMaxSteps, dt));
+  }
+  return stepTo(impl.stepper, impl.stepper.stepsAt(target), check);
+}
+
+}  // namespace
+
 bool Simulation::advance(double seconds, const KeepGoing& keepGoing) {
   StopCheck check(keepGoing);
   const bool done = api::guardedCall("Simulation::advance", [&] {
     Impl& impl = implOf(impl_, "advance");
-    const double dt = impl.scenario.simulation.dt;
     if (!std::isfinite(seconds) || seconds < 0.0) {
       throw ArgumentError(fmt::format("Simulation::advance: expected finite seconds ≥ 0, got {}", seconds));
     }
-    if (seconds / dt > double(scenario::kMaxSteps)) {
-      throw ArgumentError(fmt::format("Simulation::advance: {} s is more than {} steps of dt = {} s at once", seconds,
-                                      scenario::kMaxSteps, dt));
-    }
     ExclusiveUse use(impl.busy, "Simulation::advance");
-    return stepTo(impl.stepper, impl.stepper.stepsAt(impl.system().time() + seconds), check);
+    const auto [clock, clockError] = impl.clockPlus(seconds);
+    const bool all = stepToTime(impl, "advance", clock + clockError, check);
+    if (all) {
+      impl.clock = clock;
+      impl.clockError = clockError;
+    } else {
+      impl.clockAtSteps();
+    }
+    return all;
+  });
+  check.rethrowTheCallers();
+  return done;
+}
+
+bool Simulation::advanceTo(double t, const KeepGoing& keepGoing) {
+  StopCheck check(keepGoing);
+  const bool done = api::guardedCall("Simulation::advanceTo", [&] {
+    Impl& impl = implOf(impl_, "advanceTo");
+    const double now = impl.system().time(), dt = impl.scenario.simulation.dt;
+    // Behind by less than Stepper's tolerance is the step already reached (k / fps computed another way).
+    if (!std::isfinite(t) || (t - now) / dt < -1e-9) {
+      throw ArgumentError(fmt::format("Simulation::advanceTo: expected a finite time not before t = {} s, got {}", now, t));
+    }
+    ExclusiveUse use(impl.busy, "Simulation::advanceTo");
+    const bool all = stepToTime(impl, "advanceTo", t, check);
+    impl.clockAtSteps();
+    if (all && t > impl.clock) impl.clock = t;
+    return all;
   });
   check.rethrowTheCallers();
   return done;
@@ -252,9 +293,9 @@ int indexOf(Simulation::Impl& impl, std::string_view call, std::string_view what
   const auto it = std::find(names.begin(), names.end(), name);
   if (it != names.end()) return int(it - names.begin());
   const std::string closest = input::closestName(name, names);
-  throw ArgumentError(fmt::format("Simulation::{}: no {} is named '{}'{} (names are spelled as in `particles run "
+  throw ArgumentError(fmt::format("Simulation::{}: no {} is named {}{} (names are spelled as in `particles run "
                                   "--trace`: bob, cloth[3][4], #7, body#2)",
-                                  call, what, name, closest.empty() ? "" : fmt::format("; did you mean '{}'?", closest)));
+                                  call, what, input::quotedValue(name), closest.empty() ? "" : fmt::format("; did you mean '{}'?", closest)));
 }
 
 }  // namespace

@@ -6,8 +6,10 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <particles/errors.hpp>
@@ -22,12 +24,29 @@ struct Simulation::Impl {
   scenario::Scenario scenario;
   Stepper stepper;
   std::atomic<bool> busy{false};
+  // advance()'s clock: the time asked for so far, which the steps reach to within a step. A
+  // Neumaier sum (the running total and the rounding it lost), so that a million calls of
+  // advance(1 / fps) stay within a few ulps of frames / fps, where render takes its frame times.
+  double clock = 0.0, clockError = 0.0;
   // The names of --trace, made on first use (a million-particle cloth has a million of them).
   std::optional<std::vector<std::string>> particleNames, bodyNames;
 
   explicit Impl(scenario::Scenario loaded)
       : scenario(std::move(loaded)),
-        stepper(scenario.system, scenario.simulation.integrator, scenario.simulation.dt) {}
+        stepper(scenario.system, scenario.simulation.integrator, scenario.simulation.dt),
+        clock(scenario.system.time()) {}
+
+  // The clock set to where the steps are (after step(), advanceTo(), a stop part-way).
+  void clockAtSteps() {
+    clock = system().time();
+    clockError = 0.0;
+  }
+  // clock + seconds, summed as Neumaier's compensated sum: {total, its lost rounding}.
+  std::pair<double, double> clockPlus(double seconds) const {
+    const double total = clock + seconds;
+    const double lost = std::abs(clock) >= std::abs(seconds) ? (clock - total) + seconds : (seconds - total) + clock;
+    return {total, clockError + lost};
+  }
 
   System& system() { return scenario.system; }
   const System& system() const { return scenario.system; }

@@ -5,11 +5,14 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <mutex>
+#include <string_view>
 #include <cmath>
 
 #include "api/checked_image.hpp"
 #include "api/exclusive_use.hpp"
 #include "api/guarded_call.hpp"
+#include "input/printable_text.hpp"
 #include "render/frame_writer.hpp"
 #include "render/output_formats.hpp"
 
@@ -17,11 +20,37 @@ namespace particles {
 
 struct VideoWriter::Impl {
   std::string path;
+  const render::OutputFormat* format = nullptr;
   render::FrameWriterOptions options;  // the size is the first frame's
   std::unique_ptr<render::FrameWriter> writer;
   bool finished = false;
-  std::atomic<bool> busy{false};  // a call is writing (ExclusiveUse)
+  std::atomic<bool> busy{false};  // a write() or finish() is under way (ExclusiveUse)
+  // Held by write() and finish() for their whole call, and by abort(), which another thread may
+  // call meanwhile: it waits for the call to end instead of freeing the encoder under it.
+  std::mutex calls;
+  bool aborted = false;  // under `calls`
+
+  // write() and finish() refuse to go on after abort() (under `calls`).
+  void requireNotAborted(std::string_view call) const {
+    if (aborted) throw ArgumentError(fmt::format("VideoWriter::{}: the writer was aborted; {} is not written", call, path));
+  }
 };
+
+namespace {
+
+// The format's frame rate when none is asked for (0), as `particles render` takes it; checked.
+int fpsFor(const render::OutputFormat& format, int fps) {
+  if (fps == 0) return format.fpsCap ? format.fpsCap->byDefault : 60;
+  const int most = format.fpsCap ? format.fpsCap->most : render::kMaxFps;
+  if (fps < render::kMinFps || fps > most) {
+    throw ArgumentError(fmt::format("VideoWriter: fps for {} must be {} to {} (or 0, the format's default){}, got {}",
+                                    format.name, render::kMinFps, most,
+                                    format.fpsCap ? fmt::format(": {}", format.fpsCap->why) : std::string(), fps));
+  }
+  return fps;
+}
+
+}  // namespace
 
 VideoWriter::VideoWriter(const std::string& path, const VideoSettings& settings) {
   impl_ = api::guardedCall("VideoWriter", [&] {
@@ -29,15 +58,12 @@ VideoWriter::VideoWriter(const std::string& path, const VideoSettings& settings)
     if (format.oneFrameAt || format.kind == render::OutputKind::pngSequence) {
       throw ArgumentError(fmt::format("VideoWriter: {} is not a video: give a .mp4, .webm or .gif path "
                                       "(one frame: Image::savePng)",
-                                      path));
+                                      input::quotedValue(path)));
     }
-    if (settings.fps < render::kMinFps || settings.fps > render::kMaxFps) {
-      throw ArgumentError(fmt::format("VideoWriter: fps must be {} to {}, got {}", render::kMinFps, render::kMaxFps,
-                                      settings.fps));
-    }
+    const int fps = fpsFor(format, settings.fps);
     if (!render::isX264Preset(settings.preset)) {
-      throw ArgumentError(fmt::format("VideoWriter: preset must be one of {}, not '{}'",
-                                      fmt::join(render::kX264Presets, ", "), settings.preset));
+      throw ArgumentError(fmt::format("VideoWriter: preset must be one of {}, not {}",
+                                      fmt::join(render::kX264Presets, ", "), input::quotedValue(settings.preset)));
     }
     if (!(settings.keyintSeconds > 0.0 && settings.keyintSeconds <= render::kMaxKeyintSeconds)) {
       throw ArgumentError(fmt::format("VideoWriter: keyintSeconds must be above 0 and at most {}, got {}",
@@ -59,7 +85,8 @@ VideoWriter::VideoWriter(const std::string& path, const VideoSettings& settings)
     render::setLibavVerbose(settings.verbose);
     auto impl = std::make_unique<Impl>();
     impl->path = path;
-    impl->options.video.fps = settings.fps;
+    impl->format = &format;
+    impl->options.video.fps = fps;
     if (settings.crf != -1) impl->options.video.crf = settings.crf;
     impl->options.video.preset = settings.preset;
     impl->options.video.keyintSeconds = settings.keyintSeconds;
@@ -75,6 +102,8 @@ void VideoWriter::write(const Image& frame) {
   api::guardedCall("VideoWriter::write", [&] {
     if (!impl_) throw ArgumentError("VideoWriter::write: this VideoWriter was moved from");
     ExclusiveUse use(impl_->busy, "VideoWriter::write", "VideoWriter");
+    const std::lock_guard lock(impl_->calls);
+    impl_->requireNotAborted("write");
     if (impl_->finished) throw ArgumentError("VideoWriter::write: the video is finished");
     const render::Image image = api::checkedImage(frame, "VideoWriter::write", "frame");
     if (!impl_->writer) {
@@ -93,15 +122,23 @@ void VideoWriter::finish() {
   api::guardedCall("VideoWriter::finish", [&] {
     if (!impl_) throw ArgumentError("VideoWriter::finish: this VideoWriter was moved from");
     ExclusiveUse use(impl_->busy, "VideoWriter::finish", "VideoWriter");
+    const std::lock_guard lock(impl_->calls);
+    impl_->requireNotAborted("finish");
     if (impl_->finished) return;
-    if (!impl_->writer) throw ArgumentError(fmt::format("VideoWriter::finish: no frame was written to {}", impl_->path));
+    if (!impl_->writer) {
+      throw ArgumentError(fmt::format("VideoWriter::finish: no frame was written to {}", input::quotedValue(impl_->path)));
+    }
     impl_->writer->finish();
     impl_->finished = true;
   });
 }
 
 void VideoWriter::abort() noexcept {
-  if (impl_ && impl_->writer && !impl_->finished) impl_->writer->abort();
+  if (!impl_) return;
+  const std::lock_guard lock(impl_->calls);  // a write() or finish() on another thread ends first
+  if (impl_->finished) return;
+  impl_->aborted = true;
+  if (impl_->writer) impl_->writer->abort();
 }
 
 long VideoWriter::frames() const { return impl_ && impl_->writer ? impl_->writer->framesWritten() : 0; }

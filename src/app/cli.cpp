@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "input/printable_text.hpp"
 #include "app/command_table.hpp"
 #include "app/exit_codes.hpp"
 #include "app/gl_options.hpp"
@@ -41,7 +42,7 @@ void Cli::requireKnownCommand(const std::vector<std::string>& args) const {
   for (const auto& command : commands_) names.emplace_back(command->name());
   if (std::find(names.begin(), names.end(), *word) != names.end()) return;
   const std::string nearest = input::closestName(*word, names);
-  throw CLI::ParseError(fmt::format("unknown command '{}'{}; the commands are {}", *word,
+  throw CLI::ParseError(fmt::format("unknown command {}{}; the commands are {}", input::quotedValue(*word),
                                     nearest.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", nearest),
                                     fmt::join(names, ", ")),
                         CLI::ExitCodes::ExtrasError);

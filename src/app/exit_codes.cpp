@@ -11,7 +11,7 @@
 #include "output/confined_folder.hpp"
 #include "output/distinct_files.hpp"
 #include "output/output_error.hpp"
-#include "output/printable_text.hpp"
+#include "input/printable_text.hpp"
 #include "plot/errors.hpp"
 #include "render/errors.hpp"
 #include "scenario/scenario.hpp"
@@ -20,7 +20,7 @@ namespace particles::app {
 
 int runReportingErrors(const ErrorContext& context, const std::function<int()>& command) {
   auto report = [&](ExitCode code, const std::string& message) {
-    fmt::print(stderr, "{}\n", output::printableText(message));
+    fmt::print(stderr, "{}\n", input::printableText(message));
     if (context.printed) *context.printed = message;
     return code;
   };

@@ -15,7 +15,7 @@
 #include "golden/results.hpp"
 #include "output/distinct_files.hpp"
 #include "output/output_error.hpp"
-#include "output/printable_text.hpp"
+#include "input/printable_text.hpp"
 #include "output/staging_directory.hpp"
 #include "render/image_compare.hpp"
 #include "scenario/golden_manifest.hpp"
@@ -140,7 +140,7 @@ output::NamedFile reportFolder(const std::string& folder) {
 // One line of what a command prints, with the control characters of names and messages from files
 // escaped (output/printable_text.hpp).
 void printLine(const std::string& line) {
-  fmt::print("{}\n", output::printableText(line));
+  fmt::print("{}\n", input::printableText(line));
 }
 
 void printFailures(const golden::GoldenResults& r) {
@@ -245,11 +245,11 @@ int goldenUpdate(const GoldenUpdateOptions& o) {
 }
 
 int goldenReport(const GoldenReportOptions& o) {
-  const fs::path folder = o.output;
   std::vector<fs::path> inputs(o.folders.begin(), o.folders.end());
-  std::vector<std::string> earlier;
+  fs::path folder;
   try {
-    earlier = golden::checkReportFolder(folder, o.maxInputMiB, "-o");
+    folder = golden::reportFolderPath(o.output, "-o");
+    golden::checkReportFolder(folder, o.maxInputMiB, "-o");
   } catch (const std::invalid_argument& e) {
     throw InputError(e.what());
   }
@@ -262,7 +262,7 @@ int goldenReport(const GoldenReportOptions& o) {
     throw InputError(e.what());
   }
   golden::writeReport(staged.path(), merged);
-  golden::publish(staged, folder, std::move(earlier));
+  golden::publish(staged, folder, o.maxInputMiB, "-o");
   if (!o.quiet) printFailures(merged);
   printLine(golden::summaryLine(merged, folder));
   return merged.allPassed() ? kOk : kSimulationFailed;

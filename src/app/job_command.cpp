@@ -14,7 +14,7 @@
 #include "app/job_table.hpp"
 #include "app/thread_count.hpp"
 #include "output/confined_folder.hpp"
-#include "output/printable_text.hpp"
+#include "input/printable_text.hpp"
 #include "output/write_sandbox.hpp"
 
 namespace particles::app {

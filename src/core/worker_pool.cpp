@@ -1,6 +1,9 @@
 #include "core/worker_pool.hpp"
 
+#include <pthread.h>
+
 #include <chrono>
+#include <new>
 #include <stdexcept>
 #include <system_error>
 #include <thread>
@@ -40,6 +43,18 @@ bool spinUntil(Done&& done) {
   }
 }
 
+std::atomic<unsigned> forksSoFar{0};
+
+}  // namespace
+
+unsigned forkCount() {
+  static const bool registered = ::pthread_atfork(nullptr, nullptr, [] { forksSoFar.fetch_add(1); }) == 0;
+  (void)registered;
+  return forksSoFar.load(std::memory_order_relaxed);
+}
+
+namespace {
+
 using detail::InsideTask;
 
 // The pools whose tasks this thread is running, innermost first, through the threads that handed
@@ -63,9 +78,30 @@ class EnterTask {
 
 }  // namespace
 
-WorkerPool::WorkerPool(int threads) : threads_(std::max(threads, 1)) {}
+WorkerPool::WorkerPool(int threads) : threads_(std::max(threads, 1)), workersFork_(forkCount()) {}
+
+bool WorkerPool::inheritedWorkers() const { return !workers_.empty() && workersFork_ != forkCount(); }
+
+void WorkerPool::dropInheritedWorkers() {
+  if (!inheritedWorkers()) return;
+  for (std::thread& t : workers_) t.detach();  // no such thread here: detached, it is never joined
+  workers_.clear();
+  // A worker of the parent may have been inside the lock or a wait at the fork: the copies of the
+  // mutex and the condition variables are left as they are (never destroyed, never used) and new
+  // ones made in their place, with no sleeper and no started task (its thread is not here).
+  new (&mutex_) std::mutex;
+  new (&wake_) std::condition_variable;
+  new (&done_) std::condition_variable;
+  sleepers_.store(0);
+  ownerWaiting_.store(false);
+  error_ = nullptr;
+  failed_.store(false);
+  startedPending_ = false;
+  workersFork_ = forkCount();
+}
 
 WorkerPool::~WorkerPool() {
+  dropInheritedWorkers();
   if (startedPending_) {
     // Its handle is still alive, or was leaked: either way the task must end before the threads.
     startedPending_ = false;
@@ -149,7 +185,9 @@ void WorkerPool::workerLoop() {
 }
 
 void WorkerPool::startWorkers() {
+  dropInheritedWorkers();
   if (!workers_.empty()) return;
+  workersFork_ = forkCount();
   workers_.reserve(size_t(threads_ - 1));
   // A thread the system refuses to start (std::system_error) leaves fewer to share the chunks,
   // which changes the time taken, never the result.
@@ -207,6 +245,7 @@ void WorkerPool::dispatch(size_t count, void* context, Trampoline call) {
 }
 
 WorkerPool::Started WorkerPool::start(std::function<void()> task) {
+  dropInheritedWorkers();
   if (runningOwnTask()) throw std::logic_error("WorkerPool::start: called from one of the pool's own tasks");
   if (startedPending_) throw std::logic_error("WorkerPool::start: the task started before was not waited for");
   if (threads_ == 1) throw std::invalid_argument("WorkerPool::start: a pool of one thread has none to start a task on");

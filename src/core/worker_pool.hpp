@@ -39,6 +39,10 @@
 //
 // A loop of one chunk runs on the calling thread with no hand-over at all, so small scenes (the 25²
 // cloth: 1,200 springs) cost what they did before the pool existed.
+//
+// fork(). A child process has the forking thread alone: its pools' workers are the parent's, not
+// its own, and joining them would wait forever. A pool used in a child (a loop, start, or its
+// destructor) leaves those copies alone (detached, their memory kept) and starts workers of its own.
 
 #include <algorithm>
 #include <atomic>
@@ -60,6 +64,12 @@ namespace particles {
 inline constexpr int kMaxThreads = 1024;
 
 class WorkerPool;
+
+// How many fork()s separate this process from the one that first asked (a pthread_atfork handler
+// counts them in each child, registered at the first call): a thread pool, or a GL context with
+// threads of its own, that was made at another count was made in an ancestor, and its threads are
+// not in this process. A relaxed load, where getpid() would be a system call.
+unsigned forkCount();
 
 namespace detail {
 // The pools whose tasks a thread is running, innermost first (worker_pool.cpp).
@@ -160,6 +170,8 @@ class WorkerPool {
   static size_t chunkOf(uint64_t ticket) { return size_t(ticket & 0xffffffffu); }
 
   bool runningOwnTask() const;  // whether this thread is inside one of this pool's tasks
+  bool inheritedWorkers() const;  // whether workers_ were started in the process this one forked from
+  void dropInheritedWorkers();    // detaches them, and makes the state they shared anew
   bool threadsFree() const;     // see run
   void startWorkers();
   void dispatch(size_t count, void* context, Trampoline call);
@@ -172,6 +184,7 @@ class WorkerPool {
 
   int threads_ = 1;
   std::vector<std::thread> workers_;  // threads_ − 1 of them once started
+  unsigned workersFork_ = 0;          // the process's fork count (worker_pool.cpp) when they started
   // Handing a job out takes no lock: the owner writes the job into the slot of its generation's
   // parity and then the ticket; idle workers poll the ticket for a while (kSpinTime) and only then
   // sleep on wake_. The owner takes the lock only when some worker sleeps (sleepers_), a finishing

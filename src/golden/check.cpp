@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "input/printable_text.hpp"
 #include "core/worker_pool.hpp"
 #include "golden/check_context.hpp"
 #include "golden/frame_check.hpp"
@@ -55,7 +56,7 @@ std::vector<GoldenCheck> selectChecks(const GoldenManifest& manifest, const Chec
   for (const std::string& name : options.only) {
     if (std::find(all.begin(), all.end(), name) == all.end()) {
       const std::string closest = input::closestName(name, all);
-      throw std::invalid_argument(fmt::format("no frame or state of the manifest is named '{}'{}", name,
+      throw std::invalid_argument(fmt::format("no frame or state of the manifest is named {}{}", input::quotedValue(name),
                                               closest.empty() ? "" : fmt::format("; did you mean {}?", closest)));
     }
   }

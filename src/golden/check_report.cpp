@@ -1,9 +1,13 @@
 #include "golden/check_report.hpp"
 
 #include <fmt/format.h>
+#include <fcntl.h>
+#include <sys/syscall.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <charconv>
 #include <chrono>
 #include <cstdlib>
@@ -15,7 +19,8 @@
 #include "output/confined_folder.hpp"
 #include "output/distinct_files.hpp"
 #include "output/output_error.hpp"
-#include "output/printable_text.hpp"
+#include "output/partial_names.hpp"
+#include "input/printable_text.hpp"
 
 namespace particles::golden {
 
@@ -28,7 +33,7 @@ namespace {
 // folder is no report of ours and is refused (ReportFolderError), left as it is.
 std::vector<std::string> earlierReport(const fs::path& folder, std::uintmax_t maxInputMiB,
                                        const std::string& folderName) {
-  const std::string shown = output::printableText(folder.string());
+  const std::string shown = input::printableText(folder.string());
   golden::GoldenResults earlier;
   try {
     earlier = golden::readResults(folder, maxInputMiB);
@@ -55,7 +60,7 @@ std::vector<std::string> earlierReport(const fs::path& folder, std::uintmax_t ma
       throw ReportFolderError(
           fmt::format("{} {}: it holds {}, which is not part of the golden report there; choose another "
                       "folder or remove it (only a folder that is entirely an earlier report is replaced)",
-                      folderName, shown, output::printableText(relative)));
+                      folderName, shown, input::printableText(relative)));
     }
   }
   if (ec) throw ReportFolderError(fmt::format("{} {}: cannot list it: {}", folderName, shown, ec.message()));
@@ -77,7 +82,7 @@ std::vector<std::string> checkReportFolder(const fs::path& folder, std::uintmax_
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(folder, ec);
   if (st.type() == fs::file_type::not_found) return {};
-  const std::string shown = output::printableText(folder.string());
+  const std::string shown = input::printableText(folder.string());
   if (st.type() == fs::file_type::symlink) {
     throw ReportFolderError(fmt::format("{} {}: a symbolic link; give the folder itself (it is replaced whole)", folderName, shown));
   }
@@ -113,36 +118,99 @@ void makeParent(const fs::path& folder) {
 }
 
 
-// Moves the staged report into place: the earlier one out of the way first, then its files removed
-// (`earlier`, from checkReportFolder), one by one through its folder's descriptor. Whatever else
-// appeared there meanwhile is left, in FOLDER.previous-PID, and said so.
-void publish(output::StagingDirectory& staged, const fs::path& folder, std::vector<std::string> earlier) {
-  std::error_code ec;
-  fs::path previous;
-  if (fs::exists(fs::symlink_status(folder, ec))) {
-    previous = folder;
-    previous += fmt::format(".previous-{}", ::getpid());
-    fs::rename(folder, previous, ec);
-    if (ec) throw output::OutputError(fmt::format("cannot replace {}: {}", folder.string(), ec.message()));
-  }
-  fs::rename(staged.path(), folder, ec);
-  if (ec) {
-    if (!previous.empty()) fs::rename(previous, folder);
-    throw output::OutputError(fmt::format("cannot write {}: {}", folder.string(), ec.message()));
-  }
-  if (previous.empty()) return;
-  // Deepest first: a folder's files before the folder.
-  std::sort(earlier.begin(), earlier.end(), [](const std::string& a, const std::string& b) { return a > b; });
+namespace {
+
+// renameat2(2), which glibc 2.28 declares in <stdio.h> only with _GNU_SOURCE: called by number, so
+// that the room builds the same everywhere. -1 with errno ENOSYS where the kernel lacks it.
+int renameWithFlags(const fs::path& from, const fs::path& to, unsigned flags) {
+#if defined(SYS_renameat2)
+  return int(::syscall(SYS_renameat2, AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), flags));
+#else
+  (void)from, (void)to, (void)flags;
+  errno = ENOSYS;
+  return -1;
+#endif
+}
+constexpr unsigned kRenameNoReplace = 1u << 0;  // RENAME_NOREPLACE
+constexpr unsigned kRenameExchange = 1u << 1;   // RENAME_EXCHANGE
+
+// Removes an earlier report that publish moved aside to `aside`: the files and folders its
+// results.json lists (checkReportFolder), one by one through its folder's descriptor, deepest
+// first, then the folder. Anything else there (put there after the check looked) is left, and said.
+void removeEarlierReport(const fs::path& aside, std::uintmax_t maxInputMiB, const std::string& folderName) {
   try {
-    const output::ConfinedFolder old(previous);
+    std::vector<std::string> earlier = checkReportFolder(aside, maxInputMiB, folderName);
+    std::sort(earlier.begin(), earlier.end(), [](const std::string& a, const std::string& b) { return a > b; });
+    const output::ConfinedFolder old(aside);
     for (const std::string& entry : earlier) old.remove(entry);
   } catch (const std::exception&) {
     // Left below, said so.
   }
-  if (!fs::remove(previous, ec)) {
+  std::error_code ec;
+  if (!fs::remove(aside, ec)) {
     fmt::print(stderr, "note: left {}: it holds files that were not part of the earlier report\n",
-               output::printableText(previous.string()));
+               input::printableText(aside.string()));
   }
+}
+
+}  // namespace
+
+// Moves the staged report into place in one step where the file system can (renameat2): a new
+// folder by RENAME_NOREPLACE, an earlier one by RENAME_EXCHANGE, which swaps the two whole, so the
+// folder is never missing and never half one report. The earlier report then sits at the staging
+// name and is removed as a report (removeEarlierReport), which also covers another check into the
+// same folder at the same time: each swaps its report in, the last one stays, and each removes
+// the one it swapped out. Where renameat2 is refused (an older kernel, a file system without it),
+// the earlier folder is moved aside to a name of this call's own first (nextPartialPath), and a
+// folder that reappears meanwhile is moved aside again, a few times at most.
+void publish(output::StagingDirectory& staged, const fs::path& folder, std::uintmax_t maxInputMiB,
+             const std::string& folderName) {
+  if (renameWithFlags(staged.path(), folder, kRenameNoReplace) == 0) {
+    staged.release();
+    return;
+  }
+  if (errno == EEXIST && renameWithFlags(staged.path(), folder, kRenameExchange) == 0) {
+    removeEarlierReport(staged.release(), maxInputMiB, folderName);
+    return;
+  }
+  if (errno != ENOSYS && errno != EINVAL && errno != EEXIST) {
+    throw output::OutputError(fmt::format("cannot write {}: {}", folder.string(), std::strerror(errno)));
+  }
+  std::error_code ec;
+  for (int attempt = 0;; ++attempt) {
+    fs::path aside;
+    if (fs::exists(fs::symlink_status(folder, ec))) {
+      aside = output::nextPartialPath(folder);
+      fs::rename(folder, aside, ec);
+      if (ec && ec != std::errc::no_such_file_or_directory) {
+        throw output::OutputError(fmt::format("cannot replace {}: {}", folder.string(), ec.message()));
+      }
+      if (ec) aside.clear();  // gone meanwhile
+    }
+    fs::rename(staged.path(), folder, ec);
+    if (!ec) {
+      staged.release();
+      if (!aside.empty()) removeEarlierReport(aside, maxInputMiB, folderName);
+      return;
+    }
+    if (!aside.empty()) removeEarlierReport(aside, maxInputMiB, folderName);
+    const bool reappeared = ec == std::errc::directory_not_empty || ec == std::errc::file_exists;
+    if (!reappeared || attempt == 4) {
+      throw output::OutputError(fmt::format("cannot write {}: {}", folder.string(), ec.message()));
+    }
+  }
+}
+
+fs::path reportFolderPath(const fs::path& given, const std::string& folderName) {
+  std::string text = given.lexically_normal().string();
+  while (text.size() > 1 && text.back() == '/') text.pop_back();
+  const fs::path folder(text);
+  if (text.empty() || folder.filename() == "." || folder.filename() == ".." || text == "/") {
+    throw ReportFolderError(fmt::format("{} {}: name the report folder itself (e.g. golden-report/): it is replaced "
+                                        "whole",
+                                        folderName, input::quotedValue(given.string())));
+  }
+  return folder;
 }
 
 std::optional<std::pair<int, int>> shardFromText(const std::string& text, const std::string& optionName) {
@@ -155,7 +223,7 @@ std::optional<std::pair<int, int>> shardFromText(const std::string& text, const 
     if (ec2 == std::errc() && q == end) return std::pair{k, n};
   }
   throw std::invalid_argument(fmt::format("{} {}: expected K/N with 1 ≤ K ≤ N, e.g. 1/2", optionName,
-                                          output::printableText(text)));
+                                          input::printableText(text)));
 }
 
 int defaultJobs() { return std::max(1, input::availableCores() / 2); }
@@ -168,10 +236,11 @@ scenario::GoldenManifest loadManifest(const fs::path& file, std::uintmax_t maxIn
 
 CheckRun checkIntoReport(const scenario::GoldenManifest& manifest, const ReportRequest& request) {
   requireReferencesInPlace(manifest, false);
-  std::vector<std::string> earlier = checkReportFolder(request.folder, request.check.maxInputMiB, request.folderName);
-  reportFolderHoldsNoInput(request.folder, request.folderName, request.manifestFile, manifest);
-  makeParent(request.folder);
-  output::StagingDirectory staged(request.folder);
+  const fs::path folder = reportFolderPath(request.folder, request.folderName);
+  checkReportFolder(folder, request.check.maxInputMiB, request.folderName);
+  reportFolderHoldsNoInput(folder, request.folderName, request.manifestFile, manifest);
+  makeParent(folder);
+  output::StagingDirectory staged(folder);
   const auto start = std::chrono::steady_clock::now();
   CheckRun run = runCheck(manifest, staged.path(), request.check);
   RunFacts& facts = run.results.runs.front();
@@ -180,7 +249,7 @@ CheckRun checkIntoReport(const scenario::GoldenManifest& manifest, const ReportR
   if (const char* threads = std::getenv("LP_NUM_THREADS")) facts.lpNumThreads = threads;
   facts.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   writeReport(staged.path(), run.results);
-  publish(staged, request.folder, std::move(earlier));
+  publish(staged, folder, request.check.maxInputMiB, request.folderName);
   return run;
 }
 

@@ -44,9 +44,16 @@ void reportFolderHoldsNoInput(const std::filesystem::path& folder, const std::st
 // The folder the report folder goes in, made when it is not there. Throws OutputError.
 void makeParent(const std::filesystem::path& folder);
 
-// Moves the staged report into place, then removes the earlier one's files (`earlier`, from
-// checkReportFolder). Throws OutputError.
-void publish(output::StagingDirectory& staged, const std::filesystem::path& folder, std::vector<std::string> earlier);
+// The report folder as given, without trailing separators ("report/" is "report"), so that its
+// siblings (the staged report, an earlier one moved aside) are made beside it, not in it.
+// ReportFolderError for a path that names no folder of its own: "", ".", "..", "/".
+std::filesystem::path reportFolderPath(const std::filesystem::path& given, const std::string& folderName);
+
+// Moves the staged report into the folder (reportFolderPath's) in one step where the file system
+// can, then removes the earlier report it replaced, as a report (checkReportFolder's list): another
+// check into the same folder at the same time is safe. Throws OutputError.
+void publish(output::StagingDirectory& staged, const std::filesystem::path& folder, std::uintmax_t maxInputMiB,
+             const std::string& folderName);
 
 // --shard's K/N ("2/3" → {2, 3}), nothing for empty text; std::invalid_argument naming it as
 // `optionName` otherwise. Its range is runCheck's to check.

@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 
+#include "input/printable_text.hpp"
+
 namespace particles::golden {
 
 using scenario::GoldenEntry;
@@ -46,7 +48,7 @@ void checkRenderSettings(const GoldenManifest& manifest) {
       render::RenderOptions scratch;
       if (!option.read(setting.text, scratch)) {
         scenario::failInManifest(manifest, setting.at,
-                                 fmt::format("expected {}, got '{}'", option.expected, setting.text));
+                                 fmt::format("expected {}, got {}", option.expected, input::quotedValue(setting.text)));
       }
     }
   };
@@ -64,7 +66,7 @@ render::RenderOptions frameLookOf(const GoldenManifest& manifest, const GoldenEn
     const render::LookOption& option = render::lookOption(setting.flag);
     if (!option.read(setting.text, look)) {
       throw std::invalid_argument(
-          fmt::format("{}: expected {}, got '{}'", setting.at.keyPath, option.expected, setting.text));
+          fmt::format("{}: expected {}, got {}", setting.at.keyPath, option.expected, input::quotedValue(setting.text)));
     }
   }
   return look;

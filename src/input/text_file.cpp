@@ -30,11 +30,17 @@ struct Descriptor {
 
 enum class Content { text, binary };
 
+void setBlocking(int fd) {
+  const int flags = ::fcntl(fd, F_GETFL);
+  if (flags < 0 || ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) < 0) {
+    throw ReadError(ReadError::Reason::readFailed, fmt::format("cannot read: {}", std::strerror(errno)));
+  }
+}
+
 std::string readFile(const std::filesystem::path& file, std::uintmax_t maxMiB, Accept accept, Content content) {
   const std::uintmax_t limit = maxMiB * 1024 * 1024;
   // Opening a FIFO for reading waits for a writer, unless non-blocking: then it returns at once.
-  const int flags = O_RDONLY | O_CLOEXEC | (accept == Accept::regularOnly ? O_NONBLOCK : 0);
-  const Descriptor in{::open(file.c_str(), flags)};
+  const Descriptor in{::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK)};
   if (in.fd < 0) {
     throw ReadError(errno == EISDIR ? ReadError::Reason::isDirectory : ReadError::Reason::cannotOpen,
                     fmt::format("cannot open: {}", std::strerror(errno)));
@@ -55,6 +61,13 @@ std::string readFile(const std::filesystem::path& file, std::uintmax_t maxMiB, A
                     fmt::format("cannot read: it is {}, where a regular file was expected", kind));
   }
   if (regular && std::uintmax_t(info.st_size) > limit) tooLarge(maxMiB);
+  // A FIFO (a named pipe, /dev/stdin from a pipe) whose writer has gone, or never came, would block
+  // a read forever: it is refused at once, as outputs refuse a FIFO with no reader. Its first read
+  // is still non-blocking and says which: data, or EAGAIN (a writer is there; one blocked in open()
+  // waiting for a reader counts already: Linux's fifo_open), or 0 (none). Then, and for everything
+  // else at once, reads wait for data as usual.
+  bool awaitingWriter = S_ISFIFO(info.st_mode);
+  if (!awaitingWriter) setBlocking(in.fd);
 
   // A regular file's size is known (it may still grow while read: the limit holds anyway); other
   // inputs grow the buffer geometrically, never past limit + 1 bytes.
@@ -68,6 +81,19 @@ std::string readFile(const std::filesystem::path& file, std::uintmax_t maxMiB, A
     }
     const ssize_t n = ::read(in.fd, text.data() + used, text.size() - used);
     if (n < 0 && errno == EINTR) continue;
+    if (awaitingWriter) {
+      if (n == 0) {
+        throw ReadError(ReadError::Reason::noWriter,
+                        "cannot read: it is a FIFO (a named pipe) with no writer, so nothing can arrive; start "
+                        "its writer first");
+      }
+      if (n < 0 && errno != EAGAIN) {
+        throw ReadError(ReadError::Reason::readFailed, fmt::format("cannot read: {}", std::strerror(errno)));
+      }
+      awaitingWriter = false;
+      setBlocking(in.fd);
+      if (n < 0) continue;
+    }
     if (n < 0) throw ReadError(ReadError::Reason::readFailed, fmt::format("cannot read: {}", std::strerror(errno)));
     if (n == 0) break;
     if (const void* nul = content == Content::text ? std::memchr(text.data() + used, '\0', std::size_t(n)) : nullptr) {

@@ -23,7 +23,7 @@ inline constexpr std::uintmax_t kDefaultMaxInputMiB = 64;
 // or directory"); reason() for callers that act on it.
 class ReadError : public std::runtime_error {
  public:
-  enum class Reason { cannotOpen, isDirectory, notRegular, tooLarge, notText, readFailed };
+  enum class Reason { cannotOpen, isDirectory, notRegular, noWriter, tooLarge, notText, readFailed };
   ReadError(Reason reason, const std::string& message) : std::runtime_error(message), reason_(reason) {}
   Reason reason() const { return reason_; }
 
@@ -32,7 +32,7 @@ class ReadError : public std::runtime_error {
 };
 
 // Which files a reader takes. A scenario or a CSV may come from a pipe (`particles check
-// /dev/stdin`); a file the program wrote itself (a job record, a sweep's jobs.csv) is a regular
+// /dev/stdin`), though not from a FIFO with no writer (refused at once, never waited on); a file the program wrote itself (a job record, a sweep's jobs.csv) is a regular
 // file, so anything else at its path (a FIFO, a device, a socket) was put there by someone else
 // and is refused without blocking: opened non-blocking, checked, never read.
 enum class Accept { anyFile, regularOnly };

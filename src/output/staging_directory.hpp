@@ -6,6 +6,7 @@
 // outright leaves this one behind, for the next run to remove.
 
 #include <filesystem>
+#include <utility>
 
 namespace particles::output {
 
@@ -20,6 +21,9 @@ class StagingDirectory {
   const std::filesystem::path& path() const { return path_; }
   // Removes the directory and everything in it; never throws, idempotent.
   void discard() noexcept;
+  // Gives the directory up (it was renamed into place, or now holds what its caller keeps or
+  // removes itself): the destructor leaves that path alone. Returns the path.
+  std::filesystem::path release() noexcept { return std::exchange(path_, {}); }
 
  private:
   std::filesystem::path path_;

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <map>
 
+#include "input/printable_text.hpp"
 #include "core/grid.hpp"
 #include "core/kind.hpp"
 #include "scenario/references.hpp"
@@ -148,8 +149,7 @@ void applyLimitOption(SceneLimits& limits, std::string_view text) {
   long long n = 0;
   const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), n);
   if (ec != std::errc() || end != number.data() + number.size() || n < 1 || n > kMaxSceneLimit) {
-    bad(fmt::format("expected a whole number from 1 to {} after '=', got '{}'", kMaxSceneLimit,
-                    number.size() > 40 ? std::string(number.substr(0, 40)) + "…" : std::string(number)));
+    bad(fmt::format("expected a whole number from 1 to {} after '=', got {}", kMaxSceneLimit, input::quotedValue(number)));
   }
   for (const SceneLimitName& l : kSceneLimitNames) {
     if (l.name == name) {
@@ -157,9 +157,7 @@ void applyLimitOption(SceneLimits& limits, std::string_view text) {
       return;
     }
   }
-  bad(fmt::format("unknown limit '{}'; expected one of {}",
-                  name.size() > 40 ? std::string(name.substr(0, 40)) + "…" : std::string(name),
-                  fmt::join(names, ", ")));
+  bad(fmt::format("unknown limit {}; expected one of {}", input::quotedValue(name), fmt::join(names, ", ")));
 }
 
 }  // namespace particles::scenario

@@ -4,17 +4,27 @@
 
 #include <charconv>
 
+#include "input/printable_text.hpp"
+
 namespace particles::scenario {
+
+namespace {
+
+// A key path as an error names it: a path longer than a message quotes (a 10 MB one given by
+// mistake) is shown cut, with its size (input::quotedValue).
+std::string shownPath(const std::string& path) { return input::shownValue(path); }
+
+}  // namespace
 
 namespace detail {
 
 std::vector<PathSegment> splitPath(const Override& o, const std::string& file) {
   auto bad = [&](const std::string& why) {
-    throw ScenarioError(file, 0, 0, o.path, fmt::format("cannot use this key path: {}", why), o.origin);
+    throw ScenarioError(file, 0, 0, shownPath(o.path), fmt::format("cannot use this key path: {}", why), o.origin);
   };
   auto indexSegment = [&](const std::string& digits) {
     if (digits.empty() || digits.find_first_not_of("0123456789") != std::string::npos) {
-      bad(fmt::format("'{}' is not a list index", digits));
+      bad(fmt::format("{} is not a list index", input::quotedValue(digits)));
     }
     size_t index = 0;
     const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), index);
@@ -65,14 +75,21 @@ void appendSegment(std::string& canonical, const PathSegment& s) {
 }
 
 YAML::Node overrideValue(const Override& o, const std::string& file) {
+  if (o.value.empty()) throw ScenarioError(file, 0, 0, shownPath(o.path), "expected a value after '='", o.origin);
   YAML::Node value;
   try {
+    // Bounded as a scenario's text is (NodeLimit): a value is parsed before anything checks it.
+    checkNodeCount(o.value, "the value", NodeLimit::scenario(std::uintmax_t(SceneLimits{}.nodes)));
     value = YAML::Load(o.value);
+  } catch (const ScenarioError& e) {
+    throw ScenarioError(file, 0, 0, shownPath(o.path),
+                        fmt::format("cannot read the value {}: {}", input::quotedValue(o.value), e.message()), o.origin);
   } catch (const YAML::Exception& e) {
-    throw ScenarioError(file, 0, 0, o.path, fmt::format("cannot read the value '{}': {}", o.value, e.msg), o.origin);
+    throw ScenarioError(file, 0, 0, shownPath(o.path), fmt::format("cannot read the value {}: {}", input::quotedValue(o.value), e.msg),
+                        o.origin);
   }
-  if (o.value.empty() || value.IsNull()) {
-    throw ScenarioError(file, 0, 0, o.path, "expected a value after '='", o.origin);
+  if (value.IsNull()) {
+    throw ScenarioError(file, 0, 0, shownPath(o.path), "expected a value after '='", o.origin);
   }
   return value;
 }
@@ -86,7 +103,7 @@ std::string applyOverride(YAML::Node root, const Override& o, const std::string&
     const PathSegment& s = segments[k];
     const bool last = k + 1 == segments.size();
     auto fail = [&](const std::string& why) {
-      throw ScenarioError(file, 0, 0, canonical.empty() ? o.path : canonical, why, o.origin);
+      throw ScenarioError(file, 0, 0, canonical.empty() ? shownPath(o.path) : canonical, why, o.origin);
     };
     if (s.isIndex) {
       if (!cur.IsSequence()) fail(fmt::format("cannot index [{}]: this is not a list", s.index));
@@ -177,12 +194,13 @@ void InPlaceOverrides::undo() {
 }  // namespace detail
 
 Override parseOverride(std::string_view text) {
-  const std::string origin = fmt::format("--set {}", text);
+  const std::string origin = fmt::format("--set {}", input::shownValue(text));
   const size_t eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0) {
     throw ScenarioError(
         "command line", 0, 0, "",
-        fmt::format("expected --set path.to.key=value, as in --set simulation.dt=0.005; got '{}'", text));
+        fmt::format("expected --set path.to.key=value, as in --set simulation.dt=0.005; got {}",
+                    input::quotedValue(text)));
   }
   return Override{std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), origin};
 }

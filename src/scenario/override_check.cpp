@@ -131,7 +131,8 @@ struct OverrideChecker::Tree {
   // The tree as loadScenarioText makes it before reading it: the document, a map, with the fixed
   // overrides applied.
   YAML::Node loadRoot() {
-    YAML::Node document = detail::loadOneDocument(text, file, &aliases);
+    YAML::Node document =
+        detail::loadOneDocument(text, file, &aliases, detail::NodeLimit::scenario(std::uintmax_t(limits.nodes)));
     if (!document.IsMap()) {
       const YAML::Mark m = document.Mark();
       throw ScenarioError(file, m.line + 1, m.column + 1, "", "expected a scenario (a map of keys such as 'name')");

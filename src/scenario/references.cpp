@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <optional>
 
+#include "input/printable_text.hpp"
 #include "input/closest_name.hpp"
 #include "scenario/scenario.hpp"
 
@@ -86,7 +87,7 @@ const char* kindName(NamedObjects::Kind kind) {
 std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const NamedObjects& names, PointKind kind,
                                  bool allowList) {
   const std::string text = trim(raw);
-  auto bad = [&](const std::string& why) { at.fail(fmt::format("reference '{}': {}", text, why)); };
+  auto bad = [&](const std::string& why) { at.fail(fmt::format("reference {}: {}", input::quotedValue(text), why)); };
 
   if (!text.empty() && text[0] == '#') {
     const auto n = parseIndex(std::string_view(text).substr(1));
@@ -107,7 +108,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   const NamedObjects::Entry* entry = names.find(name);
   if (!entry) {
     const std::string suggestion = input::closestName(name, names.names());
-    bad(fmt::format("nothing is named '{}'{}", name,
+    bad(fmt::format("nothing is named {}{}", input::quotedValue(name),
                     suggestion.empty() ? std::string() : fmt::format("; did you mean '{}'?", suggestion)));
   }
 

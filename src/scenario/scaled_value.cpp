@@ -41,7 +41,8 @@ void splitNumbers(const YAML::Node& node, std::vector<std::string>& pieces, std:
 ScaledValue::ScaledValue(std::string_view text, const std::string& file, const std::string& path) : pieces_(1) {
   const Override o{path, "", ""};
   const std::vector<detail::PathSegment> segments = detail::splitPath(o, file);
-  YAML::Node cur = detail::loadOneDocument(std::string(text), file);
+  YAML::Node cur =
+      detail::loadOneDocument(std::string(text), file, nullptr, detail::NodeLimit::scenario(std::uintmax_t(SceneLimits{}.nodes)));
   std::string canonical;
   for (const detail::PathSegment& s : segments) {
     detail::appendSegment(canonical, s);

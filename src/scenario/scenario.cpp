@@ -10,6 +10,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "input/printable_text.hpp"
 #include "core/forces/damped_spring_force.hpp"
 #include "core/grid.hpp"
 #include "core/kind.hpp"
@@ -44,7 +45,7 @@ std::string readType(const Value& entry, const std::vector<std::string>& types) 
   const std::string name = type.string();
   if (std::find(types.begin(), types.end(), name) == types.end()) {
     const std::string suggestion = input::closestName(name, types);
-    type.fail(fmt::format("unknown type '{}'{}; expected one of {}", name,
+    type.fail(fmt::format("unknown type {}{}; expected one of {}", input::quotedValue(name),
                           suggestion.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", suggestion),
                           fmt::join(types, ", ")));
   }
@@ -145,7 +146,7 @@ class detail::Loader {
         std::vector<std::string> known;
         for (Integrator k : allIntegrators()) known.emplace_back(integratorName(k));
         const std::string suggestion = input::closestName(name, known);
-        i->fail(fmt::format("unknown integrator '{}'{}; expected one of {}", name,
+        i->fail(fmt::format("unknown integrator {}{}; expected one of {}", input::quotedValue(name),
                             suggestion.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", suggestion),
                             fmt::join(known, ", ")));
       }
@@ -157,7 +158,7 @@ class detail::Loader {
       const std::string name = solver->string();
       const auto chosen = implicitSolverFromName(name);
       if (!chosen) {
-        solver->fail(fmt::format("unknown implicit solver '{}'; expected one of {}, {}, {}", name,
+        solver->fail(fmt::format("unknown implicit solver {}; expected one of {}, {}, {}", input::quotedValue(name),
                                  implicitSolverName(ImplicitSolver::automatic),
                                  implicitSolverName(ImplicitSolver::direct), implicitSolverName(ImplicitSolver::cg)));
       }
@@ -358,7 +359,7 @@ auto readingYaml(const std::string& file, const Read& read) {
 
 Scenario loadDocument(const std::string& text, const std::string& file, std::span<const Override> overrides,
                       const SceneLimits& limits) {
-  YAML::Node root = detail::loadOneDocument(text, file);
+  YAML::Node root = detail::loadOneDocument(text, file, nullptr, detail::NodeLimit::scenario(std::uintmax_t(limits.nodes)));
   if (!root.IsMap()) {
     const YAML::Mark m = root.Mark();
     throw ScenarioError(file, m.line + 1, m.column + 1, "", "expected a scenario (a map of keys such as 'name')");

@@ -35,6 +35,10 @@ struct SceneLimits {
   long long constraints = 1'000'000;   // the constraints section's constraints
   long long endpoints = 16'000'000;    // points the references name, whole grids and lists expanded
   long long entries = 1'000'000;       // entries of the kind sections, YAML aliases expanded
+  // Values, keys and lists in the file (YAML nodes), counted before yaml-cpp builds them (about
+  // 900 bytes each, so a 4 MB list of numbers took 1 GB): 250,000 keep a scenario's tree within
+  // about 200 MiB. A large system is a grid, a few nodes for any number of points.
+  long long nodes = 250'000;
 };
 // The largest value `--limit` accepts: particle indices are ints.
 inline constexpr long long kMaxSceneLimit = 1'000'000'000;
@@ -47,7 +51,8 @@ inline constexpr SceneLimitName kSceneLimitNames[] = {{"particles", &SceneLimits
                                                       {"springs", &SceneLimits::springs},
                                                       {"constraints", &SceneLimits::constraints},
                                                       {"endpoints", &SceneLimits::endpoints},
-                                                      {"entries", &SceneLimits::entries}};
+                                                      {"entries", &SceneLimits::entries},
+                                                      {"nodes", &SceneLimits::nodes}};
 // Sets one limit from `NAME=N` as given to --limit; throws ScenarioError naming the option when
 // the name is unknown or N is not a whole number from 1 to kMaxSceneLimit.
 void applyLimitOption(SceneLimits& limits, std::string_view text);

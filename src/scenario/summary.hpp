@@ -1,6 +1,6 @@
 #pragma once
 // How a loaded scenario is described to people, and the simulation keys that have shorthands:
-// one text for `particles check` and the library's Scenario::validate(), one list of shorthands
+// one text for `particles check` and the library's Scenario::summary(), one list of shorthands
 // for the command line's --integrator, --dt, --duration, --implicit-solver and the library's
 // Scenario::set("dt", …).
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "input/printable_text.hpp"
 #include "input/closest_name.hpp"
 #include "scenario/scenario_error.hpp"
 
@@ -26,9 +27,12 @@ bool startsWithPath(const std::string& path, const std::string& prefix) {
   return path.size() == prefix.size() || path[prefix.size()] == '.' || path[prefix.size()] == '[';
 }
 
-// Where each document's first node starts, for the first two documents at most.
+// Where each document's first node starts, for the first two documents at most; and the nodes,
+// counted as the parser reports them, refused past `limits` (NodeLimit) at the node that passes,
+// before yaml-cpp builds any (about 900 bytes each).
 class DocumentMarks final : public YAML::EventHandler {
  public:
+  DocumentMarks(const std::string& file, const NodeLimit& limit) : file_(file), limit_(limit) {}
   std::vector<YAML::Mark> starts;
   bool aliases = false;  // whether a node is repeated by an alias (`*name`)
 
@@ -53,8 +57,12 @@ class DocumentMarks final : public YAML::EventHandler {
   void node(const YAML::Mark& m) {
     if (wanted_) starts.push_back(m);
     wanted_ = false;
+    if (++nodes_ > limit_.maxNodes) throw ScenarioError(file_, m.line + 1, m.column + 1, "", limit_.tooMany);
   }
   bool wanted_ = false;
+  const std::string& file_;
+  const NodeLimit& limit_;
+  std::uintmax_t nodes_ = 0;
 };
 
 // yaml-cpp's scanner keeps every token of a flow list (`[1, 2, 3]`) until the list ends, ~380
@@ -181,11 +189,45 @@ class ShapeCheck final : public YAML::EventHandler {
 // The file's one document. yaml-cpp 0.7's LoadAll never returns on some malformed input (a lone
 // ',': the parser reports document after document without reading on, yaml-cpp issue 1040), so the
 // documents are counted through the event parser, two at most, and the first is loaded alone.
-YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases) {
+NodeLimit NodeLimit::scenario(std::uintmax_t maxNodes) {
+  return {maxNodes, fmt::format("more than {} values, keys and lists (YAML nodes) in one scenario; a large system is "
+                                "a grid, not a list of its points, or raise the limit with --limit nodes=N",
+                                maxNodes)};
+}
+
+namespace {
+
+// The flow lists' count before the parser's (checkFlowListLengths) for a NodeLimit: no list has
+// more items than the document has nodes.
+ShapeLimits flowLimits(const NodeLimit& limit) {
+  ShapeLimits flow;
+  flow.maxListItems = limit.maxNodes;
+  flow.tooLongList = limit.tooMany;
+  return flow;
+}
+
+}  // namespace
+
+void checkNodeCount(const std::string& text, const std::string& file, const NodeLimit& limit) {
   try {
+    checkFlowListLengths(text, file, flowLimits(limit));
     std::istringstream in(text);
     YAML::Parser parser(in);
-    DocumentMarks marks;
+    DocumentMarks marks(file, limit);
+    for (int i = 0; i < 2 && parser.HandleNextDocument(marks); ++i) {
+    }
+  } catch (const YAML::ParserException& e) {
+    throw ScenarioError(file, e.mark.line + 1, e.mark.column + 1, "", fmt::format("YAML syntax error: {}", e.msg));
+  }
+}
+
+YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases, const NodeLimit& limit) {
+  try {
+    // yaml-cpp's scanner holds a flow list's tokens until the list ends: counted in the text first.
+    checkFlowListLengths(text, file, flowLimits(limit));
+    std::istringstream in(text);
+    YAML::Parser parser(in);
+    DocumentMarks marks(file, limit);
     for (int i = 0; i < 2 && parser.HandleNextDocument(marks); ++i) {
     }
     if (marks.starts.size() > 1) {
@@ -255,7 +297,7 @@ std::string Value::found() const {
   if (isNull()) return "got nothing";
   if (isMap()) return "got a map";
   if (isSequence()) return fmt::format("got a list of {}", node_.size());
-  return fmt::format("got '{}'", node_.Scalar());
+  return fmt::format("got {}", input::quotedValue(node_.Scalar()));
 }
 
 double Value::number() const {
@@ -353,13 +395,13 @@ MapReader::MapReader(const Value& value, const std::vector<std::string_view>& al
     if (!key.IsScalar()) keyValue.fail("expected a key name, got a list or map as key");
     if (std::find(allowedNames.begin(), allowedNames.end(), name) == allowedNames.end()) {
       const std::string suggestion = input::closestName(name, allowedNames);
-      std::string message = fmt::format("unknown key '{}'", name);
+      std::string message = fmt::format("unknown key {}", input::quotedValue(name));
       if (!suggestion.empty()) message += fmt::format("; did you mean '{}'?", suggestion);
       message += fmt::format(" (valid keys here: {})", fmt::join(allowedNames, ", "));
       keyValue.fail(message);
     }
     for (const auto& [seen, seenValue] : entries_) {
-      if (seen == name) keyValue.fail(fmt::format("duplicate key '{}'", name));
+      if (seen == name) keyValue.fail(fmt::format("duplicate key {}", input::quotedValue(name)));
     }
     entries_.emplace_back(name, std::move(entry));
   }

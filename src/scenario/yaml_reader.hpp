@@ -23,7 +23,19 @@ namespace particles::scenario::detail {
 // second document or at a syntax error. Works around yaml-cpp 0.7's LoadAll, which never returns
 // on some malformed input (yaml-cpp issue 1040). With `aliases`, sets it to whether the document
 // repeats a node by an alias (`*name`): its tree then holds that node at two key paths.
-YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases = nullptr);
+// The document holds at most limit.maxNodes nodes (values, keys and lists; a list's items count
+// one each, an alias one): past that, ScenarioError with limit.tooMany at the node that passes,
+// before yaml-cpp builds any, in the time of reading up to it and in constant memory.
+struct NodeLimit {
+  std::uintmax_t maxNodes = 0;
+  std::string tooMany;
+  // A scenario's, with --limit nodes=N's words (SceneLimits::nodes).
+  static NodeLimit scenario(std::uintmax_t maxNodes);
+};
+YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases,
+                           const NodeLimit& limit);
+// The same count alone, for text that is parsed otherwise (a --set value): ScenarioError past it.
+void checkNodeCount(const std::string& text, const std::string& file, const NodeLimit& limit);
 
 // The most a file read whole may hold, checked before any of its nodes is built (a sweep file, a
 // golden manifest): each limit's message is the file's own, since it says how to split the file.

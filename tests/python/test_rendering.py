@@ -128,7 +128,7 @@ def test_frames_of_the_wrong_shape_or_dtype_are_refused(tmp_path):
     assert video.frames == 2
     with pytest.raises(particles.ArgumentError, match="finished"):
         video.write(good)
-    for kwargs in ({"fps": 0}, {"preset": "warp"}, {"crf": 99}, {"keyint": -1.0}, {"alpha": True}):
+    for kwargs in ({"fps": 0}, {"preset": "warp"}, {"crf": 99}, {"keyint_seconds": -1.0}, {"alpha": True}):
         with pytest.raises(particles.ArgumentError):
             particles.VideoWriter(tmp_path / "w.mp4", **kwargs)
     with pytest.raises(particles.ArgumentError, match="not a video"):

@@ -59,13 +59,13 @@ def run_sequence(seed, tmp_path):
         "position": lambda: sim.position(any_value(rng)),
         "set_position": lambda: sim.set_position(any_value(rng), any_value(rng)),
         "set_velocity": lambda: sim.set_velocity(rng.choice([0, 1, -1, 10**9, "cloth[0][0]", "x"]), any_value(rng)),
-        "index": lambda: sim.index(rng.choice(TEXTS)),
+        "index": lambda: sim.particle_index(rng.choice(TEXTS)),
         "mouse": lambda: (sim.set_mouse_target(any_value(rng), mouse=rng.choice([0, 0, 1, -1])) if rng.random() < 0.7
                           else sim.release_mouse(rng.choice([0, 1]))),
         "mouse_target": lambda: sim.mouse_target(rng.choice([0, 1, -1])),
         "body_index": lambda: sim.body_index(rng.choice(TEXTS)),
         "threads": lambda: setattr(sim, "threads", rng.choice([1, 2, 0, 1025, None, "x"])),
-        "read": lambda: (sim.energy(), sim.bodies, sim.names, sim.constraint_error(), sim.penetration(), sim.t),
+        "read": lambda: (sim.energy(), sim.bodies, sim.particle_names, sim.constraint_error(), sim.penetration(), sim.time),
         "render": lambda: sim.render(size=rng.choice([(16, 12), (0, 0), (-1, 5), None, "x", (20000, 20000)])
                                      if rng.random() < 0.3 else (16, 12),
                                      msaa=rng.choice([1, 3, 4]), theme=rng.choice(["dark", "light", "x"])),

@@ -1,8 +1,8 @@
-#include "output/printable_text.hpp"
+#include "input/printable_text.hpp"
 
 #include <fmt/format.h>
 
-namespace particles::output {
+namespace particles::input {
 
 namespace {
 
@@ -59,4 +59,25 @@ std::string printableText(std::string_view text) {
   return out;
 }
 
-}  // namespace particles::output
+namespace {
+
+// The first kMostQuotedBytes of a longer value, cut at a character's start.
+std::string_view quotedPart(std::string_view value) {
+  size_t cut = kMostQuotedBytes;
+  while (cut > 0 && (static_cast<unsigned char>(value[cut]) & 0xC0u) == 0x80u) --cut;  // not inside a character
+  return value.substr(0, cut);
+}
+
+}  // namespace
+
+std::string quotedValue(std::string_view value) {
+  if (value.size() <= kMostQuotedBytes) return fmt::format("'{}'", printableText(value));
+  return fmt::format("'{}…' ({} bytes)", printableText(quotedPart(value)), value.size());
+}
+
+std::string shownValue(std::string_view value) {
+  if (value.size() <= kMostQuotedBytes) return printableText(value);
+  return fmt::format("{}… ({} bytes)", printableText(quotedPart(value)), value.size());
+}
+
+}  // namespace particles::input
