@@ -56,7 +56,7 @@ const std::array<OutputFormat, 5> kOutputFormats{{
      .splits = false,
      .halvedChroma = "yuv420p",
      .halvedChromaAlpha = "yuva420p",
-     .maxSide = 65536,
+     .maxSide = 16384,
      .open = &openWriter<WebmWriter>},
     {.kind = OutputKind::gif,
      .extension = ".gif",

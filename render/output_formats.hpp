@@ -61,8 +61,9 @@ struct OutputFormat {
   std::string_view halvedChroma = {};
   std::string_view halvedChromaAlpha = {};
   std::optional<FpsCap> fpsCap = std::nullopt;  // nothing: any rate the command line takes
-  // The widest and tallest frame its encoder takes, px (x264: 16384; VP9 stores 16 bits; GIF's
-  // screen is 16 bits); checkFrameSize refuses more before the encoder is opened.
+  // The widest and tallest frame its encoder takes, px (x264 and libvpx's VP9: 16384, found by
+  // trying; GIF's screen is 16 bits); checkFrameSize refuses more before the encoder is opened,
+  // where the encoder said only "Invalid data found when processing input".
   int maxSide = 0;
   // One frame at a time given by --at (which is then required); every other format is a run of
   // frames, and refuses --at.

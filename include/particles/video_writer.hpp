@@ -52,6 +52,8 @@ class PARTICLES_API VideoWriter {
   // Stops and removes everything written so far; later write() and finish() calls are refused.
   // Never throws; does nothing after finish(). Safe from another thread while write() or finish()
   // runs: it waits for that call to end, then stops (a finish() that completed has its file).
+  // In a child of fork(), a writer made before the fork refuses write() and finish() (Error), and
+  // abort() leaves it to the parent.
   void abort() noexcept;
   long frames() const;  // frames written so far
 

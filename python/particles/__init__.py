@@ -52,7 +52,7 @@ __all__ = [
 class Frame(_np.ndarray):
     """A rendered frame: an (h, w, 4) uint8 RGBA numpy array, rows from the top.
 
-    A notebook shows it as a picture (_repr_png_); save() writes it as a PNG. Anything numpy does
+    A notebook shows it as a picture (_repr_png_); save_png() writes it as a PNG file. Anything numpy does
     with an array works on it; slicing or arithmetic gives plain arrays back where the result is
     not a frame any more.
     """
@@ -62,12 +62,12 @@ class Frame(_np.ndarray):
             return None  # no longer a picture (a slice, a sum): numpy's own repr instead
         return _particles._encode_png(self, False)
 
-    def png(self, alpha=False):
-        """The bytes of a PNG file of the frame (RGBA when alpha, else RGB)."""
+    def encode_png(self, alpha=False):
+        """The bytes of a PNG file of the frame (RGBA when alpha, else RGB): C++'s Image::encodePng."""
         return _particles._encode_png(self, alpha)
 
-    def save(self, path, alpha=False):
-        """Writes the frame as a PNG file (RGBA when alpha), whole or not at all."""
+    def save_png(self, path, alpha=False):
+        """Writes the frame as a PNG file (RGBA when alpha), whole or not at all: C++'s Image::savePng."""
         _particles._save_png(self, path, alpha)
 
 

@@ -219,6 +219,19 @@ view keeps the state's memory alive: after close() it still reads the last state
           },
           "The rigid bodies now: a structured array (a copy) with fields x, y (m), angle (rad) and omega (rad/s).")
       .def(
+          "body",
+          [](const SimulationHandle& h, const py::handle& index) {
+            const BodyState b = h.get("body")->body(wholeInt(index, "Simulation.body", "a body's index"));
+            return py::make_tuple(b.x, b.y, b.angle, b.omega);
+          },
+          "body"_a, "A rigid body's (x, y, angle, omega): m, m, rad, rad/s.")
+      .def(
+          "set_threads",
+          [](SimulationHandle& h, const py::object& threads) {
+            h.get("set_threads")->setThreads(threadsOf(threads, "Simulation.set_threads"));
+          },
+          "threads"_a, "The threads the next steps run on (1 to 1024; None: default_threads()), as .threads = n.")
+      .def(
           "position", [](const SimulationHandle& h, const py::handle& p) {
             const Simulation& s = *h.get("position");
             return tupleOf(s.position(particleOf(s, p, "Simulation.position")));

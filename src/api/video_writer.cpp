@@ -12,6 +12,7 @@
 #include "api/checked_image.hpp"
 #include "api/exclusive_use.hpp"
 #include "api/guarded_call.hpp"
+#include "core/worker_pool.hpp"
 #include "input/printable_text.hpp"
 #include "render/frame_writer.hpp"
 #include "render/output_formats.hpp"
@@ -29,6 +30,22 @@ struct VideoWriter::Impl {
   // call meanwhile: it waits for the call to end instead of freeing the encoder under it.
   std::mutex calls;
   bool aborted = false;  // under `calls`
+  // forkCount() when the writer was made: its encoder thread, once started, and its temporary file
+  // belong to that process. A fork()ed child's write() and finish() are refused, and its abort()
+  // and destructor leave them alone (freeing the writer would wait for a thread that is not here).
+  unsigned madeAtFork = forkCount();
+
+  bool inherited() const { return madeAtFork != forkCount(); }
+  void requireOwnProcess(std::string_view call) const {
+    if (inherited()) {
+      throw Error(fmt::format("VideoWriter::{}: this writer was made before this process was forked; its encoder and "
+                              "{}'s temporary file are the parent's: write from there, or make a writer here",
+                              call, input::quotedValue(path)));
+    }
+  }
+  ~Impl() {
+    if (inherited()) (void)writer.release();
+  }
 
   // write() and finish() refuse to go on after abort() (under `calls`).
   void requireNotAborted(std::string_view call) const {
@@ -101,6 +118,7 @@ VideoWriter::~VideoWriter() = default;  // an unfinished FrameWriter removes wha
 void VideoWriter::write(const Image& frame) {
   api::guardedCall("VideoWriter::write", [&] {
     if (!impl_) throw ArgumentError("VideoWriter::write: this VideoWriter was moved from");
+    impl_->requireOwnProcess("write");
     ExclusiveUse use(impl_->busy, "VideoWriter::write", "VideoWriter");
     const std::lock_guard lock(impl_->calls);
     impl_->requireNotAborted("write");
@@ -121,6 +139,7 @@ void VideoWriter::write(const Image& frame) {
 void VideoWriter::finish() {
   api::guardedCall("VideoWriter::finish", [&] {
     if (!impl_) throw ArgumentError("VideoWriter::finish: this VideoWriter was moved from");
+    impl_->requireOwnProcess("finish");
     ExclusiveUse use(impl_->busy, "VideoWriter::finish", "VideoWriter");
     const std::lock_guard lock(impl_->calls);
     impl_->requireNotAborted("finish");
@@ -134,7 +153,7 @@ void VideoWriter::finish() {
 }
 
 void VideoWriter::abort() noexcept {
-  if (!impl_) return;
+  if (!impl_ || impl_->inherited()) return;  // a fork()ed child's: the parent's to stop
   const std::lock_guard lock(impl_->calls);  // a write() or finish() on another thread ends first
   if (impl_->finished) return;
   impl_->aborted = true;

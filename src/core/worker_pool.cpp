@@ -84,7 +84,9 @@ bool WorkerPool::inheritedWorkers() const { return !workers_.empty() && workersF
 
 void WorkerPool::dropInheritedWorkers() {
   if (!inheritedWorkers()) return;
-  for (std::thread& t : workers_) t.detach();  // no such thread here: detached, it is never joined
+  // No such thread here: neither joined nor detached (pthread_detach refuses the parent's handle,
+  // and std::thread then throws), the handles are kept, unused, for the life of the process.
+  new std::vector<std::thread>(std::move(workers_));
   workers_.clear();
   // A worker of the parent may have been inside the lock or a wait at the fork: the copies of the
   // mutex and the condition variables are left as they are (never destroyed, never used) and new

@@ -42,7 +42,7 @@
 //
 // fork(). A child process has the forking thread alone: its pools' workers are the parent's, not
 // its own, and joining them would wait forever. A pool used in a child (a loop, start, or its
-// destructor) leaves those copies alone (detached, their memory kept) and starts workers of its own.
+// destructor) leaves those copies alone (their handles kept, unused) and starts workers of its own.
 
 #include <algorithm>
 #include <atomic>

@@ -62,7 +62,18 @@ cmake --build "$work/cmake-build" >/dev/null
 
 # pkg-config, by hand. Its output is words for the compiler's command line, split where it puts spaces.
 read -r -a flags < <(PKG_CONFIG_PATH="$libdir/pkgconfig" pkg-config --cflags --libs particles)
-c++ -std=c++20 examples/cpp/main.cpp "${flags[@]}" -o "$work/pkg-config-example"
+# The flags carry -std=c++20: a program built with them alone compiles.
+[[ " ${flags[*]} " == *" -std=c++20 "* ]] || { echo "pkg-config --cflags particles lacks -std=c++20: ${flags[*]}" >&2; exit 1; }
+c++ examples/cpp/main.cpp "${flags[@]}" -o "$work/pkg-config-example"
+# An older standard is told what the headers need, before any other error.
+read -r -a cflags < <(PKG_CONFIG_PATH="$libdir/pkgconfig" pkg-config --cflags particles)
+if c++ -fsyntax-only "${cflags[@]}" -std=c++17 examples/cpp/main.cpp 2>"$work/cxx17.err"; then
+  echo "the headers compiled as C++17" >&2
+  exit 1
+fi
+first_error=$(grep -m1 'error' "$work/cxx17.err" || true)
+[[ "$first_error" == *"particles' headers need C++20"* ]] ||
+  { echo "C++17's first error is not the headers' own: $first_error" >&2; exit 1; }
 LD_LIBRARY_PATH="$libdir" "$work/pkg-config-example" scenarios/cloth.yaml "$work/pkg-config.png" >"$work/pkg-config.out"
 sed -i 's|saved to .*|saved|' "$work/cmake.out" "$work/pkg-config.out"
 cmp "$work/cmake.out" "$work/pkg-config.out" || { echo "the two builds print differently" >&2; exit 1; }

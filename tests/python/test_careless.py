@@ -350,7 +350,7 @@ def test_advance_once_per_frame_lands_on_the_frames_of_render(tmp_path, run_part
     renderer = particles.Renderer(raster="cpu")
     for k in range(15):
         ours = renderer.render(sim)
-        ours.save(tmp_path / f"ours_{k:06d}.png")
+        ours.save_png(tmp_path / f"ours_{k:06d}.png")
         theirs = (tmp_path / "frames" / f"frame_{k:06d}.png").read_bytes()
         assert (tmp_path / f"ours_{k:06d}.png").read_bytes() == theirs, f"frame {k}"
         sim.advance(1 / 30)
@@ -440,7 +440,7 @@ def test_golden_outputs_that_may_not_be_written_are_argument_errors(tmp_path):
 def test_a_frame_numpy_cannot_copy_is_a_memory_error():
     huge = np.broadcast_to(np.zeros((1, 1, 4), np.uint8), (2**20, 2**20, 4))
     with pytest.raises(MemoryError):
-        particles.Frame.png(huge)
+        particles.Frame.encode_png(huge)
     with pytest.raises(MemoryError):
         particles.VideoWriter("never.mp4").write(huge)
 

@@ -28,7 +28,7 @@ def test_a_missing_reference_and_a_changed_frame_are_results_not_exceptions(tmp_
     assert not first and first.missing == 1 and first.frames[0].outcome == "missing"
     (tmp_path / "refs").mkdir()
     sim = particles.Simulation(particles.Scenario.load(scenario_path("cloth")))
-    sim.render(size=(64, 48)).save(tmp_path / "refs" / "cloth_t0.5.png")  # t = 0, not 0.5
+    sim.render(size=(64, 48)).save_png(tmp_path / "refs" / "cloth_t0.5.png")  # t = 0, not 0.5
     second = particles.golden.check(manifest, tmp_path / "report")  # replaces the earlier report
     frame = second.frames[0]
     assert frame.outcome == "failed" and frame.differing > 0 and frame.pixels == 64 * 48

@@ -20,8 +20,8 @@ def test_render_gives_the_bytes_of_particles_render_at(run_particles, tmp_path, 
     sim.advance(float(at))
     frame = sim.render(size=(320, 240))
     assert isinstance(frame, particles.Frame) and frame.shape == (240, 320, 4) and frame.dtype == np.uint8
-    assert frame.png() == (tmp_path / "cli.png").read_bytes()
-    frame.save(tmp_path / "api.png")
+    assert frame.encode_png() == (tmp_path / "cli.png").read_bytes()
+    frame.save_png(tmp_path / "api.png")
     assert (tmp_path / "api.png").read_bytes() == (tmp_path / "cli.png").read_bytes()
 
 
@@ -33,7 +33,7 @@ def test_each_raster_path_gives_the_bytes_of_particles_render(run_particles, tmp
                   "-o", "cli.png", "--quiet")
     sim = particles.Simulation(particles.Scenario.load(scenario_path("cloth")), threads=2)
     sim.advance(1.5)
-    assert sim.render(size=(320, 240), raster=raster).png() == (tmp_path / "cli.png").read_bytes()
+    assert sim.render(size=(320, 240), raster=raster).encode_png() == (tmp_path / "cli.png").read_bytes()
 
 
 def test_frames_show_in_a_notebook_and_a_renderer_draws_several_simulations(tmp_path):
@@ -41,8 +41,8 @@ def test_frames_show_in_a_notebook_and_a_renderer_draws_several_simulations(tmp_
     chain = particles.Simulation(particles.Scenario.load(scenario_path("rigid_chain")), threads=1)
     frame = cloth.render(size=(64, 48), theme="light", msaa=1)
     png = frame._repr_png_()
-    assert png.startswith(PNG_SIGNATURE) and png == frame.png()
-    assert frame.png(alpha=True) != png
+    assert png.startswith(PNG_SIGNATURE) and png == frame.encode_png()
+    assert frame.encode_png(alpha=True) != png
     assert frame[:, :, 0]._repr_png_() is None  # a slice is no longer a picture
     renderer = particles.Renderer(size=(64, 48), theme="light", msaa=1)
     assert renderer.gl_description == ""
@@ -74,7 +74,7 @@ def test_bad_render_settings_are_argument_errors():
         with pytest.raises(particles.ArgumentError, match=message):
             sim.render(**kwargs)
     with pytest.raises(particles.OutputError):
-        sim.render(size=(8, 8)).save("/nonexistent-folder/frame.png")
+        sim.render(size=(8, 8)).save_png("/nonexistent-folder/frame.png")
 
 
 @pytest.mark.parametrize("extension", ["mp4", "webm", "gif"])
