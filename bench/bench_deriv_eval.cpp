@@ -56,7 +56,7 @@ Cloth makeCloth(int n, bool rail) {
       b.addConstraint(std::make_unique<HorizontalLineConstraint>(g.at(0, c), spec.origin.y()));
   }
   Cloth cloth{b.build(), &springs};
-  Solver solver(Integrator::Rk4);
+  Solver solver(Integrator::rk4);
   for (int i = 0; i < 10; ++i) solver.doStep(cloth.system, 0.01);
   return cloth;
 }

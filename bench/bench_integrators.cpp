@@ -56,7 +56,7 @@ void BM_IntegratorStep(benchmark::State& state, const std::string& file, int n, 
   scenario::Scenario s = loadCloth(file, n);
   s.system.setThreads(threads);
   const bool stiff = file != "cloth.yaml";
-  Stepper(s.system, stiff ? Integrator::BackwardEuler : Integrator::Rk4, stiff ? 1.0 / 60.0 : 0.01).advanceTo(1.0);
+  Stepper(s.system, stiff ? Integrator::backwardEuler : Integrator::rk4, stiff ? 1.0 / 60.0 : 0.01).advanceTo(1.0);
   s.system.setImplicitSolver(solve);
   Solver solver(integrator);
   // One step outside the clock: Verlet's first evaluation, backward Euler's matrix pattern.
@@ -112,29 +112,29 @@ struct Case {
 };
 
 const Case kCases[] = {
-    {"cloth.yaml", 25, Integrator::Euler, 0.00054},       {"cloth.yaml", 25, Integrator::Midpoint, 0.0034},
-    {"cloth.yaml", 25, Integrator::Rk4, 0.012},           {"cloth.yaml", 25, Integrator::SymplecticEuler, 0.0081},
-    {"cloth.yaml", 25, Integrator::Verlet, 0.0077},       {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame},
-    {"cloth.yaml", 316, Integrator::Euler, 0.00069},      {"cloth.yaml", 316, Integrator::Midpoint, 0.0034},
-    {"cloth.yaml", 316, Integrator::Rk4, 0.01},           {"cloth.yaml", 316, Integrator::SymplecticEuler, 0.0067},
-    {"cloth.yaml", 316, Integrator::Verlet, 0.0064},      {"cloth.yaml", 316, Integrator::BackwardEuler, kFrame},
-    {"cloth_stiff.yaml", 25, Integrator::Midpoint, 0.00016}, {"cloth_stiff.yaml", 25, Integrator::Rk4, 0.0012},
-    {"cloth_stiff.yaml", 25, Integrator::SymplecticEuler, 0.00089},
-    {"cloth_stiff.yaml", 25, Integrator::Verlet, 0.00088}, {"cloth_stiff.yaml", 25, Integrator::BackwardEuler, kFrame},
+    {"cloth.yaml", 25, Integrator::euler, 0.00054},       {"cloth.yaml", 25, Integrator::midpoint, 0.0034},
+    {"cloth.yaml", 25, Integrator::rk4, 0.012},           {"cloth.yaml", 25, Integrator::symplecticEuler, 0.0081},
+    {"cloth.yaml", 25, Integrator::verlet, 0.0077},       {"cloth.yaml", 25, Integrator::backwardEuler, kFrame},
+    {"cloth.yaml", 316, Integrator::euler, 0.00069},      {"cloth.yaml", 316, Integrator::midpoint, 0.0034},
+    {"cloth.yaml", 316, Integrator::rk4, 0.01},           {"cloth.yaml", 316, Integrator::symplecticEuler, 0.0067},
+    {"cloth.yaml", 316, Integrator::verlet, 0.0064},      {"cloth.yaml", 316, Integrator::backwardEuler, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::midpoint, 0.00016}, {"cloth_stiff.yaml", 25, Integrator::rk4, 0.0012},
+    {"cloth_stiff.yaml", 25, Integrator::symplecticEuler, 0.00089},
+    {"cloth_stiff.yaml", 25, Integrator::verlet, 0.00088}, {"cloth_stiff.yaml", 25, Integrator::backwardEuler, kFrame},
     // Issue 29: BDF2, the direct solve beside CG, and the 10⁴× stiff cloth (its limits from
     // `particles stability scenarios/cloth_very_stiff.yaml`, docs/stability.md).
-    {"cloth.yaml", 25, Integrator::Bdf2, kFrame},
-    {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
-    {"cloth.yaml", 316, Integrator::BackwardEuler, kFrame, ImplicitSolver::direct},
-    {"cloth.yaml", 316, Integrator::Bdf2, kFrame},
-    {"cloth_stiff.yaml", 25, Integrator::Bdf2, kFrame},
-    {"cloth_stiff.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
-    {"cloth_very_stiff.yaml", 25, Integrator::Rk4, 0.00012},
-    {"cloth_very_stiff.yaml", 25, Integrator::SymplecticEuler, 0.000089},
-    {"cloth_very_stiff.yaml", 25, Integrator::Verlet, 0.000089},
-    {"cloth_very_stiff.yaml", 25, Integrator::BackwardEuler, kFrame},
-    {"cloth_very_stiff.yaml", 25, Integrator::Bdf2, kFrame},
-    {"cloth_very_stiff.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth.yaml", 25, Integrator::bdf2, kFrame},
+    {"cloth.yaml", 25, Integrator::backwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth.yaml", 316, Integrator::backwardEuler, kFrame, ImplicitSolver::direct},
+    {"cloth.yaml", 316, Integrator::bdf2, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::bdf2, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::backwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth_very_stiff.yaml", 25, Integrator::rk4, 0.00012},
+    {"cloth_very_stiff.yaml", 25, Integrator::symplecticEuler, 0.000089},
+    {"cloth_very_stiff.yaml", 25, Integrator::verlet, 0.000089},
+    {"cloth_very_stiff.yaml", 25, Integrator::backwardEuler, kFrame},
+    {"cloth_very_stiff.yaml", 25, Integrator::bdf2, kFrame},
+    {"cloth_very_stiff.yaml", 25, Integrator::backwardEuler, kFrame, ImplicitSolver::cg},
 };
 
 // A scenario file's name without its extension: cloth_stiff for cloth_stiff.yaml.
@@ -187,7 +187,7 @@ void BM_ImplicitCrossover(benchmark::State& state, const char* scene, int n, Imp
     state.PauseTiming();
     scenario::Scenario s = loadCloth(scene, n);
     s.system.setImplicitSolver(solve);
-    Solver solver(Integrator::BackwardEuler);
+    Solver solver(Integrator::backwardEuler);
     state.ResumeTiming();
     for (int step = 0; step < 180; ++step) {
       solver.doStep(s.system, kFrame);
@@ -212,7 +212,7 @@ enum class CgPreconditioner { jacobi, incompleteCholesky };
 void BM_CgPreconditioner(benchmark::State& state, const char* scene, int n, CgPreconditioner which) {
   scenario::Scenario s = loadCloth(scene, n);
   const bool stiff = std::string(scene) != "cloth.yaml";
-  Stepper(s.system, stiff ? Integrator::BackwardEuler : Integrator::Rk4, stiff ? kFrame : 0.01).advanceTo(1.0);
+  Stepper(s.system, stiff ? Integrator::backwardEuler : Integrator::rk4, stiff ? kFrame : 0.01).advanceTo(1.0);
   s.system.setImplicitSolver(ImplicitSolver::cg);
   BackwardEulerState w;
   Eigen::VectorXd y = s.system.state();
@@ -245,21 +245,21 @@ void BM_CgPreconditioner(benchmark::State& state, const char* scene, int n, CgPr
 // Side by side per cloth: symplectic Euler at its limit (the cheapest explicit integrator per
 // simulated second on all three), RK4 at its limit, and the implicit ones at one step per frame.
 const Case kRuns[] = {
-    {"cloth.yaml", 25, Integrator::SymplecticEuler, 0.0081},
-    {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame},
-    {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
-    {"cloth.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::direct},
-    {"cloth.yaml", 25, Integrator::Bdf2, kFrame},
-    {"cloth_stiff.yaml", 25, Integrator::SymplecticEuler, 0.00089},
-    {"cloth_stiff.yaml", 25, Integrator::Rk4, 0.0012},
-    {"cloth_stiff.yaml", 25, Integrator::BackwardEuler, kFrame},
-    {"cloth_stiff.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
-    {"cloth_stiff.yaml", 25, Integrator::Bdf2, kFrame},
-    {"cloth_very_stiff.yaml", 25, Integrator::SymplecticEuler, 0.000089},
-    {"cloth_very_stiff.yaml", 25, Integrator::Rk4, 0.00012},
-    {"cloth_very_stiff.yaml", 25, Integrator::BackwardEuler, kFrame},
-    {"cloth_very_stiff.yaml", 25, Integrator::BackwardEuler, kFrame, ImplicitSolver::cg},
-    {"cloth_very_stiff.yaml", 25, Integrator::Bdf2, kFrame},
+    {"cloth.yaml", 25, Integrator::symplecticEuler, 0.0081},
+    {"cloth.yaml", 25, Integrator::backwardEuler, kFrame},
+    {"cloth.yaml", 25, Integrator::backwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth.yaml", 25, Integrator::backwardEuler, kFrame, ImplicitSolver::direct},
+    {"cloth.yaml", 25, Integrator::bdf2, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::symplecticEuler, 0.00089},
+    {"cloth_stiff.yaml", 25, Integrator::rk4, 0.0012},
+    {"cloth_stiff.yaml", 25, Integrator::backwardEuler, kFrame},
+    {"cloth_stiff.yaml", 25, Integrator::backwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth_stiff.yaml", 25, Integrator::bdf2, kFrame},
+    {"cloth_very_stiff.yaml", 25, Integrator::symplecticEuler, 0.000089},
+    {"cloth_very_stiff.yaml", 25, Integrator::rk4, 0.00012},
+    {"cloth_very_stiff.yaml", 25, Integrator::backwardEuler, kFrame},
+    {"cloth_very_stiff.yaml", 25, Integrator::backwardEuler, kFrame, ImplicitSolver::cg},
+    {"cloth_very_stiff.yaml", 25, Integrator::bdf2, kFrame},
 };
 
 // Names read BM_IntegratorStep/cloth_stiff/25/rk4, BM_IntegratorStep/cloth/25/backward_euler/cg.
@@ -299,7 +299,7 @@ const bool kRegistered = [] {
     }
   }
   // Issue 28's step targets: the 316² cloth on 1 and 2 threads (System::setThreads), wall time.
-  for (Integrator integrator : {Integrator::Rk4, Integrator::SymplecticEuler, Integrator::BackwardEuler}) {
+  for (Integrator integrator : {Integrator::rk4, Integrator::symplecticEuler, Integrator::backwardEuler}) {
     for (const Case& c : kCases) {
       if (c.n != 316 || c.integrator != integrator || c.solve != ImplicitSolver::automatic) continue;
       for (int threads : {1, 2, 4, 8, 16}) {

@@ -106,7 +106,7 @@ BENCHMARK(BM_RenderLargeCloth)
 struct MillionFrame {
   scenario::Scenario scene;
   render::RenderOptions options;
-  render::Theme colors;
+  render::Palette colors;
   render::Camera camera;
 };
 std::unique_ptr<MillionFrame> millionFrame(int threads) {
@@ -238,7 +238,7 @@ BENCHMARK(BM_RenderDemoParts)->DenseRange(0, 3)->UseRealTime()->Unit(benchmark::
 // then the tiles composited into the image (0), or the records and the sort alone (1).
 void BM_CpuTilesDemo(benchmark::State& state) {
   const auto [drawing, camera, options] = clothDemoFrame();
-  const render::Theme colors = render::theme(options.themeName);
+  const render::Palette colors = render::theme(options.themeName);
   render::TileBins bins;
   render::CompositedFrame image;
   image.image = render::Image(options.width, options.height);

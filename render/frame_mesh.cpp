@@ -33,7 +33,7 @@ class PixelMapping {
 // shapes (counts()), which is what lets the pieces be written into numbered slots.
 class FrameShapes {
  public:
-  FrameShapes(const Drawing& f, const Camera& camera, const RenderOptions& options, const Theme& colors)
+  FrameShapes(const Drawing& f, const Camera& camera, const RenderOptions& options, const Palette& colors)
       : f_(f), o_(options), c_(colors), toPixel_(camera, options) {
     if (f.springTopology && f.springTopology->ends.size() != 2 * f.springTopology->rest.size()) {
       throw std::invalid_argument("the drawing's spring topology has other than two ends per spring");
@@ -185,7 +185,7 @@ class FrameShapes {
  private:
   const Drawing& f_;
   const RenderOptions& o_;
-  const Theme& c_;
+  const Palette& c_;
   const PixelMapping toPixel_;
   float w_, h_, radius_;
   double scale_;
@@ -196,7 +196,7 @@ constexpr size_t kShapesPerPiece = 16384;
 
 }  // namespace
 
-void buildFrameMesh(const Drawing& f, const Camera& camera, const RenderOptions& options, const Theme& c,
+void buildFrameMesh(const Drawing& f, const Camera& camera, const RenderOptions& options, const Palette& c,
                     ShapeSink& mesh) {
   const FrameShapes frame(f, camera, options, c);
   mesh.clear();
@@ -208,7 +208,7 @@ void buildFrameMesh(const Drawing& f, const Camera& camera, const RenderOptions&
   frame.cursors(mesh);
 }
 
-size_t buildFrameTiles(const Drawing& f, const Camera& camera, const RenderOptions& options, const Theme& c,
+size_t buildFrameTiles(const Drawing& f, const Camera& camera, const RenderOptions& options, const Palette& c,
                        TileBins& bins, WorkerPool* pool) {
   const FrameShapes frame(f, camera, options, c);
   const FrameShapes::Counts counts = FrameShapes::counts(f);
@@ -244,7 +244,7 @@ size_t buildFrameTiles(const Drawing& f, const Camera& camera, const RenderOptio
   return recorded;
 }
 
-MeshBreaks buildFrameMeshAround(const Drawing& f, const Camera& camera, const RenderOptions& options, const Theme& c,
+MeshBreaks buildFrameMeshAround(const Drawing& f, const Camera& camera, const RenderOptions& options, const Palette& c,
                                 ShapeMesh& mesh) {
   const FrameShapes frame(f, camera, options, c);
   mesh.clear();

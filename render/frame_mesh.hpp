@@ -1,7 +1,7 @@
 #pragma once
 // Internal to render/: a Drawing as the renderer's triangles (render/shape_mesh.hpp), seen through
 // a Camera, in pixel coordinates (x right, y down from the top-left corner), with the widths of
-// RenderOptions and the colours of a Theme. No GL: the renderer hands the mesh to the shader
+// RenderOptions and the colours of a theme's Palette. No GL: the renderer hands the mesh to the shader
 // (render/renderer.cpp); tests check it by numbers.
 //
 // Shapes are added back to front, in the order of core/drawing.hpp: obstacles (half-planes, then
@@ -23,7 +23,7 @@ inline constexpr float kGuideOverhangPx = 8.0f;
 
 // Replaces what `shapes` (a ShapeMesh or TileBins) holds with the frame's shapes, back to front.
 // Throws std::invalid_argument when the camera's height is not positive.
-void buildFrameMesh(const Drawing& frame, const Camera& camera, const RenderOptions& options, const Theme& colors,
+void buildFrameMesh(const Drawing& frame, const Camera& camera, const RenderOptions& options, const Palette& colors,
                     ShapeSink& shapes);
 
 // The same shapes as buildFrameMesh, written into `bins`' slots (TileBins::slots, one per shape
@@ -32,7 +32,7 @@ void buildFrameMesh(const Drawing& frame, const Camera& camera, const RenderOpti
 // lands in slot k whatever the thread count, so the bins are the same bytes for every count.
 // `bins` must have been reset to the image's size. Returns the shapes that add something (those
 // buildFrameMesh gives a TileBins as records): what the renderer's automatic choice counts.
-size_t buildFrameTiles(const Drawing& frame, const Camera& camera, const RenderOptions& options, const Theme& colors,
+size_t buildFrameTiles(const Drawing& frame, const Camera& camera, const RenderOptions& options, const Palette& colors,
                        TileBins& bins, WorkerPool* pool = nullptr);
 
 // Where the resident path (render/resident_program.hpp) draws its springs and particles among the
@@ -45,7 +45,7 @@ struct MeshBreaks {
 // which the resident path draws from GL's copy of them; the frame's springs by position, if any,
 // come just before those by index.
 MeshBreaks buildFrameMeshAround(const Drawing& frame, const Camera& camera, const RenderOptions& options,
-                                const Theme& colors, ShapeMesh& mesh);
+                                const Palette& colors, ShapeMesh& mesh);
 
 // Where every path puts the frame's particles: (x, y) in pixels per particle, into `pixels`, on
 // `pool`'s threads when it is given. Throws std::invalid_argument as buildFrameMesh does.

@@ -14,9 +14,11 @@
 #include <string_view>
 #include <vector>
 
+#include <particles/choices.hpp>
+
 namespace particles::render {
 
-enum class GlBackend { automatic, egl, osmesa };
+using GlBackend = particles::GlBackend;  // include/particles/choices.hpp
 
 struct GlRequest {
   GlBackend backend = GlBackend::automatic;

@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include <particles/choices.hpp>
+
 #include "core/drawing.hpp"
 #include "core/state.hpp"
 #include "render/theme.hpp"
@@ -46,7 +48,7 @@ std::string sampleCountsText();
 // vertex shader (render/resident_program.hpp); cpu, the tiles composited by the program's own
 // threads into the image, without GL (render/tile_composite.hpp); automatic, resident on a GPU,
 // else cpu.
-enum class Raster { automatic, triangles, tiles, resident, cpu };
+using Raster = particles::Raster;  // include/particles/choices.hpp
 // The shape count from which the GL paths' automatic choice (where the cpu path is not taken: a
 // GPU's resident path that cannot hold the frame) draws with tiles: about where the two cost the
 // same for the cloth at 1280×720 on llvmpipe, between the 80 × 80 and the 100 × 100 cloth

@@ -43,7 +43,7 @@ const GlInfo kNoGl = [] {
 struct Renderer::Impl {
   // Members in the order they are made: the program is compiled in the context, current once made.
   RenderOptions options;
-  Theme colors;
+  Palette colors;
   // The path every frame is drawn on: the options' raster path and the GPU request decide it
   // (rasterTaken), once for the renderer. On the cpu path the image is made at the first frame and
   // is ready when drawn, so the renderer does not read ahead; and it needs no GL context: none is

@@ -36,7 +36,7 @@ struct ResidentLook {
   float springWidthPx = 1.5f;
   double pixelsPerUnit = 1.0;       // for the springs' strain, from their pixel lengths
   double strainForFullColor = 0.2;  // RenderOptions::strainForFullColor
-  Theme colors{};
+  Palette colors{};
 };
 
 class ResidentProgram {

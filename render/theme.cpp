@@ -4,7 +4,7 @@
 
 namespace particles::render {
 
-Theme theme(ThemeName name) {
+Palette theme(ThemeName name) {
   if (name == ThemeName::light) {
     return {
         .background = {255, 255, 255},
@@ -61,7 +61,7 @@ Rgb mix(Rgb a, Rgb b, double t) {
   return {m(a.r, b.r), m(a.g, b.g), m(a.b, b.b)};
 }
 
-Rgb springColor(const Theme& c, double strain, double strainForFullColor) {
+Rgb springColor(const Palette& c, double strain, double strainForFullColor) {
   const double t = std::clamp(strain / strainForFullColor, -1.0, 1.0);
   return t < 0 ? mix(c.springRest, c.springCompressed, -t) : mix(c.springRest, c.springStretched, t);
 }

@@ -1,16 +1,18 @@
 #pragma once
 // The colours of a frame: a palette per theme, and the colour a spring takes from its strain.
 
+#include <particles/choices.hpp>
+
 namespace particles::render {
 
-enum class ThemeName { dark, light };  // dark for the screen, light for printed reports
+using ThemeName = particles::Theme;  // include/particles/choices.hpp: dark for the screen, light for printed reports
 
 struct Rgb {
   unsigned char r, g, b;
   bool operator==(const Rgb&) const = default;
 };
 
-struct Theme {
+struct Palette {
   Rgb background;
   Rgb particle, fixedParticle;
   Rgb springCompressed, springRest, springStretched;
@@ -20,7 +22,7 @@ struct Theme {
   Rgb colliderFill, colliderOutline;
   Rgb mouse, mouseOutline;
 };
-Theme theme(ThemeName name);
+Palette theme(ThemeName name);
 
 // a + (b − a)·t per channel, rounded to the nearest level; t in [0, 1].
 Rgb mix(Rgb a, Rgb b, double t);
@@ -28,6 +30,6 @@ Rgb mix(Rgb a, Rgb b, double t);
 // A spring's colour: the at-rest colour at strain 0, moving linearly towards the compressed
 // (strain < 0) or stretched (strain > 0) colour, which it reaches at |strain| ≥ strainForFullColor
 // (> 0). Strain as in core/drawing.hpp: |l| / rest − 1.
-Rgb springColor(const Theme& theme, double strain, double strainForFullColor);
+Rgb springColor(const Palette& theme, double strain, double strainForFullColor);
 
 }  // namespace particles::render

@@ -64,7 +64,7 @@ TEST_CASE("api: a scenario loads with its settings, and set() takes --set's key 
   particles::Scenario cloth = particles::Scenario::load(scenarioPath("cloth"));
   CHECK(cloth.name() == "cloth");
   CHECK(cloth.file() == scenarioPath("cloth"));
-  CHECK(cloth.integrator() == "rk4");
+  CHECK(cloth.integrator() == particles::Integrator::rk4);
   CHECK(cloth.dt() == 0.01);
   CHECK(cloth.particleCount() == 625);
   CHECK(cloth.bodyCount() == 0);
@@ -78,7 +78,7 @@ TEST_CASE("api: a scenario loads with its settings, and set() takes --set's key 
 
   cloth.set("dt", 0.005).set("integrator", "midpoint").set("simulation.duration", "2");
   CHECK(cloth.dt() == 0.005);
-  CHECK(cloth.integrator() == "midpoint");
+  CHECK(cloth.integrator() == particles::Integrator::midpoint);
   CHECK(cloth.duration() == 2.0);
   CHECK(cloth.steps() == 400);
   // A double set reads back as the same double.
@@ -128,7 +128,7 @@ TEST_CASE("api: a scenario that cannot be used is a ScenarioError with the file,
       CAPTURE(value);
       CHECK_THROWS_AS(cloth.set(path, value), particles::Error);
       CHECK(cloth.dt() == 0.01);
-      CHECK(cloth.integrator() == "rk4");
+      CHECK(cloth.integrator() == particles::Integrator::rk4);
     }
     try {
       cloth.set("integrator", "rk5");
@@ -252,7 +252,7 @@ TEST_CASE("api: a blow-up is a SimulationError with the step, time, integrator a
     sim.advance(100.0);
     FAIL("no exception");
   } catch (const particles::SimulationError& e) {
-    CHECK(e.integrator() == "euler");
+    CHECK(e.integrator() == particles::Integrator::euler);
     CHECK(e.dt() == 0.5);
     CHECK(e.step() >= 1);
     CHECK(std::string(e.what()).find("simulation exploded at step " + std::to_string(e.step())) != std::string::npos);
@@ -302,7 +302,7 @@ TEST_CASE("api: version() is the headers' version") {
 TEST_CASE("api: render() draws the pixels of particles render --at, and Image::savePng writes them") {
   const std::pair<const char*, const char*> frames[] = {{"cloth", "1.5"}, {"soft_body", "12"}, {"rigid_chain", "1"}};
   Scratch scratch;
-  particles::Renderer renderer({.width = 320, .height = 180, .theme = "light", .msaa = 4});
+  particles::Renderer renderer({.width = 320, .height = 180, .theme = particles::Theme::light, .msaa = 4});
   for (const auto& [name, time] : frames) {
     CAPTURE(name);
     const Result r = scratch.run(std::string("render ") + scenarioPath(name) + " -o cli.png --size 320x180 --theme light " +
@@ -321,7 +321,7 @@ TEST_CASE("api: render() draws the pixels of particles render --at, and Image::s
     CHECK(particles::render::readPng(scratch.dir / "api.png").rgba == expected.rgba);
   }
   CHECK(renderer.glDescription() == "none (the cpu raster)");  // auto without a GPU: no GL context
-  particles::Renderer onGl({.width = 320, .height = 180, .msaa = 1, .raster = "resident"});
+  particles::Renderer onGl({.width = 320, .height = 180, .msaa = 1, .raster = particles::Raster::resident});
   particles::Simulation swingOnGl(particles::Scenario::fromText(kSwingScenario, "swing.yaml"));
   onGl.render(swingOnGl);
   CHECK(onGl.glDescription().find("llvmpipe") != std::string::npos);
@@ -416,28 +416,30 @@ TEST_CASE("api: golden::check checks a manifest into its report, and refuses bad
       particles::golden::check(manifest, {.output = (scratch.dir / "report").string(), .only = {"cloth_t0.5"}, .jobs = 1});
   CHECK(report.allPassed());
   REQUIRE(report.frames.size() == 1);
-  CHECK(report.frames[0].outcome == "passed");
+  CHECK(report.frames[0].outcome == particles::golden::Outcome::passed);
   CHECK(report.frames[0].pixels == 320 * 240);
   CHECK(report.html == (scratch.dir / "report" / "report.html").string());
   CHECK(slurp(scratch.dir / "report" / "results.json").find("cloth_t0.5") != std::string::npos);
   CHECK(report.summary.find("1 passed") != std::string::npos);
-  CHECK_THROWS_WITH_AS(particles::golden::check(manifest, {.output = (scratch.dir / "r2").string(), .shard = "2"}),
-                       doctest::Contains("K/N"), particles::ArgumentError);
+  CHECK_THROWS_WITH_AS(particles::golden::check(manifest, {.output = (scratch.dir / "r2").string(),
+                                                            .shard = particles::golden::Shard{3, 2}}),
+                       doctest::Contains("shard"), particles::ArgumentError);
   CHECK_THROWS_WITH_AS(particles::golden::check(manifest, {.output = (scratch.dir / "r2").string(), .only = {"nope"}}),
                        doctest::Contains("nope"), particles::ArgumentError);
   CHECK_THROWS_AS(particles::golden::check((scratch.dir / "none.yaml").string()), particles::ScenarioError);
 }
 
 TEST_CASE("api: bad render settings and images are ArgumentErrors naming what each takes") {
-  CHECK_THROWS_WITH_AS(particles::Renderer({.theme = "sepia"}), doctest::Contains("dark or light"),
-                       particles::ArgumentError);
+  // A value outside an enum, cast in from a number, is refused as a bad name would be.
+  CHECK_THROWS_WITH_AS(particles::Renderer({.theme = static_cast<particles::Theme>(7)}),
+                       doctest::Contains("dark or light"), particles::ArgumentError);
   CHECK_THROWS_WITH_AS(particles::Renderer({.msaa = 3}), doctest::Contains("msaa"), particles::ArgumentError);
   CHECK_THROWS_AS(particles::Renderer({.width = 320}), particles::ArgumentError);
   CHECK_THROWS_AS(particles::Renderer({.width = -5, .height = 10}), particles::ArgumentError);
   CHECK_THROWS_AS(particles::Renderer({.width = 100000, .height = 10}), particles::Error);
-  CHECK_THROWS_AS(particles::Renderer({.raster = "dots"}), particles::ArgumentError);
-  CHECK_THROWS_AS(particles::Renderer({.gl = "vulkan"}), particles::ArgumentError);
-  CHECK_THROWS_AS(particles::Renderer({.background = "none"}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::Renderer({.raster = static_cast<particles::Raster>(-1)}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::Renderer({.gl = static_cast<particles::GlBackend>(9)}), particles::ArgumentError);
+  CHECK_THROWS_AS(particles::Renderer({.background = static_cast<particles::Background>(2)}), particles::ArgumentError);
 
   Scratch scratch;
   particles::Image wrong{4, 4, std::vector<std::uint8_t>(10)};

@@ -167,12 +167,6 @@ TEST_CASE("api careless: messages quote at most 80 bytes of a huge value, with i
   } catch (const particles::ScenarioError& e) {
     shortWithSize(e.what());
   }
-  try {
-    particles::Renderer renderer({.theme = huge});
-    FAIL("accepted");
-  } catch (const particles::ArgumentError& e) {
-    shortWithSize(e.what());
-  }
   particles::Simulation sim(cloth);
   try {
     sim.particleIndex(huge);

@@ -60,7 +60,7 @@ Vec2 bounceOffDisk(const Vec2& start, const Vec2& velocity) {
   b.addParticle(p);
   b.addCollider(std::make_unique<DiskCollider>(Vec2(0, 0), 0.3, PenaltyParams{1e5, 0.0}));
   System sys = b.build();
-  Solver solver(Integrator::Rk4);
+  Solver solver(Integrator::rk4);
   advance(sys, solver, 1e-4, 10000);  // 1 s: long past the contact
   CHECK(sys.penetration(sys.state()) == 0.0);
   return sys.view().vel(0);
@@ -74,7 +74,7 @@ TEST_CASE("a particle dropped on a half-plane: penetration bounded by energy, th
     // Undamped: all of m g (h + d) goes into the penalty's k d³/3 at the deepest point, so
     // d_max solves k d³/3 = m g (h + d) (fixed-point iteration below); RK4 at 1 ms must hit it.
     System sys = dropOnGround(k, 0.0, h);
-    Solver solver(Integrator::Rk4);
+    Solver solver(Integrator::rk4);
     double deepest = 0.0;
     for (int s = 0; s < 1000; ++s) {
       solver.doStep(sys, 1e-3);
@@ -89,7 +89,7 @@ TEST_CASE("a particle dropped on a half-plane: penetration bounded by energy, th
     // Contact damping lets it settle at the static depth √(m g / k) = 0.0313 m: c = 40 N·s/m is
     // 0.8 of critical for the linearised contact stiffness 2 k d = 626 N/m there.
     System sys = dropOnGround(k, 40.0, h);
-    Solver solver(Integrator::Rk4);
+    Solver solver(Integrator::rk4);
     advance(sys, solver, 1e-3, 5000);
     CHECK(std::abs(sys.view().vel(0).y()) < 1e-3);
     CHECK(sys.penetration(sys.state()) == doctest::Approx(std::sqrt(m * g / k)).epsilon(1e-3));

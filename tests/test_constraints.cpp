@@ -17,8 +17,8 @@ namespace {
 
 // The integrators whose constraint drift is held to the same bounds: RK4 (the report's) and the
 // three that project after each step.
-constexpr Integrator kConstrainedIntegrators[] = {Integrator::Rk4, Integrator::SymplecticEuler, Integrator::Verlet,
-                                                  Integrator::BackwardEuler};
+constexpr Integrator kConstrainedIntegrators[] = {Integrator::rk4, Integrator::symplecticEuler, Integrator::verlet,
+                                                  Integrator::backwardEuler};
 
 // A state of three particles with arbitrary (fixed, so reproducible) positions and velocities.
 Eigen::VectorXd sampleState(const StateLayout& layout) {
@@ -122,7 +122,7 @@ TEST_CASE("bead on a circular wire under gravity stays on the wire and goes thro
   CAPTURE(worstSpeedError);
   CAPTURE(speedTolerance);
   CHECK(worst < 1e-4 * r);
-  if (integrator == Integrator::Rk4) {
+  if (integrator == Integrator::rk4) {
     CHECK(passes == 8);
     CHECK(worstSpeedError < speedTolerance);
   }
@@ -155,13 +155,13 @@ TEST_CASE("rod pendulum keeps its length and conserves energy") {
   // first order in h), never puts it in.
   const double e1 = sys.energy().total();
   CAPTURE(e1 - e0);
-  if (integrator == Integrator::Rk4) CHECK(std::abs(e1 - e0) < 1e-4 * std::abs(e0));
-  if (integrator == Integrator::Verlet) CHECK(std::abs(e1 - e0) < 1e-3 * std::abs(e0));
-  if (integrator == Integrator::SymplecticEuler) {
+  if (integrator == Integrator::rk4) CHECK(std::abs(e1 - e0) < 1e-4 * std::abs(e0));
+  if (integrator == Integrator::verlet) CHECK(std::abs(e1 - e0) < 1e-3 * std::abs(e0));
+  if (integrator == Integrator::symplecticEuler) {
     CHECK(e1 < e0);
     CHECK(e0 - e1 < 0.25 * std::abs(e0));
   }
-  if (integrator == Integrator::BackwardEuler) CHECK(e1 < e0);
+  if (integrator == Integrator::backwardEuler) CHECK(e1 < e0);
   }
 }
 
@@ -203,7 +203,7 @@ TEST_CASE("singular constraint systems stay finite") {
     b.addConstraint(std::make_unique<HorizontalLineConstraint>(fixed, 0.0));
     b.addConstraint(std::make_unique<RodConstraint>(fixed, free, 1.1));
     System sys = b.build();
-    Solver solver(Integrator::Rk4);
+    Solver solver(Integrator::rk4);
     advance(sys, solver, 0.01, 500);
     CHECK(sys.state().allFinite());
     CHECK(sys.view().pos(fixed) == Vec2(0, 0.3));
@@ -219,7 +219,7 @@ TEST_CASE("singular constraint systems stay finite") {
     b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, 1.0));
     b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, 1.0));
     System sys = b.build();
-    Solver solver(Integrator::Rk4);
+    Solver solver(Integrator::rk4);
     advance(sys, solver, 0.01, 500);
     CHECK(sys.state().allFinite());
     CHECK(sys.constraintError(sys.state()) < 1e-4);
@@ -232,7 +232,7 @@ TEST_CASE("singular constraint systems stay finite") {
     b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, 1.0));
     b.addConstraint(std::make_unique<RodConstraint>(pivot, bob, 1.2));
     System sys = b.build();
-    Solver solver(Integrator::Rk4);
+    Solver solver(Integrator::rk4);
     advance(sys, solver, 0.01, 500);
     CHECK(sys.state().allFinite());
     // No length can satisfy both; it settles between them rather than flying off.

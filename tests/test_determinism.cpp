@@ -268,8 +268,8 @@ TEST_CASE("determinism: the 100² cloth in contact with a half-plane and a disk,
   std::vector<Override> scene = colliders;
   scene.push_back({"grids.0.size", "[100, 100]", "test"});
   REQUIRE(sampleOf(load("cloth", scene).system).penetration > 0.1);  // in contact from the start
-  checkCloth(100, Integrator::Rk4, kUnderSanitizer ? 1 : 3, colliders);
-  if (!kUnderSanitizer) checkCloth(100, Integrator::BackwardEuler, 2, colliders);
+  checkCloth(100, Integrator::rk4, kUnderSanitizer ? 1 : 3, colliders);
+  if (!kUnderSanitizer) checkCloth(100, Integrator::backwardEuler, 2, colliders);
 }
 
 // 316² (the issue's benchmark scene): 25 chunks per pointwise pass. A step of RK4 costs about
@@ -278,10 +278,10 @@ TEST_CASE("determinism: the 100² cloth in contact with a half-plane and a disk,
 // Under ThreadSanitizer loading the scene takes 1 s and backward Euler's first step 11 s: there,
 // one step of RK4 (the pointwise passes and vector updates at 25 chunks), the rest at 100².
 TEST_CASE("determinism: the 316² cloth, 1–8 threads") {
-  checkCloth(316, Integrator::Rk4, kUnderSanitizer ? 1 : 2);
+  checkCloth(316, Integrator::rk4, kUnderSanitizer ? 1 : 2);
   if (kUnderSanitizer) return;
-  checkCloth(316, Integrator::SymplecticEuler, 2);
-  checkCloth(316, Integrator::BackwardEuler, 1);
+  checkCloth(316, Integrator::symplecticEuler, 2);
+  checkCloth(316, Integrator::backwardEuler, 1);
 }
 
 // The constraint solver on threads: a 100² net of rods (19,800 rows: 3 chunks of its Jacobi CG's
@@ -289,12 +289,12 @@ TEST_CASE("determinism: the 316² cloth, 1–8 threads") {
 // forces) and symplectic Euler (projection onto the rods).
 TEST_CASE("determinism: a net of 19,800 rods, 1–8 threads") {
   const int side = 100;
-  for (Integrator integrator : {Integrator::Rk4, Integrator::SymplecticEuler}) {
+  for (Integrator integrator : {Integrator::rk4, Integrator::symplecticEuler}) {
     CAPTURE(integratorName(integrator));
     const int steps = kUnderSanitizer ? 1 : 3;
     const std::vector<Snapshot> expected = stepNet(side, integrator, 1, steps);
     REQUIRE(expected.back().state.allFinite());
-    if (integrator == Integrator::Rk4) CHECK(expected.back().constraints.iterations > 1);
+    if (integrator == Integrator::rk4) CHECK(expected.back().constraints.iterations > 1);
     const System model = rodGrid(side);
     // Under either sanitizer 3 threads alone (47 s under TSan with 3 and 8): the cloths above reach
     // the threads that join late and find no chunk left.

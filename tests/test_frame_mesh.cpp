@@ -29,7 +29,7 @@ namespace {
 const Camera kCamera{Vec2(0.25, -0.1), 2.4};
 
 ShapeMesh meshOf(const Drawing& frame, const RenderOptions& options = smallRenderOptions(),
-                 const Camera& camera = kCamera, const Theme& colors = theme(ThemeName::dark)) {
+                 const Camera& camera = kCamera, const Palette& colors = theme(ThemeName::dark)) {
   ShapeMesh mesh;
   buildFrameMesh(frame, camera, options, colors, mesh);
   return mesh;
@@ -120,7 +120,7 @@ TEST_CASE("frame mesh: a fixed particle is a square of 1.8 radii around its proj
 }
 
 TEST_CASE("frame mesh: a spring's colour follows its strain") {
-  const Theme colors = theme(ThemeName::dark);
+  const Palette colors = theme(ThemeName::dark);
   RenderOptions options = smallRenderOptions();
   options.strainForFullColor = 0.2;
   auto colorAt = [&](double strain) {
@@ -237,7 +237,7 @@ TEST_CASE("frame mesh: shapes are drawn back to front in the documented order") 
   // One shape of every list, and a theme in which every role has its own colour, so that each run
   // of vertices names what drew it. Circles (kind 1) and edge shapes (kind 0) of one colour are
   // told apart by their kind.
-  Theme colors{};
+  Palette colors{};
   const std::vector<std::pair<std::string, Rgb*>> roles = {{"background", &colors.background},
                                                            {"particle", &colors.particle},
                                                            {"fixedParticle", &colors.fixedParticle},

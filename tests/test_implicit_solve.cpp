@@ -63,7 +63,7 @@ OneStep stepWith(System& system, ImplicitSolver solver) {
 
 TEST_CASE("the direct solve's reduced coordinates against the projected CG: a chain swinging on a rail") {
   System chain = swingingChainOnRail();
-  Solver solver(Integrator::BackwardEuler);
+  Solver solver(Integrator::backwardEuler);
   for (int i = 0; i < 30; ++i) solver.doStep(chain, 1.0 / 60.0);  // swinging, the rail pushing
   // A vertical velocity at the rail (as after a kick): its coordinate's known Δv = −0.3 m/s must
   // reach the free rows through A's column, as the projection's J Δv = −J v₀ does.
@@ -87,7 +87,7 @@ TEST_CASE("the direct solve's reduced coordinates against the projected CG: a ch
 
 TEST_CASE("the direct solve against the projected CG on the stiff cloth, its rail eliminated") {
   scenario::Scenario s = loadProjectScenario("cloth_stiff.yaml");
-  Stepper(s.system, Integrator::BackwardEuler, 1.0 / 60.0).advanceTo(2.0);  // the mouse pulling
+  Stepper(s.system, Integrator::backwardEuler, 1.0 / 60.0).advanceTo(2.0);  // the mouse pulling
   // The rail's particles moving off it, each differently: the known Δv of the eliminated rows.
   for (int column = 0; column < 25; ++column)
     s.system.state()[s.system.layout().velocityOffset() + 2 * column + 1] = 0.01 * (column - 12);
@@ -107,7 +107,7 @@ TEST_CASE("the direct solve reuses its factors while they serve, and stays with 
   scenario::Scenario reused = loadProjectScenario("cloth_stiff.yaml");
   scenario::Scenario exact = loadProjectScenario("cloth_stiff.yaml");
   reused.system.setImplicitSolver(ImplicitSolver::direct);
-  Solver solver(Integrator::BackwardEuler);
+  Solver solver(Integrator::backwardEuler);
   BackwardEulerState w({.cgTolerance = 1e-14});
   exact.system.setImplicitSolver(ImplicitSolver::cg);
   const long steps = 120;
@@ -139,7 +139,7 @@ TEST_CASE("auto keeps CG where it is cheap and moves to the direct solve where C
   CHECK(autoDirectIterations(20000) == doctest::Approx(32.164).epsilon(1e-4));
   scenario::Scenario soft =
       loadProjectScenario("cloth.yaml", {scenario::parseOverride("grids.0.springs.structural.ks=[2.5, 0.1]")});
-  Solver a(Integrator::BackwardEuler);
+  Solver a(Integrator::backwardEuler);
   int most = 0;
   for (int step = 0; step < 600; ++step) {
     a.doStep(soft.system, 1.0 / 60.0);
@@ -152,7 +152,7 @@ TEST_CASE("auto keeps CG where it is cheap and moves to the direct solve where C
   // CG needs far more (165 a step over the 10 s), and once kAutoWindow CG steps averaged over
   // 13.9 the run moves to the direct solve, for good.
   scenario::Scenario stiff = loadProjectScenario("cloth_stiff.yaml");
-  Solver b(Integrator::Bdf2);
+  Solver b(Integrator::bdf2);
   int firstDirect = -1;
   std::vector<int> iterations;
   for (int step = 0; step < 120; ++step) {
@@ -198,7 +198,7 @@ TEST_CASE("the direct solve refuses more general rows than its Schur complement 
   b.emplaceForce<GravityForce>(Vec2(0.0, -9.81));
   System net = b.build();
   REQUIRE(rods > kMaxSchurRows);
-  Solver solver(Integrator::BackwardEuler);
+  Solver solver(Integrator::backwardEuler);
   solver.doStep(net, 0.01);
   CHECK(solver.lastImplicitStep().solver == ImplicitSolver::cg);
   net.setImplicitSolver(ImplicitSolver::direct);

@@ -54,12 +54,12 @@ System hangingChain(bool rail, int links = 24) {
 }  // namespace
 
 TEST_CASE("integrators are chosen by name") {
-  CHECK(integratorFromName("euler") == Integrator::Euler);
-  CHECK(integratorFromName("midpoint") == Integrator::Midpoint);
-  CHECK(integratorFromName("rk4") == Integrator::Rk4);
-  CHECK(integratorFromName("symplectic_euler") == Integrator::SymplecticEuler);
-  CHECK(integratorFromName("verlet") == Integrator::Verlet);
-  CHECK(integratorFromName("backward_euler") == Integrator::BackwardEuler);
+  CHECK(integratorFromName("euler") == Integrator::euler);
+  CHECK(integratorFromName("midpoint") == Integrator::midpoint);
+  CHECK(integratorFromName("rk4") == Integrator::rk4);
+  CHECK(integratorFromName("symplectic_euler") == Integrator::symplecticEuler);
+  CHECK(integratorFromName("verlet") == Integrator::verlet);
+  CHECK(integratorFromName("backward_euler") == Integrator::backwardEuler);
   CHECK_FALSE(integratorFromName("RK4").has_value());
   CHECK_FALSE(integratorFromName("leapfrog").has_value());
   // Every enum value has its row in the registry, once.
@@ -68,14 +68,14 @@ TEST_CASE("integrators are chosen by name") {
     CHECK(integratorFromName(integratorName(i)) == i);
     CHECK_FALSE(integratorSummary(i).empty());
   }
-  CHECK(derivEvalsPerStep(Integrator::Euler) == 1);
-  CHECK(derivEvalsPerStep(Integrator::Midpoint) == 2);
-  CHECK(derivEvalsPerStep(Integrator::Rk4) == 4);
-  CHECK(derivEvalsPerStep(Integrator::SymplecticEuler) == 1);
-  CHECK(derivEvalsPerStep(Integrator::Verlet) == 1);
-  CHECK(derivEvalsPerStep(Integrator::BackwardEuler) == 1);
-  CHECK_FALSE(projectsConstraints(Integrator::Rk4));
-  CHECK(projectsConstraints(Integrator::Verlet));
+  CHECK(derivEvalsPerStep(Integrator::euler) == 1);
+  CHECK(derivEvalsPerStep(Integrator::midpoint) == 2);
+  CHECK(derivEvalsPerStep(Integrator::rk4) == 4);
+  CHECK(derivEvalsPerStep(Integrator::symplecticEuler) == 1);
+  CHECK(derivEvalsPerStep(Integrator::verlet) == 1);
+  CHECK(derivEvalsPerStep(Integrator::backwardEuler) == 1);
+  CHECK_FALSE(projectsConstraints(Integrator::rk4));
+  CHECK(projectsConstraints(Integrator::verlet));
 }
 
 TEST_CASE("each registry row makes its integrator's own state, which steps as the solver does") {
@@ -96,8 +96,8 @@ TEST_CASE("each registry row makes its integrator's own state, which steps as th
     CHECK(byState.state() == bySolver.state());
   }
   // Two states of one integrator share nothing: a step of one leaves the other's history alone.
-  const std::unique_ptr<IntegratorState> first = makeIntegratorState(Integrator::Bdf2);
-  const std::unique_ptr<IntegratorState> second = makeIntegratorState(Integrator::Bdf2);
+  const std::unique_ptr<IntegratorState> first = makeIntegratorState(Integrator::bdf2);
+  const std::unique_ptr<IntegratorState> second = makeIntegratorState(Integrator::bdf2);
   System a = harmonicOscillator(4.0, 0.5), b = harmonicOscillator(4.0, 0.5);
   first->step(a, a.state(), 0.0, 0.01);
   first->step(a, a.state(), 0.01, 0.01);
@@ -135,9 +135,9 @@ TEST_CASE("convergence order on an undamped harmonic oscillator") {
     double expectedRatio;
   };
   for (const Case& c :
-       {Case{Integrator::Euler, 1e-3, 2.0}, Case{Integrator::Midpoint, 1e-2, 4.0}, Case{Integrator::Rk4, 5e-2, 16.0},
-        Case{Integrator::SymplecticEuler, 1e-3, 2.0}, Case{Integrator::Verlet, 1e-2, 4.0},
-        Case{Integrator::BackwardEuler, 1e-3, 2.0}, Case{Integrator::Bdf2, 1e-2, 4.0}}) {
+       {Case{Integrator::euler, 1e-3, 2.0}, Case{Integrator::midpoint, 1e-2, 4.0}, Case{Integrator::rk4, 5e-2, 16.0},
+        Case{Integrator::symplecticEuler, 1e-3, 2.0}, Case{Integrator::verlet, 1e-2, 4.0},
+        Case{Integrator::backwardEuler, 1e-3, 2.0}, Case{Integrator::bdf2, 1e-2, 4.0}}) {
     CAPTURE(integratorName(c.integrator));
     const double coarse = oscillatorError(c.integrator, c.h);
     const double fine = oscillatorError(c.integrator, c.h / 2);
@@ -151,7 +151,7 @@ TEST_CASE("convergence order on an undamped harmonic oscillator") {
 TEST_CASE("free fall: midpoint and RK4 are exact for constant acceleration") {
   // y(t) = y0 + v0 t + ½ g t² is quadratic in t: both methods integrate it exactly, so only
   // round-off remains (1e-12 over 200 steps).
-  for (Integrator integrator : {Integrator::Midpoint, Integrator::Rk4}) {
+  for (Integrator integrator : {Integrator::midpoint, Integrator::rk4}) {
     CAPTURE(integratorName(integrator));
     SystemBuilder b;
     ParticleSpec p = particleAt(0.3, 2.0);
@@ -188,7 +188,7 @@ System twoParticleSpring() {
 TEST_CASE("undamped two-particle spring: RK4 conserves energy, explicit Euler gains it") {
   {
     System sys = twoParticleSpring();
-    Solver solver(Integrator::Rk4);
+    Solver solver(Integrator::rk4);
     const double e0 = sys.energy().total();
     double worst = 0.0;
     for (int i = 0; i < 10000; ++i) {  // h = 0.01, 100 s
@@ -200,7 +200,7 @@ TEST_CASE("undamped two-particle spring: RK4 conserves energy, explicit Euler ga
   }
   {
     System sys = twoParticleSpring();
-    Solver solver(Integrator::Euler);
+    Solver solver(Integrator::euler);
     const double e0 = sys.energy().total();
     advance(sys, solver, 0.01, 1000);  // 10 s
     // Euler's amplification factor |1 + iωh| > 1 makes the energy grow every step.
@@ -257,14 +257,14 @@ TEST_CASE("convergence orders with damping and drag (velocity-dependent forces)"
   // Verlet evaluates a₁ at a predicted velocity and backward Euler and BDF2 linearise the damping:
   // they keep their orders (2, 1 and 2) when forces depend on v. Errors against RK4 at h = 1e-4.
   const double duration = 1.0;
-  const Eigen::VectorXd reference = dampedPairAt(Integrator::Rk4, 1e-4, duration);
+  const Eigen::VectorXd reference = dampedPairAt(Integrator::rk4, 1e-4, duration);
   struct Case {
     Integrator integrator;
     double h;
     double expectedRatio;
   };
-  for (const Case& c : {Case{Integrator::SymplecticEuler, 2e-3, 2.0}, Case{Integrator::Verlet, 1e-2, 4.0},
-                        Case{Integrator::BackwardEuler, 2e-3, 2.0}, Case{Integrator::Bdf2, 1e-2, 4.0}}) {
+  for (const Case& c : {Case{Integrator::symplecticEuler, 2e-3, 2.0}, Case{Integrator::verlet, 1e-2, 4.0},
+                        Case{Integrator::backwardEuler, 2e-3, 2.0}, Case{Integrator::bdf2, 1e-2, 4.0}}) {
     CAPTURE(integratorName(c.integrator));
     const double coarse = (dampedPairAt(c.integrator, c.h, duration) - reference).norm();
     const double fine = (dampedPairAt(c.integrator, c.h / 2, duration) - reference).norm();
@@ -319,8 +319,8 @@ TEST_CASE("undamped oscillator over 10^4 periods: symplectic Euler and Verlet ke
   // (hω/2) / (1 − hω/2) = 1/9, and v² / (1 − (hω)²/4) + ω²x² for Verlet, peaking at
   // ((hω)²/4) / (1 − (hω)²/4) = 0.0101.
   const double h = 0.1, periods = 1e4;
-  for (const auto& [integrator, peak] : {std::pair{Integrator::SymplecticEuler, 1.0 / 9.0},
-                                         std::pair{Integrator::Verlet, 0.01 / 0.99}}) {
+  for (const auto& [integrator, peak] : {std::pair{Integrator::symplecticEuler, 1.0 / 9.0},
+                                         std::pair{Integrator::verlet, 0.01 / 0.99}}) {
     CAPTURE(integratorName(integrator));
     const EnergyHistory e = oscillatorEnergy(integrator, h, periods);
     CAPTURE(e.worst);
@@ -332,7 +332,7 @@ TEST_CASE("undamped oscillator over 10^4 periods: symplectic Euler and Verlet ke
   {
     // For contrast, RK4 at the same step is not symplectic: its energy drifts down, steadily
     // (linearly in time, so the last tenth's mean is about 19 times the first's).
-    const EnergyHistory e = oscillatorEnergy(Integrator::Rk4, h, periods);
+    const EnergyHistory e = oscillatorEnergy(Integrator::rk4, h, periods);
     CAPTURE(e.firstMean);
     CAPTURE(e.lastMean);
     CHECK(e.firstMean < 0.0);
@@ -344,10 +344,10 @@ TEST_CASE("undamped oscillator over 10^4 periods: symplectic Euler and Verlet ke
 TEST_CASE("backward Euler: the energy of a passive system falls every step") {
   // On the undamped oscillator E₁ = E₀ / (1 + h² ω²) exactly (the spring is linear, so the one
   // Newton step is the implicit step itself).
-  const EnergyHistory e = oscillatorEnergy(Integrator::BackwardEuler, 0.01, 100);
+  const EnergyHistory e = oscillatorEnergy(Integrator::backwardEuler, 0.01, 100);
   CHECK(e.monotoneDecreasing);
   System sys = harmonicOscillator(4.0, 0.5);
-  Solver solver(Integrator::BackwardEuler);
+  Solver solver(Integrator::backwardEuler);
   const double e0 = sys.energy().total(), h = 0.05;
   solver.doStep(sys, h);
   CHECK(sys.energy().total() == doctest::Approx(e0 / (1.0 + h * h * 4.0)).epsilon(1e-9));
@@ -357,7 +357,7 @@ TEST_CASE("backward Euler: the energy of a passive system falls every step") {
   // (1 + h² ω²), off by h² ω² v₀ / (1 + h² ω²), an O(h²) error per step that no order test sees.
   System moving = harmonicOscillator(4.0, 0.3);
   moving.state()[moving.layout().velocityOffset() + 2] = 0.7;
-  Solver s1(Integrator::BackwardEuler);
+  Solver s1(Integrator::backwardEuler);
   s1.doStep(moving, h);
   const double v1 = (0.7 - h * 4.0 * 0.3) / (1.0 + h * h * 4.0);
   CHECK(moving.view().vel(1).x() == doctest::Approx(v1).epsilon(1e-12));
@@ -365,7 +365,7 @@ TEST_CASE("backward Euler: the energy of a passive system falls every step") {
   // A damped, driven system with gravity: energy is not conserved there, but the damped pair's
   // mechanical energy still only falls.
   System pair = dampedPair();
-  Solver s2(Integrator::BackwardEuler);
+  Solver s2(Integrator::backwardEuler);
   double previous = pair.energy().total();
   bool falls = true;
   for (int i = 0; i < 2000; ++i) {
@@ -401,7 +401,7 @@ TEST_CASE("BDF2 on an undamped oscillator: its closed form, second order, and 10
   const double omega = 2.0, h = 0.01, amplitude = 0.5;
   const long steps = 1000;
   System sys = harmonicOscillator(4.0, amplitude);
-  Solver solver(Integrator::Bdf2);
+  Solver solver(Integrator::bdf2);
   const std::vector<Eigen::Vector2d> exact = bdf2Oscillator(omega, amplitude, h, steps);
   double worst = 0.0;
   for (long n = 1; n <= steps; ++n) {
@@ -416,7 +416,7 @@ TEST_CASE("BDF2 on an undamped oscillator: its closed form, second order, and 10
   const double bdf2Loss = (e0 - sys.energy().total()) / e0;
   const double backwardEulerLoss = 1.0 - std::pow(1.0 + h * h * omega * omega, -double(steps));
   System be = harmonicOscillator(4.0, amplitude);
-  Solver beSolver(Integrator::BackwardEuler);
+  Solver beSolver(Integrator::backwardEuler);
   advance(be, beSolver, h, steps);
   CHECK((e0 - be.energy().total()) / e0 == doctest::Approx(backwardEulerLoss).epsilon(1e-9));
   CAPTURE(bdf2Loss);
@@ -427,8 +427,8 @@ TEST_CASE("BDF2 on an undamped oscillator: its closed form, second order, and 10
   // Second order: the error at t = 2 falls by 4 when h halves (the convergence test above, here
   // against the exact cos as well, at two pairs of steps).
   for (double coarseH : {0.02, 0.01}) {
-    const double coarse = oscillatorError(Integrator::Bdf2, coarseH),
-                 fine = oscillatorError(Integrator::Bdf2, coarseH / 2);
+    const double coarse = oscillatorError(Integrator::bdf2, coarseH),
+                 fine = oscillatorError(Integrator::bdf2, coarseH / 2);
     CAPTURE(coarseH);
     CHECK(coarse / fine == doctest::Approx(4.0).epsilon(0.1));
   }
@@ -436,7 +436,7 @@ TEST_CASE("BDF2 on an undamped oscillator: its closed form, second order, and 10
 
 TEST_CASE("BDF2 starts with backward Euler, and again after a change of step or a time set from outside") {
   System a = harmonicOscillator(4.0, 0.5), b = harmonicOscillator(4.0, 0.5);
-  Solver bdf(Integrator::Bdf2), be(Integrator::BackwardEuler);
+  Solver bdf(Integrator::bdf2), be(Integrator::backwardEuler);
   bdf.doStep(a, 0.01);
   be.doStep(b, 0.01);
   CHECK(a.state() == b.state());  // the first step is backward Euler's
@@ -465,7 +465,7 @@ TEST_CASE("backward Euler and BDF2 are stable on a stiff undamped oscillator at 
   // L-stable: its roots solve (1 − 2/3 h λ) ζ² − 4/3 ζ + 1/3 = 0, λ = ±i ω, whose product
   // 1 / (3 − 2 h λ) has magnitude 1/200 here: the amplitude shrinks about 14× a step.
   for (const auto& [integrator, bound] :
-       {std::pair{Integrator::BackwardEuler, 0.5 / 50.0}, std::pair{Integrator::Bdf2, 0.5}}) {
+       {std::pair{Integrator::backwardEuler, 0.5 / 50.0}, std::pair{Integrator::bdf2, 0.5}}) {
     CAPTURE(integratorName(integrator));
     System sys = harmonicOscillator(1e4, 0.5);
     Solver solver(integrator);
@@ -478,7 +478,7 @@ TEST_CASE("backward Euler and BDF2 are stable on a stiff undamped oscillator at 
     CHECK(worst < bound);
     CHECK(std::abs(sys.view().pos(1).x() - 1.0) < 1e-12);
   }
-  for (Integrator explicitOne : {Integrator::Euler, Integrator::Rk4, Integrator::SymplecticEuler, Integrator::Verlet}) {
+  for (Integrator explicitOne : {Integrator::euler, Integrator::rk4, Integrator::symplecticEuler, Integrator::verlet}) {
     System other = harmonicOscillator(1e4, 0.5);
     Solver s2(explicitOne);
     CHECK_THROWS_AS(advance(other, s2, 1.0, 100), SimulationError);
@@ -491,7 +491,7 @@ TEST_CASE("backward Euler on a rail: a chain hung from a rail moves as one hung 
   // the same Δv as the one with the top removed from the unknowns. (A projected CG that lost
   // J Δv = −J v₀ to rounding let this chain fall freely: potential energy 5.3 J instead of −0.47.)
   System onRail = hangingChain(true), fixed = hangingChain(false);
-  Solver railSolver(Integrator::BackwardEuler), fixedSolver(Integrator::BackwardEuler);
+  Solver railSolver(Integrator::backwardEuler), fixedSolver(Integrator::backwardEuler);
   const double h = 1.0 / 60.0;
   for (int step = 0; step < 600; ++step) {
     railSolver.doStep(onRail, h);
@@ -524,7 +524,7 @@ TEST_CASE("backward Euler's constrained Δv solves the KKT system of the step, b
   b.emplaceForce<GravityForce>(Vec2(0.0, -9.81));
   b.emplaceForce<DragForce>(0.01);
   System sys = b.build();
-  Solver solver(Integrator::Rk4);
+  Solver solver(Integrator::rk4);
   advance(sys, solver, 1e-3, 137);  // moving, with every velocity nonzero
   const Eigen::VectorXd y0 = sys.state();
 
@@ -577,7 +577,7 @@ TEST_CASE("backward Euler keeps fixed particles in place and treats body rotatio
   b.emplaceForce<DampedSpringForce>().add({Endpoint::ofParticle(bob), Endpoint::ofParticle(anchor), 0.5, 1e3, 1.0});
   b.emplaceForce<GravityForce>(Vec2(0.0, -9.81));
   System sys = b.build();
-  Solver solver(Integrator::BackwardEuler);
+  Solver solver(Integrator::backwardEuler);
   advance(sys, solver, 0.1, 50);
   CHECK(sys.view().pos(anchor) == Vec2(0.2, 0.3));
   CHECK(sys.view().vel(anchor) == Vec2(0.0, 0.0));
@@ -647,7 +647,7 @@ TEST_CASE("symplectic Euler: velocity first, then position with the new velocity
 }
 
 TEST_CASE("rigid bodies under the new integrators: free spin and free fall") {
-  for (Integrator integrator : {Integrator::SymplecticEuler, Integrator::Verlet, Integrator::BackwardEuler}) {
+  for (Integrator integrator : {Integrator::symplecticEuler, Integrator::verlet, Integrator::backwardEuler}) {
     CAPTURE(integratorName(integrator));
     SystemBuilder b;
     RigidBodySpec body;

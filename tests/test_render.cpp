@@ -107,7 +107,7 @@ TEST_CASE("particles land where the camera projects them, and nothing else is dr
   const System system = particles::test::fallingParticles();
   const Drawing frame = system.draw();
   const RenderOptions options = smallOptions();
-  const Theme colors = theme(options.themeName);
+  const Palette colors = theme(options.themeName);
   // Off-centre camera: a frame drawn shifted, flipped or at the wrong scale puts the discs elsewhere.
   const Camera camera{Vec2(0.25, -0.1), 2.4};
   Renderer renderer(options);
@@ -154,7 +154,7 @@ TEST_CASE("world-unit particle radius scales with the camera") {
   const System system = particles::test::fallingParticles();
   RenderOptions options = smallOptions();
   options.particleRadius = {0.05, Length::Unit::world};  // 0.05 · 240 px / 2.4 = 5 px
-  const Theme colors = theme(options.themeName);
+  const Palette colors = theme(options.themeName);
   const Camera camera{Vec2(0.1, -0.1), 2.4};
   Renderer renderer(options);
   const Image& image = renderer.render(system.draw(), camera);
@@ -171,7 +171,7 @@ TEST_CASE("springs are coloured by strain: compressed, at rest, stretched") {
                {Vec2(-0.5, -0.6), Vec2(0.5, -0.6), 0.5}};
   RenderOptions options = smallOptions();
   options.springWidthPx = 4.0;
-  const Theme colors = theme(options.themeName);
+  const Palette colors = theme(options.themeName);
   const Camera camera{Vec2(0, 0), 2.0};
   Renderer renderer(options);
   const Image& image = renderer.render(f, camera);
@@ -199,7 +199,7 @@ TEST_CASE("every kind of shape is drawn in its theme colour") {
     options.themeName = name;
     options.guideWidthPx = 4.0;  // wide enough to cover whole pixel rows
     options.springWidthPx = 4.0;
-    const Theme colors = theme(name);
+    const Palette colors = theme(name);
     const Camera camera{Vec2(0, 0), 2.0};
     Renderer renderer(options);
     const Image& image = renderer.render(f, camera);
@@ -345,7 +345,7 @@ TEST_CASE("each pixel of a disc is blended by the share of its samples inside th
     o.particleRadius = {radius, Length::Unit::pixels};
     Renderer renderer(o);
     CHECK(renderer.samples() == samples);
-    const Theme colors = theme(o.themeName);
+    const Palette colors = theme(o.themeName);
     const double area = checkCoverage(renderer.render(frame, kPixelCamera), colors.background, colors.particle, samples,
                                       [&](Vec2 p) { return (p - centre).norm() <= radius; });
     // More samples, closer to the true area π r² (120.8 px²).
@@ -366,7 +366,7 @@ TEST_CASE("each pixel of a slanted line is blended by the share of its samples i
     RenderOptions o = pixelCameraOptions(samples);
     o.springWidthPx = width;
     Renderer renderer(o);
-    const Theme colors = theme(o.themeName);
+    const Palette colors = theme(o.themeName);
     checkCoverage(renderer.render(frame, kPixelCamera), colors.background, colors.springRest, samples, [&](Vec2 p) {
       const double t = (p - a).dot(along), n = (p - a).dot(across);
       return t >= 0 && t <= (b - a).norm() && std::abs(n) <= 0.5 * width;
@@ -383,7 +383,7 @@ TEST_CASE("a shape drawn in convex pieces shows no seams between them") {
   const RenderOptions o = pixelCameraOptions();
   Renderer renderer(o);
   const Image& image = renderer.render(frame, kPixelCamera);
-  const Theme colors = theme(o.themeName);
+  const Palette colors = theme(o.themeName);
   // The arrow's outline, relative to its tip (render/frame_mesh.cpp), and distances to it.
   const std::vector<Vec2> arrow = {Vec2(0, 0),   Vec2(0, 17),   Vec2(4.5, 13), Vec2(7.5, 20),
                                    Vec2(10, 19), Vec2(7, 12.2), Vec2(12, 12.2)};

@@ -42,7 +42,7 @@ const Camera camera{Vec2(0.1, -0.2), 2.4};
 // will: frame i at t = i / fps.
 std::vector<Image> renderInto(FrameWriter& writer, long count, int fps, bool keep = false, bool transparent = false) {
   System system = particles::test::fallingParticles();
-  Solver solver(Integrator::Rk4);
+  Solver solver(Integrator::rk4);
   Renderer renderer(outputRenderOptions(transparent));
   std::vector<Image> kept;
   for (long i = 0; i < count; ++i) {
@@ -341,7 +341,7 @@ Probe renderedFalling(bool transparent, Raster raster = Raster::triangles) {
 }  // namespace
 
 TEST_CASE("a transparent background: alpha 0 where nothing is drawn, 255 on a particle, straight colour between") {
-  const Theme colors = theme(ThemeName::dark);
+  const Palette colors = theme(ThemeName::dark);
   for (const Raster raster : {Raster::triangles, Raster::tiles, Raster::cpu}) {
     CAPTURE(int(raster));
     const Probe opaque = renderedFalling(false, raster);

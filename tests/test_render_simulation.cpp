@@ -70,7 +70,7 @@ TEST_CASE("render simulation: an MP4 of fps × duration frames, onFrame and prog
   hooks.onFrame = [&](const System& s) { frameTimes.push_back(s.time()); };
   hooks.progress = [&](long done, long total, const System&) { progress.emplace_back(done, total); };
 
-  const RenderSummary summary = renderSimulation(system, Integrator::Rk4, kDt, smallJob(dir / "out.mp4"), hooks);
+  const RenderSummary summary = renderSimulation(system, Integrator::rk4, kDt, smallJob(dir / "out.mp4"), hooks);
   CHECK_FALSE(summary.stopped);
   CHECK(summary.frames == 5);
   CHECK(summary.steps == 16);  // to t = 0.4 s, the last frame
@@ -102,7 +102,7 @@ TEST_CASE("render simulation: a PNG sequence holds the single PNGs of the frames
     std::fill(frame.pixel(0, 0), frame.pixel(0, 0) + 3, std::uint8_t(255));
   };
   System system = particles::test::fallingParticles();
-  const RenderSummary summary = renderSimulation(system, Integrator::Rk4, kDt, smallJob(dir / "frames/"), hooks);
+  const RenderSummary summary = renderSimulation(system, Integrator::rk4, kDt, smallJob(dir / "frames/"), hooks);
   CHECK(summary.frames == 5);
   CHECK(decorated == 5);
   CHECK(ScratchDir::listing(dir / "frames") == std::set<std::string>{"frame_000000.png", "frame_000001.png",
@@ -115,7 +115,7 @@ TEST_CASE("render simulation: a PNG sequence holds the single PNGs of the frames
   single.at = 0.3;
   std::vector<double> frameTimes;
   hooks.onFrame = [&](const System& s) { frameTimes.push_back(s.time()); };
-  const RenderSummary one = renderSimulation(fresh, Integrator::Rk4, kDt, single, hooks);
+  const RenderSummary one = renderSimulation(fresh, Integrator::rk4, kDt, single, hooks);
   CHECK(one.frames == 1);
   CHECK(one.steps == 12);
   REQUIRE(frameTimes.size() == 1);
@@ -169,7 +169,7 @@ TEST_CASE("render simulation: the overlapped loop (threads ≠ 1) draws the plai
     std::vector<double> times;
     RenderHooks hooks;
     hooks.onFrame = [&](const System& s) { times.push_back(s.time()); };
-    CHECK(renderSimulation(system, Integrator::Rk4, kDt, job, hooks).frames == 10);
+    CHECK(renderSimulation(system, Integrator::rk4, kDt, job, hooks).frames == 10);
     CHECK(times.size() == 10);
     for (int i = 0; i < 10; ++i) {
       sequences[run].push_back(readPng(job.output / fmt::format("frame_{:06d}.png", i)));
@@ -192,7 +192,7 @@ TEST_CASE("render simulation: a stop request leaves no output, and an earlier ou
     int asked = 0;
     RenderHooks hooks;
     hooks.shouldStop = [&] { return ++asked > 2; };  // after two frames
-    const RenderSummary summary = renderSimulation(system, Integrator::Rk4, kDt, smallJob(dir / name), hooks);
+    const RenderSummary summary = renderSimulation(system, Integrator::rk4, kDt, smallJob(dir / name), hooks);
     CHECK(summary.stopped);
     CHECK(summary.frames == 2);
     CHECK(asked == 3);
@@ -202,7 +202,7 @@ TEST_CASE("render simulation: a stop request leaves no output, and an earlier ou
   System system = particles::test::fallingParticles();
   RenderHooks hooks;
   hooks.shouldStop = [] { return true; };
-  CHECK(renderSimulation(system, Integrator::Rk4, kDt, smallJob(dir / "old.mp4"), hooks).stopped);
+  CHECK(renderSimulation(system, Integrator::rk4, kDt, smallJob(dir / "old.mp4"), hooks).stopped);
   CHECK(dir.entries() == std::set<std::string>{"old.mp4"});
   CHECK(particles::test::slurp(dir / "old.mp4") == "an earlier video");
 }
@@ -219,7 +219,7 @@ TEST_CASE("render simulation: an explosion throws SimulationError and leaves no 
     long frames = 0;
     RenderHooks hooks;
     hooks.onFrame = [&](const System&) { ++frames; };
-    CHECK_THROWS_AS(renderSimulation(system, Integrator::Euler, 0.1, job, hooks), SimulationError);
+    CHECK_THROWS_AS(renderSimulation(system, Integrator::euler, 0.1, job, hooks), SimulationError);
     CHECK(frames == (job.at ? 0 : 5));  // frames 0 … 4 reached; t = 0.5 s is not
     CHECK(dir.entries().empty());
   }
@@ -229,7 +229,7 @@ TEST_CASE("render simulation: bad options are std::invalid_argument and write no
   ScratchDir dir;
   System system = particles::test::fallingParticles();
   auto fails = [&](const RenderJob& job, double dt = kDt) {
-    CHECK_THROWS_AS(renderSimulation(system, Integrator::Rk4, dt, job), std::invalid_argument);
+    CHECK_THROWS_AS(renderSimulation(system, Integrator::rk4, dt, job), std::invalid_argument);
   };
   fails(smallJob(dir / "one.png"));  // a single PNG needs a time
   RenderJob job = smallJob(dir / "out.mp4");

@@ -218,7 +218,7 @@ TEST_CASE("tile bins: a frame built and binned on threads is the same bytes for 
                                  scenario::parseOverride("colliders=[{type: disk, center: [0.5, -1.2], radius: 0.3}, "
                                                          "{type: half_plane, normal: [0, 1], offset: -1.4}]")});
   const RenderOptions o = rasterOptions(1283, 719, 4, Raster::tiles);
-  const Theme colors = theme(o.themeName);
+  const render::Palette colors = theme(o.themeName);
   auto build = [&](int threads) {
     WorkerPool pool(threads);
     auto bins = std::make_unique<TileBins>();

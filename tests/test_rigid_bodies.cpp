@@ -162,7 +162,7 @@ TEST_CASE("two rigid bodies joined by a spring conserve linear and angular momen
       {Endpoint::ofBody(ia, Vec2(0.25, 0.075)), Endpoint::ofBody(ic, Vec2(-0.15, 0.15)), 0.8, 40.0, 0.5});
   System sys = b.build();
   const auto [p0, l0] = momentum(sys);
-  Solver solver(Integrator::Rk4);
+  Solver solver(Integrator::rk4);
   double worstLinear = 0.0, worstAngular = 0.0;
   for (int s = 0; s < 10000; ++s) {  // h = 0.001, 10 s
     solver.doStep(sys, 1e-3);
@@ -189,7 +189,7 @@ TEST_CASE("a rigid rectangle falling on the ground lands on its corners and tips
   b.emplaceForce<GravityForce>(Vec2(0, -9.81));
   b.addCollider(std::make_unique<HalfPlaneCollider>(Vec2(0, 1), 0.0, PenaltyParams{1e5, 20.0}));
   System sys = b.build();
-  Solver solver(Integrator::Rk4);
+  Solver solver(Integrator::rk4);
   double deepest = 0.0;
   for (int s = 0; s < 4000; ++s) {
     solver.doStep(sys, 5e-4);

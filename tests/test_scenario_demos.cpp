@@ -96,7 +96,7 @@ TEST_CASE("demos: the million-particle cloth is the demo at 1000², within the d
   CHECK(s.system.layout().numParticles == 1'000'000);
   CHECK(springCount(s.system) == 2 * 1000 * 999);
   CHECK(s.system.constraints().size() == 1000);
-  CHECK(s.simulation.integrator == Integrator::SymplecticEuler);
+  CHECK(s.simulation.integrator == Integrator::symplecticEuler);
   // 100 steps a 60 fps frame, so that every frame of the video is drawn at its exact time.
   CHECK(1.0 / (60.0 * s.simulation.dt) == doctest::Approx(100.0).epsilon(1e-12));
   // A few steps (the whole second is bench/million.sh's): finite, and the top row on its rail.
@@ -124,7 +124,7 @@ TEST_CASE("demos: the soft-body man has 56 particles and 189 springs, RK4 at h =
   const Scenario s = load("soft_body");
   CHECK(s.system.layout().numParticles == 56);
   CHECK(springCount(s.system) == 189);
-  CHECK(s.simulation.integrator == Integrator::Rk4);
+  CHECK(s.simulation.integrator == Integrator::rk4);
   CHECK(s.simulation.dt == 0.15);
   CHECK(s.system.colliders().size() == 2);
   CHECK(mouseScriptCount(s.system) == 2);

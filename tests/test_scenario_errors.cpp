@@ -98,7 +98,7 @@ TEST_CASE("scenario: simulation.implicit_solver picks the implicit integrators' 
       loadScenarioText(kBase + "simulation: {integrator: bdf2, implicit_solver: direct}\n", "t.yaml");
   CHECK(direct.simulation.implicitSolver == particles::ImplicitSolver::direct);
   CHECK(direct.system.implicitSolver() == particles::ImplicitSolver::direct);
-  CHECK(direct.simulation.integrator == particles::Integrator::Bdf2);
+  CHECK(direct.simulation.integrator == particles::Integrator::bdf2);
   const Scenario cg = loadScenarioText(kBase, "t.yaml", {{parseOverride("simulation.implicit_solver=cg")}});
   CHECK(cg.system.implicitSolver() == particles::ImplicitSolver::cg);
 }

@@ -44,7 +44,7 @@ TEST_CASE("scenario: a name alone gives the documented defaults") {
   const Scenario s = loadScenarioText("name: empty\n", "x.yaml");
   CHECK(s.name == "empty");
   CHECK(s.description.empty());
-  CHECK(s.simulation.integrator == Integrator::Rk4);
+  CHECK(s.simulation.integrator == Integrator::rk4);
   CHECK(s.simulation.dt == 0.01);
   CHECK(s.simulation.duration == 10.0);
   CHECK(s.simulation.steps() == 1000);
@@ -68,7 +68,7 @@ particles:
 )",
                                       "x.yaml");
   CHECK(s.description == "two particles");
-  CHECK(s.simulation.integrator == Integrator::Midpoint);
+  CHECK(s.simulation.integrator == Integrator::midpoint);
   CHECK(s.simulation.steps() == 750);
   CHECK(s.render.width == 640);
   CHECK(s.render.fps == 25);
@@ -225,7 +225,7 @@ TEST_CASE("scenario: --set overrides any value before validation, creating keys 
       parseOverride("render.size=[320, 200]"), {"simulation.integrator", "euler", "--integrator euler"}};
   const Scenario s = loadScenarioText(yaml, "x.yaml", overrides);
   CHECK(s.simulation.dt == 0.005);
-  CHECK(s.simulation.integrator == Integrator::Euler);
+  CHECK(s.simulation.integrator == Integrator::euler);
   CHECK(s.render.fps == 30);
   CHECK(s.render.width == 320);
   CHECK(s.system.model().mass[0] == 2.5);

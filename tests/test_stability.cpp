@@ -44,13 +44,13 @@ TEST_CASE("RK4 on an undamped oscillator is stable up to h·omega = 2*sqrt(2)") 
   StabilityOptions options;
   options.startDt = 0.1;
   options.referenceDt = 0.01;
-  const auto results = findStabilityLimits(make, 300.0, {Integrator::Rk4}, options).results;
+  const auto results = findStabilityLimits(make, 300.0, {Integrator::rk4}, options).results;
   REQUIRE(results.size() == 1);
   const double limit = 2.0 * std::sqrt(2.0) / omega;
   CAPTURE(results[0].maxStableDt);
   CHECK(results[0].maxStableDt == doctest::Approx(limit).epsilon(0.02));
   CHECK(results[0].maxStableDt <= limit * 1.005);
-  CHECK(results[0].firstUnstable.verdict != RunVerdict::Stable);
+  CHECK(results[0].firstUnstable.verdict != RunVerdict::stable);
   CHECK(results[0].maxSmoothDt <= results[0].maxStableDt);
 }
 
@@ -64,7 +64,7 @@ TEST_CASE("explicit Euler on a damped oscillator is stable up to h = c / omega^2
   StabilityOptions options;
   options.startDt = 0.001;
   options.referenceDt = 0.001;
-  const auto results = findStabilityLimits(make, 400.0, {Integrator::Euler, Integrator::Midpoint}, options).results;
+  const auto results = findStabilityLimits(make, 400.0, {Integrator::euler, Integrator::midpoint}, options).results;
   REQUIRE(results.size() == 2);
   CAPTURE(results[0].maxStableDt);
   CHECK(results[0].maxStableDt == doctest::Approx(0.02).epsilon(0.02));
@@ -79,28 +79,28 @@ TEST_CASE("explicit Euler on a damped oscillator is stable up to h = c / omega^2
 TEST_CASE("a run that explodes, overstretches or shakes is classified as such") {
   const SystemFactory make = [] { return linearOscillator(100.0, 0.0); };  // ω = 10
   StabilityCriteria criteria;
-  const RunAssessment smooth = assessRun(make, Integrator::Rk4, 0.001, 5.0, criteria);
-  CHECK(smooth.verdict == RunVerdict::Stable);
+  const RunAssessment smooth = assessRun(make, Integrator::rk4, 0.001, 5.0, criteria);
+  CHECK(smooth.verdict == RunVerdict::stable);
   CHECK(smooth.shakingIndex == doctest::Approx(std::pow(std::sin(0.01 / 2), 2)).epsilon(0.01));
   CHECK(smooth.maxStretch == doctest::Approx(1.05).epsilon(1e-3));
   // ωh = 0.5: about 13 steps per period, sin²(¼) = 0.061 < 0.1: smooth.
-  const RunAssessment resolved = assessRun(make, Integrator::Rk4, 0.05, 20.0, criteria);
-  CHECK(resolved.verdict == RunVerdict::Stable);
+  const RunAssessment resolved = assessRun(make, Integrator::rk4, 0.05, 20.0, criteria);
+  CHECK(resolved.verdict == RunVerdict::stable);
   CHECK(resolved.shakingIndex == doctest::Approx(std::pow(std::sin(0.25), 2)).epsilon(0.02));
   // ωh = 1: six steps per period, sin²(½) = 0.23 > 0.1: shaking, though stable.
-  const RunAssessment coarse = assessRun(make, Integrator::Rk4, 0.1, 20.0, criteria);
-  CHECK(coarse.verdict == RunVerdict::Shaking);
+  const RunAssessment coarse = assessRun(make, Integrator::rk4, 0.1, 20.0, criteria);
+  CHECK(coarse.verdict == RunVerdict::shaking);
   CHECK(coarse.stable());
   CHECK(coarse.shakingIndex == doctest::Approx(std::pow(std::sin(0.5), 2)).epsilon(0.02));
-  const RunAssessment blown = assessRun(make, Integrator::Euler, 0.05, 50.0, criteria);
+  const RunAssessment blown = assessRun(make, Integrator::euler, 0.05, 50.0, criteria);
   CHECK_FALSE(blown.stable());
   // Just inside RK4's limit (ωh = 2.7) the oscillator survives but alternates step by step.
-  const RunAssessment shaking = assessRun(make, Integrator::Rk4, 0.27, 20.0, criteria);
+  const RunAssessment shaking = assessRun(make, Integrator::rk4, 0.27, 20.0, criteria);
   CAPTURE(shaking.shakingIndex);
-  CHECK(shaking.verdict == RunVerdict::Shaking);
+  CHECK(shaking.verdict == RunVerdict::shaking);
   StabilityCriteria strict = criteria;
   strict.maxStretch = 1.04;
-  CHECK(assessRun(make, Integrator::Rk4, 0.001, 5.0, strict).verdict == RunVerdict::Overstretched);
+  CHECK(assessRun(make, Integrator::rk4, 0.001, 5.0, strict).verdict == RunVerdict::overstretched);
 }
 
 TEST_CASE("an integrator that never fails is reported at the ceiling, and costed at the cap") {
@@ -114,7 +114,7 @@ TEST_CASE("an integrator that never fails is reported at the ceiling, and costed
   options.maxDt = 0.5;
   options.costDtCap = 0.04;
   options.timingBudget = 0.0;
-  const StabilityStudy study = findStabilityLimits(make, 5.0, {Integrator::BackwardEuler, Integrator::Rk4}, options);
+  const StabilityStudy study = findStabilityLimits(make, 5.0, {Integrator::backwardEuler, Integrator::rk4}, options);
   const StabilityResult& be = study.results[0];
   CHECK(be.stableAtMaxDt);
   CHECK(be.smoothAtMaxDt);
@@ -134,17 +134,17 @@ TEST_CASE("the stretch bound comes from a reference run, and an unstable referen
   StabilityOptions options;
   options.referenceDt = 0.001;
   options.startDt = 0.01;
-  const StabilityStudy study = findStabilityLimits(make, 5.0, {Integrator::Rk4}, options);
+  const StabilityStudy study = findStabilityLimits(make, 5.0, {Integrator::rk4}, options);
   CHECK(study.reference.maxStretch == doctest::Approx(1.05).epsilon(1e-3));
   CHECK(study.maxStretch == doctest::Approx(1.5 * 1.05).epsilon(1e-3));
   CHECK(study.referenceDt == 0.001);
   options.referenceDt = 0.5;  // ωh = 5: RK4 blows up
-  CHECK_THROWS_AS(findStabilityLimits(make, 5.0, {Integrator::Rk4}, options), std::runtime_error);
+  CHECK_THROWS_AS(findStabilityLimits(make, 5.0, {Integrator::rk4}, options), std::runtime_error);
   // Allowed to halve: 0.25 (ωh = 2.5) is inside RK4's limit ωh = 2√2, and is what is used.
   options.minReferenceDt = 0.2;
-  const StabilityStudy halved = findStabilityLimits(make, 5.0, {Integrator::Rk4}, options);
+  const StabilityStudy halved = findStabilityLimits(make, 5.0, {Integrator::rk4}, options);
   CHECK(halved.referenceDt == 0.25);
   CHECK(halved.reference.stable());
   options.minReferenceDt = 0.3;  // no room to halve
-  CHECK_THROWS_AS(findStabilityLimits(make, 5.0, {Integrator::Rk4}, options), std::runtime_error);
+  CHECK_THROWS_AS(findStabilityLimits(make, 5.0, {Integrator::rk4}, options), std::runtime_error);
 }

@@ -93,14 +93,14 @@ std::string withoutWallColumn(const std::string& out, size_t rows) {
 }  // namespace
 
 TEST_CASE("stability threads: the study's table is the serial one on 2, 3 and 4 threads") {
-  const std::vector<Integrator> all = {Integrator::Euler,           Integrator::Midpoint, Integrator::Rk4,
-                                       Integrator::SymplecticEuler, Integrator::Verlet,   Integrator::BackwardEuler};
+  const std::vector<Integrator> all = {Integrator::euler,           Integrator::midpoint, Integrator::rk4,
+                                       Integrator::symplecticEuler, Integrator::verlet,   Integrator::backwardEuler};
   const StabilityStudy serial = studySmallCloth(all, 1, 0.0);
   // The cloth exercises the verdicts the search tells apart, or the comparison would prove little.
   bool exploded = false, shaking = false;
   for (const StabilityResult& r : serial.results) {
     exploded = exploded || !r.firstUnstable.stable();
-    shaking = shaking || r.firstShaking.verdict == RunVerdict::Shaking;
+    shaking = shaking || r.firstShaking.verdict == RunVerdict::shaking;
   }
   CHECK(exploded);
   CHECK(shaking);
@@ -110,8 +110,8 @@ TEST_CASE("stability threads: the study's table is the serial one on 2, 3 and 4 
   }
   // One integrator on four threads: every thread but one runs guessed probes of the same search.
   // Under ASan + UBSan one integrator: the same code.
-  for (Integrator alone : kUnderAddressSanitizer ? std::vector<Integrator>{Integrator::Euler}
-                                                 : std::vector<Integrator>{Integrator::Euler, Integrator::Midpoint}) {
+  for (Integrator alone : kUnderAddressSanitizer ? std::vector<Integrator>{Integrator::euler}
+                                                 : std::vector<Integrator>{Integrator::euler, Integrator::midpoint}) {
     CAPTURE(integratorName(alone));
     CHECK(exactly(studySmallCloth({alone}, 4, 0.0)) == exactly(studySmallCloth({alone}, 1, 0.0)));
   }
@@ -121,7 +121,7 @@ TEST_CASE("stability threads: every integrator is timed, on one thread or severa
   for (int threads : {1, 3}) {
     CAPTURE(threads);
     const StabilityStudy study =
-        studySmallCloth({Integrator::Euler, Integrator::Rk4, Integrator::BackwardEuler}, threads, 0.01);
+        studySmallCloth({Integrator::euler, Integrator::rk4, Integrator::backwardEuler}, threads, 0.01);
     for (const StabilityResult& r : study.results) {
       CAPTURE(integratorName(r.integrator));
       CHECK(r.wallPerSimSecond > 0.0);

@@ -189,7 +189,7 @@ TEST_CASE("worker pool: tasks that each step a System with a pool of its own giv
     const std::vector<particles::scenario::Override> size{{"grids.0.size", "[70, 70]", "test"}};
     particles::System system = particles::scenario::loadScenarioFile(cloth, size).system;
     system.setThreads(threads);
-    particles::Solver solver(particles::Integrator::Rk4);
+    particles::Solver solver(particles::Integrator::rk4);
     for (int k = 0; k < 3; ++k) solver.doStep(system, 0.002);
     return system.state();
   };

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
     const particles::Point p = sim.position(corner);
     const particles::Energy e = sim.energy();
     std::printf("particles %s: '%s' at t = %.3f s after %ld steps of %s\n", particles::version(), cloth.name().c_str(),
-                sim.time(), sim.steps(), sim.integrator().c_str());
+                sim.time(), sim.steps(), std::string(particles::name(sim.integrator())).c_str());
     std::printf("%s at (%.17g, %.17g); energy %.6g J\n", sim.particleNames().back().c_str(), p.x, p.y, e.total);
     if (argc > 2) {
       particles::Renderer renderer({.width = 640, .height = 360});

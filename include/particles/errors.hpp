@@ -13,6 +13,7 @@
 #include <string>
 #include <utility>
 
+#include <particles/choices.hpp>
 #include <particles/export.hpp>
 
 namespace particles {
@@ -69,20 +70,20 @@ class PARTICLES_API ScenarioError : public Error {
 // state.
 class PARTICLES_API SimulationError : public Error {
  public:
-  SimulationError(const std::string& what, std::string reason, long step, double time, std::string integrator,
+  SimulationError(const std::string& what, std::string reason, long step, double time, Integrator integrator,
                   double dt)
-      : Error(what), reason_(std::move(reason)), step_(step), time_(time), integrator_(std::move(integrator)), dt_(dt) {}
+      : Error(what), reason_(std::move(reason)), step_(step), time_(time), integrator_(integrator), dt_(dt) {}
   const std::string& reason() const { return reason_; }
   long step() const { return step_; }          // the step that failed, counted from 1
   double time() const { return time_; }        // s, the time that step would have reached
-  const std::string& integrator() const { return integrator_; }  // as scenarios name it: rk4, backward_euler…
+  Integrator integrator() const { return integrator_; }  // particles::name() spells it: rk4, backward_euler…
   double dt() const { return dt_; }            // s
 
  private:
   std::string reason_;
   long step_;
   double time_;
-  std::string integrator_;
+  Integrator integrator_;
   double dt_;
 };
 

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <particles/choices.hpp>
 #include <particles/export.hpp>
 
 namespace particles::golden {
@@ -18,10 +19,10 @@ namespace particles::golden {
 struct Options {
   std::string output = "golden-report";  // the report folder (-o): replaced whole when the check is done
   std::vector<std::string> only{};       // --only: these frames and states; empty: all
-  std::string shard{};                   // --shard K/N: the K-th of N near-equal parts; empty: all
-  std::string gl = "auto";               // --gl: auto (EGL, else OSMesa), egl or osmesa
+  std::optional<Shard> shard{};          // --shard K/N: the K-th of N near-equal parts; nothing: all
+  GlBackend gl = GlBackend::automatic;   // --gl
   bool gpu = false;                      // --gpu: draw on a GPU through EGL (golden/README.md, "On a GPU")
-  std::string raster{};                  // --raster for entries without their own; empty: the manifest's
+  std::optional<Raster> raster{};        // --raster for entries without their own; nothing: the manifest's
   std::optional<int> threshold{};        // --threshold for entries without their own (0 … 255)
   std::optional<double> maxShare{};      // --max-share for entries without their own (0 … 1)
   int jobs = 0;                          // --jobs: entries checked at once; 0: half the CPUs, at least 1
@@ -29,13 +30,13 @@ struct Options {
   std::function<void(long done, long total, const std::string& name)> progress{};
 };
 
-// One frame's result. outcome: "passed", "failed", "missing" (no reference yet) or "error" (it
-// could not be checked: the scenario did not load, the simulation blew up, the reference is not
-// a PNG). Paths are relative to the report folder; empty when not kept.
+// One frame's result (Outcome: include/particles/choices.hpp). Paths are relative to the report
+// folder; empty when not kept.
 struct FrameCheck {
   std::string name, scenario, time;  // as the manifest writes them
   bool control = false;              // `expect: differ`: passes when the frame differs
-  std::string outcome, message;      // message: one line, empty when passed
+  Outcome outcome = Outcome::passed;
+  std::string message;               // one line, empty when passed
   long differing = 0, pixels = 0;    // pixels beyond the threshold, of width × height
   int largest = 0;                   // the largest channel difference, 0 … 255
   std::string actual, expected, diff;
@@ -46,7 +47,8 @@ struct FrameCheck {
 struct StateCheck {
   std::string name, scenario;
   std::vector<std::string> times;
-  std::string outcome, message;
+  Outcome outcome = Outcome::passed;
+  std::string message;
   long values = 0;                     // values compared
   std::string point, quantity;         // the first beyond tolerance (or the largest): cloth[3][4], vx
   double expected = 0.0, actual = 0.0, difference = 0.0, tolerance = 0.0;

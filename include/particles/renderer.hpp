@@ -2,7 +2,7 @@
 // Draws a simulation's current state off screen (no display, no GPU unless asked), as
 // `particles render --at` draws a frame: the same options, the same pixels.
 //
-//   particles::Renderer renderer({.width = 640, .height = 360, .theme = "light"});
+//   particles::Renderer renderer({.width = 640, .height = 360, .theme = particles::Theme::light});
 //   particles::Image frame = renderer.render(sim);    // RGBA, row by row from the top
 //   frame.savePng("cloth.png");                        // written whole or not at all
 
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <particles/choices.hpp>
 #include <particles/export.hpp>
 
 namespace particles {
@@ -32,13 +33,13 @@ struct PARTICLES_API Image {
 
 // The options of `particles render` that set a frame's look; the names are the command line's.
 struct RenderSettings {
-  int width = 0, height = 0;         // px; 0 and 0: the scenario's render.size
-  std::string theme = "dark";        // dark or light
-  int msaa = 4;                      // samples per pixel: 1 (off), 2, 4, 8 or 16
-  std::string background = "theme";  // theme, or transparent (alpha = coverage)
-  std::string raster = "auto";       // auto, triangles, tiles, resident or cpu
-  std::string gl = "auto";           // the GL backend: auto (EGL, else OSMesa), egl or osmesa
-  bool gpu = false;                  // a hardware EGL device instead of llvmpipe
+  int width = 0, height = 0;                     // px; 0 and 0: the scenario's render.size
+  Theme theme = Theme::dark;
+  int msaa = 4;                                  // samples per pixel: 1 (off), 2, 4, 8 or 16
+  Background background = Background::theme;     // transparent: alpha = coverage
+  Raster raster = Raster::automatic;
+  GlBackend gl = GlBackend::automatic;
+  bool gpu = false;                              // a hardware EGL device instead of llvmpipe
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -12,6 +12,7 @@
 #include <string>
 #include <string_view>
 
+#include <particles/choices.hpp>
 #include <particles/export.hpp>
 
 namespace particles {
@@ -53,7 +54,7 @@ class PARTICLES_API Scenario {
   std::string name() const;
   std::string description() const;
   std::string file() const;           // the path or label it was loaded from
-  std::string integrator() const;     // as scenarios name it: rk4, backward_euler, …
+  Integrator integrator() const;      // particles::name() spells it as scenarios do: rk4, backward_euler, …
   double dt() const;                  // s
   double duration() const;            // simulated seconds
   long steps() const;                 // steps of dt that cover the duration

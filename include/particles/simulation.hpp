@@ -19,6 +19,7 @@
 #include <string_view>
 #include <vector>
 
+#include <particles/choices.hpp>
 #include <particles/export.hpp>
 
 namespace particles {
@@ -83,7 +84,7 @@ class PARTICLES_API Simulation {
   double time() const;       // s: t₀ + k·dt after k steps, computed afresh (no drift from summing)
   long steps() const;        // steps taken since the simulation was made
   double dt() const;         // s
-  std::string integrator() const;
+  Integrator integrator() const;
 
   void setThreads(int threads);  // 1 to 1024
   int threads() const;

@@ -1,5 +1,6 @@
 # Type stubs of particles._particles, the C++ module (python/src/). `import particles` re-exports
 # these names; docs/api.md describes each, and help() shows the same docstrings.
+import enum
 import os
 from types import TracebackType
 from typing import Literal, Mapping, Optional, Sequence, Tuple, Type, Union
@@ -29,7 +30,7 @@ class ScenarioError(Error, ValueError):
 class SimulationError(Error, RuntimeError):
     step: int
     time: float
-    integrator: str
+    integrator: IntegratorName
     dt: float
     reason: str
 
@@ -55,7 +56,7 @@ class Scenario:
     @property
     def file(self) -> str: ...
     @property
-    def integrator(self) -> str: ...
+    def integrator(self) -> IntegratorName: ...
     @property
     def dt(self) -> float: ...
     @property
@@ -77,10 +78,48 @@ class Energy:
     @property
     def total(self) -> float: ...
 
-Theme = Literal["dark", "light"]
-Background = Literal["theme", "transparent"]
-Raster = Literal["auto", "triangles", "tiles", "resident", "cpu"]
-GlBackend = Literal["auto", "egl", "osmesa"]
+# The closed sets of choices (include/particles/choices.hpp): each taken as its name or as a member.
+class Integrator(enum.Enum):
+    euler: Integrator
+    midpoint: Integrator
+    rk4: Integrator
+    symplectic_euler: Integrator
+    verlet: Integrator
+    backward_euler: Integrator
+    bdf2: Integrator
+
+class Theme(enum.Enum):
+    dark: Theme
+    light: Theme
+
+class Background(enum.Enum):
+    theme: Background
+    transparent: Background
+
+class Raster(enum.Enum):
+    auto: Raster
+    triangles: Raster
+    tiles: Raster
+    resident: Raster
+    cpu: Raster
+
+class GlBackend(enum.Enum):
+    auto: GlBackend
+    egl: GlBackend
+    osmesa: GlBackend
+
+class Outcome(enum.Enum):
+    passed: Outcome
+    failed: Outcome
+    missing: Outcome
+    error: Outcome
+
+ThemeChoice = Union[Literal["dark", "light"], Theme]
+BackgroundChoice = Union[Literal["theme", "transparent"], Background]
+RasterChoice = Union[Literal["auto", "triangles", "tiles", "resident", "cpu"], Raster]
+GlBackendChoice = Union[Literal["auto", "egl", "osmesa"], GlBackend]
+IntegratorName = Literal["euler", "midpoint", "rk4", "symplectic_euler", "verlet", "backward_euler", "bdf2"]
+OutcomeName = Literal["passed", "failed", "missing", "error"]
 
 class Simulation:
     def __init__(self, scenario: Scenario, threads: Optional[Index] = None) -> None: ...
@@ -94,7 +133,7 @@ class Simulation:
     @property
     def dt(self) -> float: ...
     @property
-    def integrator(self) -> str: ...
+    def integrator(self) -> IntegratorName: ...
     @property
     def threads(self) -> int: ...
     @threads.setter
@@ -129,8 +168,8 @@ class Simulation:
     def body_names(self) -> list[str]: ...
     def particle_index(self, name: str) -> int: ...
     def body_index(self, name: str) -> int: ...
-    def render(self, *, size: Optional[Tuple[int, int]] = None, theme: Theme = "dark", msaa: int = 4,
-               background: Background = "theme", raster: Raster = "auto", gl: GlBackend = "auto",
+    def render(self, *, size: Optional[Tuple[int, int]] = None, theme: ThemeChoice = "dark", msaa: Index = 4,
+               background: BackgroundChoice = "theme", raster: RasterChoice = "auto", gl: GlBackendChoice = "auto",
                gpu: bool = False) -> npt.NDArray[np.uint8]: ...  # a particles.Frame, (h, w, 4)
     def close(self) -> None: ...
     @property
@@ -140,9 +179,9 @@ class Simulation:
                  traceback: Optional[TracebackType]) -> bool: ...
 
 class Renderer:
-    def __init__(self, *, size: Optional[Tuple[int, int]] = None, theme: Theme = "dark", msaa: int = 4,
-                 background: Background = "theme", raster: Raster = "auto", gl: GlBackend = "auto",
-                 gpu: bool = False) -> None: ...
+    def __init__(self, *, size: Optional[Tuple[int, int]] = None, theme: ThemeChoice = "dark", msaa: Index = 4,
+                 background: BackgroundChoice = "theme", raster: RasterChoice = "auto",
+                 gl: GlBackendChoice = "auto", gpu: bool = False) -> None: ...
     def render(self, simulation: Simulation) -> npt.NDArray[np.uint8]: ...  # a particles.Frame
     @property
     def gl_description(self) -> str: ...
@@ -171,7 +210,7 @@ class FrameCheck:
     scenario: str
     time: str
     control: bool
-    outcome: str  # passed, failed, missing or error
+    outcome: OutcomeName
     message: str
     differing: int
     pixels: int
@@ -185,7 +224,7 @@ class StateCheck:
     name: str
     scenario: str
     times: list[str]
-    outcome: str
+    outcome: OutcomeName
     message: str
     values: int
     point: str
@@ -210,5 +249,6 @@ class GoldenReport:
     def all_passed(self) -> bool: ...
     def __bool__(self) -> bool: ...
 
-def _golden_check(manifest: str, output: str, only: list[str], shard: str, gl: str, gpu: bool, raster: str,
-                  threshold: Optional[int], max_share: Optional[float], jobs: int) -> GoldenReport: ...
+def _golden_check(manifest: str, output: str, only: list[str], shard: Union[None, str, Tuple[int, int]],
+                  gl: GlBackendChoice, gpu: bool, raster: Optional[RasterChoice], threshold: Optional[int],
+                  max_share: Optional[float], jobs: int) -> GoldenReport: ...

@@ -20,8 +20,9 @@ def check(manifest, output="golden-report", *, only=None, shard=None, gl="auto",
     frames and states, the counts, the summary line and report.html's path; true when every
     check passed.
 
-    only: names of frames and states (a str or a list); shard: "K/N", the K-th of N parts; gl:
-    auto, egl or osmesa; gpu: draw on a GPU through EGL (golden/README.md, "On a GPU"); raster,
+    only: names of frames and states (a str or a list); shard: "K/N" or (K, N), the K-th of N
+    parts; gl: auto, egl or osmesa (or a particles.GlBackend); gpu: draw on a GPU through EGL
+    (golden/README.md, "On a GPU"); raster (a name or a particles.Raster),
     threshold, max_share: for entries that do not set their own; jobs: entries checked at once
     (None: half the CPUs). Raises ScenarioError for a manifest that cannot be used, ArgumentError
     for bad options or a folder that may not be replaced, OutputError when the report cannot be
@@ -29,5 +30,5 @@ def check(manifest, output="golden-report", *, only=None, shard=None, gl="auto",
     """
     if isinstance(only, str):
         only = [only]
-    return _golden_check(os.fspath(manifest), os.fspath(output), list(only or []), shard or "", gl, bool(gpu),
-                         raster or "", threshold, max_share, 0 if jobs is None else jobs)
+    return _golden_check(os.fspath(manifest), os.fspath(output), list(only or []), shard, gl, bool(gpu), raster,
+                         threshold, max_share, 0 if jobs is None else jobs)

@@ -54,6 +54,35 @@ long long wholeNumber(const py::handle& value, const char* call, const char* wha
 int wholeInt(const py::handle& value, const char* call, const char* what);
 // The name of a value's type, for messages.
 std::string typeName(const py::handle& value);
+// A str as a message quotes it: at most 80 characters of it, with its size in bytes when cut.
+std::string quoted(const std::string& value);
+
+// A choice (include/particles/choices.hpp) given as its name ("light", "backward_euler") or as a
+// member of the module's enum (particles.Theme.light). ArgumentError naming `what` and the names
+// otherwise.
+template <class Choice, size_t N>
+Choice choiceOf(const py::handle& value, const char* call, const char* what, const Choice (&values)[N]) {
+  if (py::isinstance<py::str>(value)) {
+    if (const std::optional<Choice> chosen = fromName<Choice>(value.cast<std::string>())) return *chosen;
+  } else if (py::isinstance<Choice>(value)) {
+    return value.cast<Choice>();
+  }
+  std::string names;
+  for (const Choice choice : values) names += (names.empty() ? "" : ", ") + std::string(name(choice));
+  const std::string given = py::isinstance<py::str>(value) ? quoted(value.cast<std::string>()) : "a " + typeName(value);
+  throw ArgumentError(std::string(call) + ": " + what + " takes " + names + " (or its enum's members), not " + given);
+}
+inline constexpr Integrator kIntegrators[] = {Integrator::euler,   Integrator::midpoint,      Integrator::rk4,
+                                              Integrator::symplecticEuler, Integrator::verlet, Integrator::backwardEuler,
+                                              Integrator::bdf2};
+inline constexpr Theme kThemes[] = {Theme::dark, Theme::light};
+inline constexpr Background kBackgrounds[] = {Background::theme, Background::transparent};
+inline constexpr Raster kRasters[] = {Raster::automatic, Raster::triangles, Raster::tiles, Raster::resident, Raster::cpu};
+inline constexpr GlBackend kGlBackends[] = {GlBackend::automatic, GlBackend::egl, GlBackend::osmesa};
+inline constexpr golden::Outcome kOutcomes[] = {golden::Outcome::passed, golden::Outcome::failed,
+                                                golden::Outcome::missing, golden::Outcome::error};
+// The module's enums: each member named as name() spells it (Raster.auto).
+void bindChoices(py::module_& module);
 
 // What pybind11 gives `Cls.__new__(Cls)`: a Python object whose C++ value no constructor made
 // (pybind11 allocates its storage on first use, uninitialised), so that reading it crashes. Every

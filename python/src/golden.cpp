@@ -24,13 +24,39 @@ py::list objectsOf(const std::vector<T>& results) {
 
 }  // namespace
 
+namespace {
+
+// shard= as "K/N" (the command line's --shard) or a (K, N) pair; None: all. The range is the C++
+// call's to check.
+std::optional<golden::Shard> shardOf(const py::object& shard) {
+  if (shard.is_none()) return std::nullopt;
+  const char* const takes = "golden.check: shard takes \"K/N\" or (K, N), the K-th of N parts";
+  if (py::isinstance<py::str>(shard)) {
+    const std::string text = shard.cast<std::string>();
+    const size_t slash = text.find('/');
+    if (slash == std::string::npos || slash == 0 || slash + 1 == text.size() ||
+        text.find_first_not_of("0123456789/") != std::string::npos || text.find('/', slash + 1) != std::string::npos ||
+        slash > 9 || text.size() - slash - 1 > 9) {
+      throw ArgumentError(std::string(takes) + ", not " + quoted(text));
+    }
+    return golden::Shard{std::stoi(text.substr(0, slash)), std::stoi(text.substr(slash + 1))};
+  }
+  if (py::isinstance<py::tuple>(shard) && py::len(shard) == 2) {
+    return golden::Shard{wholeInt(shard[py::int_(0)], "golden.check", "shard's K"),
+                         wholeInt(shard[py::int_(1)], "golden.check", "shard's N")};
+  }
+  throw ArgumentError(std::string(takes) + ", not a " + typeName(shard));
+}
+
+}  // namespace
+
 void bindGolden(py::module_& module) {
   py::class_<Object<golden::FrameCheck>>(module, "FrameCheck", "One frame's result of a golden check (particles.golden.check).")
       .def_property_readonly("name", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.name); }, "The frame's name in the manifest (cloth_t2.5).")
       .def_property_readonly("scenario", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.scenario); }, "Its scenario, as the manifest writes it.")
       .def_property_readonly("time", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.time); }, "Its time, s, as the manifest writes it.")
       .def_property_readonly("control", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").control; }, "An `expect: differ` control: passes when it differs.")
-      .def_property_readonly("outcome", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.outcome); }, "'passed', 'failed', 'missing' or 'error'.")
+      .def_property_readonly("outcome", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return std::string(name(c.outcome)); }, "'passed', 'failed', 'missing' or 'error'.")
       .def_property_readonly("message", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.message); }, "Why, in one line; '' when it passed.")
       .def_property_readonly("differing", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").differing; }, "Pixels beyond the threshold.")
       .def_property_readonly("pixels", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").pixels; }, "Pixels compared: width × height.")
@@ -39,12 +65,12 @@ void bindGolden(py::module_& module) {
       .def_property_readonly("expected", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return pathText(c.expected); }, "The reference, as kept in the report folder.")
       .def_property_readonly("diff", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return pathText(c.diff); }, "The difference picture, as kept in the report folder.")
       .def_property_readonly("reproduce", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return textList(c.reproduce); }, "Shell commands that reproduce the result.")
-      .def("__repr__", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& f = valueOf(o, "FrameCheck"); return text("<FrameCheck " + f.name + ": " + f.outcome + ">"); });
+      .def("__repr__", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& f = valueOf(o, "FrameCheck"); return text("<FrameCheck " + f.name + ": " + std::string(name(f.outcome)) + ">"); });
   py::class_<Object<golden::StateCheck>>(module, "StateCheck", "One state's result of a golden check (particles.golden.check).")
       .def_property_readonly("name", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.name); }, "The state's name in the manifest.")
       .def_property_readonly("scenario", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.scenario); }, "Its scenario, as the manifest writes it.")
       .def_property_readonly("times", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return textList(c.times); }, "Its times, as the manifest writes them.")
-      .def_property_readonly("outcome", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.outcome); }, "'passed', 'failed', 'missing' or 'error'.")
+      .def_property_readonly("outcome", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return std::string(name(c.outcome)); }, "'passed', 'failed', 'missing' or 'error'.")
       .def_property_readonly("message", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.message); }, "Why, in one line; '' when it passed.")
       .def_property_readonly("values", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").values; }, "Values compared.")
       .def_property_readonly("point", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.point); }, "The first value beyond its tolerance (else the largest): its point.")
@@ -54,7 +80,7 @@ void bindGolden(py::module_& module) {
       .def_property_readonly("difference", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").difference; }, "... actual − expected.")
       .def_property_readonly("tolerance", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").tolerance; }, "... the tolerance it was held to.")
       .def_property_readonly("reproduce", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return textList(c.reproduce); }, "Shell commands that reproduce the result.")
-      .def("__repr__", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& s = valueOf(o, "StateCheck"); return text("<StateCheck " + s.name + ": " + s.outcome + ">"); });
+      .def("__repr__", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& s = valueOf(o, "StateCheck"); return text("<StateCheck " + s.name + ": " + std::string(name(s.outcome)) + ">"); });
   py::class_<Object<golden::Report>>(module, "GoldenReport", "What a golden check found (particles.golden.check).")
       .def_property_readonly("frames", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").frames); }, "Each frame's FrameCheck, in manifest order.")
       .def_property_readonly("states", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").states); }, "Each state's StateCheck, in manifest order.")
@@ -72,16 +98,16 @@ void bindGolden(py::module_& module) {
 
   module.def(
       "_golden_check",
-      [](const std::string& manifest, const std::string& output, std::vector<std::string> only, const std::string& shard,
-         const std::string& gl, bool gpu, const std::string& raster, std::optional<int> threshold,
+      [](const std::string& manifest, const std::string& output, std::vector<std::string> only, const py::object& shard,
+         const py::object& gl, bool gpu, const py::object& raster, std::optional<int> threshold,
          std::optional<double> maxShare, int jobs) {
         golden::Options options;
         options.output = output;
         options.only = std::move(only);
-        options.shard = shard;
-        options.gl = gl;
+        options.shard = shardOf(shard);
+        options.gl = choiceOf(gl, "golden.check", "gl", kGlBackends);
         options.gpu = gpu;
-        options.raster = raster;
+        if (!raster.is_none()) options.raster = choiceOf(raster, "golden.check", "raster", kRasters);
         options.threshold = threshold;
         options.maxShare = maxShare;
         options.jobs = jobs;

@@ -101,6 +101,8 @@ void appendYaml(std::string& out, const py::handle& value, std::string_view path
     out += depth == 0 ? "" : "null";  // at the top: no value, which the loader refuses by name
   } else if (py::isinstance<py::bool_>(value)) {
     out += value.ptr() == Py_True ? "true" : "false";
+  } else if (py::isinstance<Integrator>(value)) {  // particles.Integrator.rk4: its name
+    out += name(value.cast<Integrator>());
   } else if (py::isinstance(value, numpyGeneric)) {
     appendYaml(out, value.attr("item")(), path, depth);
   } else if (py::isinstance(value, numpyArray)) {
@@ -181,7 +183,7 @@ const Scenario& scenarioOf(const ScenarioObject& object) { return valueOf(object
 Scenario& scenarioOf(ScenarioObject& object) { return valueOf(object, "Scenario"); }
 
 std::string describeScenario(const Scenario& scenario) {
-  return "<particles.Scenario '" + scenario.name() + "' from " + scenario.file() + ": " + scenario.integrator() +
+  return "<particles.Scenario '" + scenario.name() + "' from " + scenario.file() + ": " + std::string(name(scenario.integrator())) +
          ", dt = " + py::repr(py::float_(scenario.dt())).cast<std::string>() + " s, " +
          py::repr(py::float_(scenario.duration())).cast<std::string>() + " s, " + std::to_string(scenario.particleCount()) +
          " particles, " + std::to_string(scenario.bodyCount()) + " bodies>";
@@ -226,6 +228,34 @@ py::list textList(const std::vector<std::string>& items) {
   py::list out(items.size());
   for (size_t i = 0; i < items.size(); ++i) out[i] = text(items[i]);
   return out;
+}
+
+std::string quoted(const std::string& value) {
+  const py::str text = decoded(value, "backslashreplace");
+  if (py::len(text) <= 80) return py::repr(text).cast<std::string>();
+  return py::repr(text[py::slice(0, 80, 1)]).cast<std::string>() + "… (" + std::to_string(value.size()) + " bytes)";
+}
+
+namespace {
+
+template <class Choice, size_t N>
+void bindChoice(py::module_& module, const char* pythonName, const char* doc, const Choice (&values)[N]) {
+  py::enum_<Choice> choices(module, pythonName, doc);
+  for (const Choice value : values) choices.value(std::string(name(value)).c_str(), value);
+}
+
+}  // namespace
+
+void bindChoices(py::module_& module) {
+  bindChoice(module, "Integrator", "The integrators; everywhere Python takes one, its name (a str) is taken too.",
+             kIntegrators);
+  bindChoice(module, "Theme", "A frame's colours: dark for the screen, light for printed reports.", kThemes);
+  bindChoice(module, "Background", "What is behind the scene: the theme's colour, or nothing (alpha = coverage).",
+             kBackgrounds);
+  bindChoice(module, "Raster", "How a frame is drawn: auto, GL triangles, GL tiles, the resident GPU path, or the cpu raster.",
+             kRasters);
+  bindChoice(module, "GlBackend", "The GL backend: auto (EGL, else OSMesa), egl or osmesa.", kGlBackends);
+  bindChoice(module, "Outcome", "A golden check's result: passed, failed, missing or error.", kOutcomes);
 }
 
 std::string typeName(const py::handle& value) {
@@ -316,7 +346,7 @@ void bindErrors(py::module_& module) {
                      "key_path"_a = text(e.keyPath()), "message"_a = text(e.message()), "origin"_a = text(e.origin())));
     } catch (const SimulationError& e) {
       raise(classes.simulationError, e.what(),
-            py::dict("step"_a = e.step(), "time"_a = e.time(), "integrator"_a = text(e.integrator()), "dt"_a = e.dt(),
+            py::dict("step"_a = e.step(), "time"_a = e.time(), "integrator"_a = std::string(name(e.integrator())), "dt"_a = e.dt(),
                      "reason"_a = text(e.reason())));
     } catch (const OutputError& e) {
       raise(classes.outputError, e.what());
@@ -387,7 +417,7 @@ leaves the scenario as it was.)doc")
           "file", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return pathText(s.file()); },
           "The path it was loaded from, or from_text's label.")
       .def_property_readonly(
-          "integrator", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.integrator(); },
+          "integrator", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return std::string(name(s.integrator())); },
           "The integrator, as scenarios name it (rk4, ...).")
       .def_property_readonly("dt", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.dt(); }, "The time step, s.")
       .def_property_readonly(
@@ -411,6 +441,7 @@ PYBIND11_MODULE(_particles, module) {
   module.attr("__version__") = particles::version();
   rememberMainThread();
   bindErrors(module);
+  bindChoices(module);
   bindScenario(module);
   bindSimulation(module);
   bindRendering(module);

@@ -22,13 +22,13 @@ namespace {
 py::handle frameType;
 
 // render's keyword arguments as the API's settings; size None is the scenario's render.size (0 × 0).
-RenderSettings settingsOf(const py::object& size, std::string theme, int msaa, std::string background,
-                          std::string raster, std::string gl, bool gpu) {
-  RenderSettings settings{.theme = std::move(theme),
-                          .msaa = msaa,
-                          .background = std::move(background),
-                          .raster = std::move(raster),
-                          .gl = std::move(gl),
+RenderSettings settingsOf(const py::object& size, const py::object& theme, const py::object& msaa,
+                          const py::object& background, const py::object& raster, const py::object& gl, bool gpu) {
+  RenderSettings settings{.theme = choiceOf(theme, "render", "theme", kThemes),
+                          .msaa = wholeInt(msaa, "render", "msaa"),
+                          .background = choiceOf(background, "render", "background", kBackgrounds),
+                          .raster = choiceOf(raster, "render", "raster", kRasters),
+                          .gl = choiceOf(gl, "render", "gl", kGlBackends),
                           .gpu = gpu};
   if (!size.is_none()) {
     try {
@@ -133,10 +133,9 @@ a Renderer of your own can draw several simulations with one GL context.
     renderer = particles.Renderer(size=(640, 360), theme="light")
     frame = renderer.render(sim)
 )doc")
-      .def(py::init([](const py::object& size, std::string theme, int msaa, std::string background, std::string raster,
-                       std::string gl, bool gpu) {
-             return Object<Renderer>(Renderer(
-                 settingsOf(size, std::move(theme), msaa, std::move(background), std::move(raster), std::move(gl), gpu)));
+      .def(py::init([](const py::object& size, const py::object& theme, const py::object& msaa,
+                       const py::object& background, const py::object& raster, const py::object& gl, bool gpu) {
+             return Object<Renderer>(Renderer(settingsOf(size, theme, msaa, background, raster, gl, gpu)));
            }),
            py::kw_only(), "size"_a = py::none(), "theme"_a = "dark", "msaa"_a = 4, "background"_a = "theme",
            "raster"_a = "auto", "gl"_a = "auto", "gpu"_a = false,
@@ -160,11 +159,10 @@ gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)
   // Simulation.render: defined here, beside the Renderer it keeps.
   const py::object simulation = module.attr("Simulation");
   simulation.attr("render") = py::cpp_function(
-      [](SimulationHandle& handle, const py::object& size, std::string theme, int msaa, std::string background,
-         std::string raster, std::string gl, bool gpu) {
+      [](SimulationHandle& handle, const py::object& size, const py::object& theme, const py::object& msaa,
+         const py::object& background, const py::object& raster, const py::object& gl, bool gpu) {
         const std::shared_ptr<Simulation> shared = handle.get("render");
-        RenderSettings settings =
-            settingsOf(size, std::move(theme), msaa, std::move(background), std::move(raster), std::move(gl), gpu);
+        RenderSettings settings = settingsOf(size, theme, msaa, background, raster, gl, gpu);
         // The renderer is taken out while it draws: a second thread's render() then makes its own,
         // and Renderer::render refuses it while this one holds the simulation.
         std::optional<std::pair<RenderSettings, Renderer>> slot = std::move(handle.lastRenderer);

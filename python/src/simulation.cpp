@@ -82,7 +82,7 @@ std::string describeSimulation(const SimulationHandle& handle) {
   if (!handle.simulation) return "<particles.Simulation, closed>";
   const Simulation& s = *handle.simulation;
   return "<particles.Simulation time = " + py::repr(py::float_(s.time())).cast<std::string>() + " s after " +
-         std::to_string(s.steps()) + " steps: " + s.integrator() + ", dt = " + py::repr(py::float_(s.dt())).cast<std::string>() +
+         std::to_string(s.steps()) + " steps: " + std::string(name(s.integrator())) + ", dt = " + py::repr(py::float_(s.dt())).cast<std::string>() +
          " s, " + std::to_string(s.particleCount()) + " particles, " + std::to_string(s.bodyCount()) + " bodies, " +
          std::to_string(s.threads()) + " threads>";
 }
@@ -179,7 +179,7 @@ once per frame gives the frames of `particles render` at that fps, whatever dt i
       .def_property_readonly(
           "dt", [](const SimulationHandle& h) { return h.get("dt")->dt(); }, "The time step, s.")
       .def_property_readonly(
-          "integrator", [](const SimulationHandle& h) { return h.get("integrator")->integrator(); },
+          "integrator", [](const SimulationHandle& h) { return std::string(name(h.get("integrator")->integrator())); },
           "The integrator, as scenarios name it.")
       .def_property(
           "threads", [](const SimulationHandle& h) { return h.get("threads")->threads(); },

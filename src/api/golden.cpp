@@ -27,21 +27,13 @@ ReportRequest requestOf(const std::string& manifest, const Options& o) {
   request.program = fmt::format("particles {}", version());
   request.check.manifestGiven = manifest;
   request.check.only = o.only;
-  request.check.shard = shardFromText(o.shard, "shard");
-  const auto backend = render::glBackendFromName(o.gl);
-  if (!backend) {
-    throw ArgumentError(fmt::format("golden::check: gl takes {}, not {}", fmt::join(render::glBackendNames(), ", "),
-                                    input::quotedValue(o.gl)));
-  }
-  request.check.gl = render::GlRequest{*backend, o.gpu};
+  if (o.shard) request.check.shard = std::pair{o.shard->index, o.shard->count};  // runCheck checks the range
+  if (particles::name(o.gl).empty()) throw ArgumentError("golden::check: gl is not a GlBackend");
+  request.check.gl = render::GlRequest{o.gl, o.gpu};
   render::validate(request.check.gl);
-  if (!o.raster.empty()) {
-    const auto raster = render::rasterFromName(o.raster);
-    if (!raster) {
-      throw ArgumentError(fmt::format("golden::check: raster takes {}, not {}", fmt::join(render::rasterNames(), ", "),
-                                      input::quotedValue(o.raster)));
-    }
-    request.check.overrides.raster = *raster;
+  if (o.raster) {
+    if (particles::name(*o.raster).empty()) throw ArgumentError("golden::check: raster is not a Raster");
+    request.check.overrides.raster = *o.raster;
   }
   if (o.threshold && (*o.threshold < 0 || *o.threshold > 255)) {
     throw ArgumentError(fmt::format("golden::check: threshold must be 0 to 255, got {}", *o.threshold));
@@ -65,7 +57,7 @@ FrameCheck frameCheckOf(const FrameResult& f) {
   out.scenario = f.scenario;
   out.time = f.time;
   out.control = f.expectDiffer;
-  out.outcome = outcomeName(f.outcome);
+  out.outcome = f.outcome;
   out.message = f.message;
   if (f.numbers) {
     out.differing = f.numbers->differing;
@@ -84,7 +76,7 @@ StateCheck stateCheckOf(const StateResult& s) {
   out.name = s.name;
   out.scenario = s.scenario;
   out.times = s.times;
-  out.outcome = outcomeName(s.outcome);
+  out.outcome = s.outcome;
   out.message = s.message;
   out.values = s.values;
   const std::optional<StateDeviation>& shown = s.firstBeyond ? s.firstBeyond : s.largest;

@@ -63,16 +63,14 @@ Renderer::Renderer(const RenderSettings& settings) {
     impl->sizeGiven = settings.width != 0;
     if (impl->sizeGiven) readLook(impl->look, "--size", "width and height", fmt::format("{}x{}", settings.width, settings.height));
     readLook(impl->look, "--msaa", "msaa", fmt::format("{}", settings.msaa));
-    readLook(impl->look, "--theme", "theme", settings.theme);
-    readLook(impl->look, "--background", "background", settings.background);
-    readLook(impl->look, "--raster", "raster", settings.raster);
-    const std::optional<render::GlBackend> backend = render::glBackendFromName(settings.gl);
-    if (!backend) {
-      throw ArgumentError(fmt::format("Renderer: gl takes {}, not {}", fmt::join(render::glBackendNames(), ", "),
-                                      input::quotedValue(settings.gl)));
-    }
+    // The choices through their command-line names, read by the command's own rows: the same
+    // checks (a value outside the enum, cast in by a careless caller, is refused there).
+    readLook(impl->look, "--theme", "theme", std::string(particles::name(settings.theme)));
+    readLook(impl->look, "--background", "background", std::string(particles::name(settings.background)));
+    readLook(impl->look, "--raster", "raster", std::string(particles::name(settings.raster)));
+    if (particles::name(settings.gl).empty()) throw ArgumentError("Renderer: gl is not a GlBackend");
     render::validate(impl->look);  // the size's range, as well as the rest
-    impl->gl.backend = *backend;
+    impl->gl.backend = settings.gl;
     impl->gl.gpu = settings.gpu;
     render::validate(impl->gl);
     return impl;

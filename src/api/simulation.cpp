@@ -196,9 +196,7 @@ bool Simulation::advanceTo(double t, const KeepGoing& keepGoing) {
 double Simulation::time() const { return implOf(impl_, "time").system().time(); }
 long Simulation::steps() const { return implOf(impl_, "steps").stepper.steps(); }
 double Simulation::dt() const { return implOf(impl_, "dt").scenario.simulation.dt; }
-std::string Simulation::integrator() const {
-  return std::string(integratorName(implOf(impl_, "integrator").scenario.simulation.integrator));
-}
+Integrator Simulation::integrator() const { return implOf(impl_, "integrator").scenario.simulation.integrator; }
 
 void Simulation::setThreads(int threads) {
   api::guardedCall("Simulation::setThreads", [&] {

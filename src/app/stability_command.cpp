@@ -40,12 +40,12 @@ std::vector<Integrator> parseIntegrators(const std::vector<std::string>& names) 
 
 std::string describe(const RunAssessment& a) {
   switch (a.verdict) {
-    case RunVerdict::Stable: return "stable";
-    case RunVerdict::Shaking: return fmt::format("shaking index {:.2f}", a.shakingIndex);
-    case RunVerdict::Exploded: return fmt::format("exploded after {} steps", a.steps);
-    case RunVerdict::Runaway:
+    case RunVerdict::stable: return "stable";
+    case RunVerdict::shaking: return fmt::format("shaking index {:.2f}", a.shakingIndex);
+    case RunVerdict::exploded: return fmt::format("exploded after {} steps", a.steps);
+    case RunVerdict::runaway:
       return fmt::format("energy {:.2g}×S above its bound after {} steps", a.maxEnergyExcess, a.steps);
-    case RunVerdict::Overstretched:
+    case RunVerdict::overstretched:
       return fmt::format("a spring at {:.2f}× its rest length after {} steps", a.maxStretch, a.steps);
   }
   return "";

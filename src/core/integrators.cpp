@@ -28,15 +28,15 @@ struct IntegratorEntry {
 
 // The registry: one row per integrator, in the order studies and help list them.
 constexpr std::array<IntegratorEntry, 7> kIntegrators{{
-    {Integrator::Euler, "euler", 1, false, false, "explicit Euler, first order", makeEulerState},
-    {Integrator::Midpoint, "midpoint", 2, false, false, "explicit midpoint, second order", makeMidpointState},
-    {Integrator::Rk4, "rk4", 4, false, false, "classic 4th-order Runge–Kutta", makeRk4State},
-    {Integrator::SymplecticEuler, "symplectic_euler", 1, true, false, "semi-implicit Euler (v, then x), first order",
+    {Integrator::euler, "euler", 1, false, false, "explicit Euler, first order", makeEulerState},
+    {Integrator::midpoint, "midpoint", 2, false, false, "explicit midpoint, second order", makeMidpointState},
+    {Integrator::rk4, "rk4", 4, false, false, "classic 4th-order Runge–Kutta", makeRk4State},
+    {Integrator::symplecticEuler, "symplectic_euler", 1, true, false, "semi-implicit Euler (v, then x), first order",
      makeSymplecticEulerState},
-    {Integrator::Verlet, "verlet", 1, true, false, "velocity Verlet, second order", makeVerletState},
-    {Integrator::BackwardEuler, "backward_euler", 1, true, true,
+    {Integrator::verlet, "verlet", 1, true, false, "velocity Verlet, second order", makeVerletState},
+    {Integrator::backwardEuler, "backward_euler", 1, true, true,
      "implicit Euler, one Newton step (Baraff & Witkin 1998), first order", makeBackwardEulerState},
-    {Integrator::Bdf2, "bdf2", 1, true, true,
+    {Integrator::bdf2, "bdf2", 1, true, true,
      "second-order backward differentiation (BDF2), one Newton step (Choi & Ko 2002), second order", makeBdf2State},
 }};
 

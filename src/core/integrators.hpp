@@ -16,6 +16,8 @@
 #include <span>
 #include <string_view>
 
+#include <particles/choices.hpp>
+
 #include "core/worker_pool.hpp"
 
 namespace particles {
@@ -23,7 +25,8 @@ namespace particles {
 class ImplicitStep;
 class System;
 
-enum class Integrator { Euler, Midpoint, Rk4, SymplecticEuler, Verlet, BackwardEuler, Bdf2 };
+// The public enum (include/particles/choices.hpp): the library's callers and the core name one type.
+using particles::Integrator;
 
 std::string_view integratorName(Integrator integrator);
 // "euler", "midpoint", "rk4", "symplectic_euler", "verlet", "backward_euler", "bdf2"

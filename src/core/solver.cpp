@@ -13,7 +13,7 @@ namespace {
 
 std::string explosionMessage(const std::string& reason, long step, double time, Integrator integrator, double dt) {
   std::string advice = fmt::format("try a smaller time step (e.g. --dt {:.3g})", dt / 4.0);
-  if (integrator != Integrator::Rk4 && !isImplicit(integrator)) {
+  if (integrator != Integrator::rk4 && !isImplicit(integrator)) {
     advice += " or a higher-order integrator (--integrator rk4)";
   }
   // Stiff springs bound every explicit method's step; the implicit ones are stable at any h.
@@ -25,8 +25,7 @@ std::string explosionMessage(const std::string& reason, long step, double time, 
 }  // namespace
 
 SimulationError explosionError(const std::string& reason, long step, double time, Integrator integrator, double dt) {
-  return SimulationError(explosionMessage(reason, step, time, integrator, dt), reason, step, time,
-                         std::string(integratorName(integrator)), dt);
+  return SimulationError(explosionMessage(reason, step, time, integrator, dt), reason, step, time, integrator, dt);
 }
 
 const ImplicitStepStats& Solver::lastImplicitStep() const {

@@ -22,11 +22,11 @@ namespace particles {
 
 std::string_view verdictName(RunVerdict verdict) {
   switch (verdict) {
-    case RunVerdict::Stable: return "stable";
-    case RunVerdict::Shaking: return "shaking";
-    case RunVerdict::Exploded: return "exploded";
-    case RunVerdict::Runaway: return "runaway energy";
-    case RunVerdict::Overstretched: return "overstretched";
+    case RunVerdict::stable: return "stable";
+    case RunVerdict::shaking: return "shaking";
+    case RunVerdict::exploded: return "exploded";
+    case RunVerdict::runaway: return "runaway energy";
+    case RunVerdict::overstretched: return "overstretched";
   }
   return "unknown";
 }
@@ -79,7 +79,7 @@ std::optional<RunAssessment> assessRunUnlessAbandoned(const SystemFactory& make,
     try {
       solver.doStep(sys, dt);
     } catch (const SimulationError& e) {
-      a.verdict = RunVerdict::Exploded;
+      a.verdict = RunVerdict::exploded;
       a.detail = e.what();
       return a;
     }
@@ -98,16 +98,16 @@ std::optional<RunAssessment> assessRunUnlessAbandoned(const SystemFactory& make,
     a.maxEnergyExcess = std::max(a.maxEnergyExcess, (sys.energy().total() - e0 - handWork) / scale);
     a.maxStretch = std::max(a.maxStretch, maxSpringStretch(sys));
     if (a.maxEnergyExcess > criteria.energyTolerance) {
-      a.verdict = RunVerdict::Runaway;
+      a.verdict = RunVerdict::runaway;
       return a;
     }
     if (a.maxStretch > criteria.maxStretch) {
-      a.verdict = RunVerdict::Overstretched;
+      a.verdict = RunVerdict::overstretched;
       return a;
     }
   }
   a.shakingIndex = magnitude > 0.0 ? std::sqrt(alternating / magnitude) : 0.0;
-  if (a.shakingIndex > criteria.shakeThreshold) a.verdict = RunVerdict::Shaking;
+  if (a.shakingIndex > criteria.shakeThreshold) a.verdict = RunVerdict::shaking;
   return a;
 }
 
@@ -270,8 +270,8 @@ std::vector<std::pair<RunVerdict, double>> verdictOdds(const IntegratorProgress&
                                                        double dt) {
   bool canSmooth = true, canShake = true, canFail = true;
   const auto learn = [&](double at, RunVerdict verdict) {
-    const bool stable = verdict == RunVerdict::Stable || verdict == RunVerdict::Shaking;
-    const bool smooth = verdict == RunVerdict::Stable;
+    const bool stable = verdict == RunVerdict::stable || verdict == RunVerdict::shaking;
+    const bool smooth = verdict == RunVerdict::stable;
     if (at > dt && stable) canFail = false;
     if (at > dt && smooth) canShake = false;
     if (at < dt && !stable) canSmooth = canShake = false;
@@ -281,9 +281,9 @@ std::vector<std::pair<RunVerdict, double>> verdictOdds(const IntegratorProgress&
   for (const auto& [at, verdict] : guesses) learn(at, verdict);
   if (!canSmooth && !canShake && !canFail) canSmooth = canShake = canFail = true;  // not monotone after all
   std::vector<std::pair<RunVerdict, double>> odds;
-  if (canSmooth) odds.emplace_back(RunVerdict::Stable, 0.25);
-  if (canShake) odds.emplace_back(RunVerdict::Shaking, 0.25);
-  if (canFail) odds.emplace_back(RunVerdict::Exploded, 0.5);
+  if (canSmooth) odds.emplace_back(RunVerdict::stable, 0.25);
+  if (canShake) odds.emplace_back(RunVerdict::shaking, 0.25);
+  if (canFail) odds.emplace_back(RunVerdict::exploded, 0.5);
   double total = 0.0;
   for (const auto& [verdict, weight] : odds) total += weight;
   for (auto& [verdict, weight] : odds) weight /= total;
@@ -520,7 +520,7 @@ StabilityStudy findStabilityLimits(const SystemFactory& make, double duration, c
   unbounded.maxStretch = 1e300;
   // The reference runs alone before any search (the searches need its bound): on every thread.
   const auto reference = [&] {
-    return *assessRunUnlessAbandoned(make, Integrator::Rk4, out.referenceDt, duration, unbounded, threads, nullptr);
+    return *assessRunUnlessAbandoned(make, Integrator::rk4, out.referenceDt, duration, unbounded, threads, nullptr);
   };
   out.referenceDt = given.referenceDt;
   out.reference = reference();
@@ -541,7 +541,7 @@ StabilityStudy findStabilityLimits(const SystemFactory& make, double duration, c
 
   double eulerCost = 0.0;
   for (const auto& r : out.results) {
-    if (r.integrator == Integrator::Euler) eulerCost = r.evalsPerSimSecond;
+    if (r.integrator == Integrator::euler) eulerCost = r.evalsPerSimSecond;
   }
   for (auto& r : out.results) {
     r.speedVsEuler = (eulerCost > 0.0 && r.evalsPerSimSecond > 0.0) ? eulerCost / r.evalsPerSimSecond : 0.0;

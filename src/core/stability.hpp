@@ -37,18 +37,18 @@ struct StabilityCriteria {
   double shakeThreshold = 0.1;   // see "shaking" above
 };
 
-enum class RunVerdict { Stable, Shaking, Exploded, Runaway, Overstretched };
+enum class RunVerdict { stable, shaking, exploded, runaway, overstretched };
 std::string_view verdictName(RunVerdict verdict);
 
 struct RunAssessment {
-  RunVerdict verdict = RunVerdict::Stable;
+  RunVerdict verdict = RunVerdict::stable;
   long steps = 0;             // steps taken (fewer than planned when the run stopped early)
   double maxEnergyExcess = 0; // max (E − E(0) − W) / S
   double maxStretch = 0;      // max |l| / rest over all springs
   double shakingIndex = 0;    // see above
   std::string detail;         // for exploded runs, the solver's message
-  bool stable() const { return verdict == RunVerdict::Stable || verdict == RunVerdict::Shaking; }
-  bool smooth() const { return verdict == RunVerdict::Stable; }
+  bool stable() const { return verdict == RunVerdict::stable || verdict == RunVerdict::shaking; }
+  bool smooth() const { return verdict == RunVerdict::stable; }
 };
 
 using SystemFactory = std::function<System()>;

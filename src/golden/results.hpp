@@ -19,12 +19,14 @@
 #include <string_view>
 #include <vector>
 
+#include <particles/choices.hpp>
+
 namespace particles::golden {
 
 // passed: matches (or, for an `expect: differ` control, differs); failed: it does not; missing: no
 // reference yet (`golden update --missing` creates it); error: it could not be checked (the
 // scenario did not load, the simulation blew up, the reference is unreadable).
-enum class Outcome { passed, failed, missing, error };
+// Outcome: include/particles/choices.hpp, the library's and this room's one type.
 std::string_view outcomeName(Outcome outcome);  // "passed", "failed", "missing", "error"
 std::optional<Outcome> outcomeFromName(std::string_view name);
 

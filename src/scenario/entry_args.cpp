@@ -83,7 +83,7 @@ std::vector<Endpoint> EntryArgs::points(std::string_view key) const {
   if (!v) throw std::logic_error(fmt::format("kind '{}' reads the absent optional points '{}'", kind_.type, key));
   const bool particlesOnly = s.type == ParamType::particle || s.type == ParamType::particles;
   const bool list = s.type == ParamType::particles || s.type == ParamType::endpoints;
-  return resolvePoints(*v, names_, particlesOnly ? PointKind::Particle : PointKind::Endpoint, list);
+  return resolvePoints(*v, names_, particlesOnly ? PointKind::particle : PointKind::endpoint, list);
 }
 
 std::vector<Vec2> EntryArgs::path(std::string_view key) const {

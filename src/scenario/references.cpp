@@ -76,9 +76,9 @@ std::optional<std::array<std::string, 2>> cellSelectors(const std::string& rest)
 
 const char* kindName(NamedObjects::Kind kind) {
   switch (kind) {
-    case NamedObjects::Kind::Particle: return "a particle";
-    case NamedObjects::Kind::Grid: return "a grid";
-    case NamedObjects::Kind::Body: return "a rigid body";
+    case NamedObjects::Kind::particle: return "a particle";
+    case NamedObjects::Kind::grid: return "a grid";
+    case NamedObjects::Kind::body: return "a rigid body";
   }
   return "?";
 }
@@ -114,13 +114,13 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
 
   if (rest.empty()) {
     switch (entry->kind) {
-      case NamedObjects::Kind::Particle: return {Endpoint::ofParticle(entry->index)};
-      case NamedObjects::Kind::Body:
-        if (kind == PointKind::Particle) {
+      case NamedObjects::Kind::particle: return {Endpoint::ofParticle(entry->index)};
+      case NamedObjects::Kind::body:
+        if (kind == PointKind::particle) {
           bad(fmt::format("'{}' is a rigid body, but only particles are allowed here", name));
         }
         return {Endpoint::ofBody(entry->index)};
-      case NamedObjects::Kind::Grid: {
+      case NamedObjects::Kind::grid: {
         if (!allowList) bad(fmt::format("'{}' is a whole grid; name one particle, as in {}[0][0]", name, name));
         std::vector<Endpoint> all;
         for (int r = 0; r < entry->grid.rows; ++r)
@@ -131,10 +131,10 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   }
 
   if (rest[0] == '@') {
-    if (entry->kind != NamedObjects::Kind::Body) {
+    if (entry->kind != NamedObjects::Kind::body) {
       bad(fmt::format("'{}' is {}; an anchor `name@[x, y]` needs a rigid body", name, kindName(entry->kind)));
     }
-    if (kind == PointKind::Particle) bad("rigid-body anchors are not allowed here, only particles");
+    if (kind == PointKind::particle) bad("rigid-body anchors are not allowed here, only particles");
     const std::string inner = trim(std::string_view(rest).substr(1));
     const size_t comma = inner.find(',');
     std::optional<double> x, y;
@@ -147,7 +147,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   }
 
   if (rest[0] == '[') {
-    if (entry->kind != NamedObjects::Kind::Grid) {
+    if (entry->kind != NamedObjects::Kind::grid) {
       bad(fmt::format("'{}' is {}, not a grid; only grid particles are addressed as grid[row][col]", name,
                       kindName(entry->kind)));
     }

@@ -21,7 +21,7 @@ namespace particles::scenario::detail {
 // The particles, grids and rigid bodies declared so far, by the name each was given.
 class NamedObjects {
  public:
-  enum class Kind { Particle, Grid, Body };
+  enum class Kind { particle, grid, body };
   struct Entry {
     Kind kind;
     int index = -1;    // particle or body index
@@ -41,8 +41,8 @@ class NamedObjects {
 };
 
 enum class PointKind {
-  Particle,  // particles only (constraints act on particles)
-  Endpoint,  // particles or rigid-body anchors (springs, mouse)
+  particle,  // particles only (constraints act on particles)
+  endpoint,  // particles or rigid-body anchors (springs, mouse)
 };
 
 // Resolves `value` (a reference string, or with allowList also a YAML list of them) to points.

@@ -214,7 +214,7 @@ class detail::Loader {
       std::optional<Name> name;
       const ParticleSpec p = readParticle(item, name);
       if (name)
-        names_.add(name->at, p.name, {NamedObjects::Kind::Particle, builder_.numParticles(), {}, lineOf(name->at)});
+        names_.add(name->at, p.name, {NamedObjects::Kind::particle, builder_.numParticles(), {}, lineOf(name->at)});
       addParticle(p);
       book_.particleNames.push_back(p.name.empty() ? fmt::format("#{}", book_.particleNames.size()) : p.name);
     }
@@ -256,7 +256,7 @@ class detail::Loader {
           book_.particlePos.push_back(g.origin + Vec2(c * g.spacing.x(), -r * g.spacing.y()));
           book_.particleNames.push_back(fmt::format("{}[{}][{}]", g.name, r, c));
         }
-      names_.add(name->at, g.name, {NamedObjects::Kind::Grid, -1, indices, lineOf(name->at)});
+      names_.add(name->at, g.name, {NamedObjects::Kind::grid, -1, indices, lineOf(name->at)});
       names_.numParticles = builder_.numParticles();
     }
   }
@@ -296,7 +296,7 @@ class detail::Loader {
     for (const Value& item : list.items()) {
       std::optional<Name> name;
       const RigidBodySpec b = readBody(item, name);
-      if (name) names_.add(name->at, b.name, {NamedObjects::Kind::Body, builder_.numBodies(), {}, lineOf(name->at)});
+      if (name) names_.add(name->at, b.name, {NamedObjects::Kind::body, builder_.numBodies(), {}, lineOf(name->at)});
       builder_.addRigidBody(b);
       book_.bodyPos.push_back(b.pos);
       book_.bodyAngle.push_back(b.angle);

@@ -58,7 +58,7 @@ inline constexpr SceneLimitName kSceneLimitNames[] = {{"particles", &SceneLimits
 void applyLimitOption(SceneLimits& limits, std::string_view text);
 
 struct SimulationSettings {
-  Integrator integrator = Integrator::Rk4;
+  Integrator integrator = Integrator::rk4;
   double dt = 0.01;        // s, > 0
   double duration = 10.0;  // simulated seconds, > 0
   // The implicit integrators' linear solve (core/implicit_solver.hpp); set on the System too.

@@ -37,7 +37,7 @@ fi
 # room's namespace is also the API's particles::golden (include/particles/golden.hpp): its check()
 # and the types of its options and report are the only particles::golden:: names let out.
 rooms=$(grep -E 'particles::[a-z_]+::' <<<"$exported" |
-  grep -v -E 'particles::golden::(check\(|Options|Report|FrameCheck|StateCheck)\b' || true)
+  grep -v -E 'particles::golden::(check\(|Options|Report|FrameCheck|StateCheck|Outcome|Shard)\b' || true)
 if [ -n "$rooms" ]; then
   echo "libparticles.so exports the rooms' names:" >&2
   echo "$rooms" | head -20 >&2

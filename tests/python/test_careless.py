@@ -476,3 +476,18 @@ def test_closing_and_views_after_careless_calls_stay_usable():
     assert view.shape[1] == 2 and not view.flags.writeable
     with pytest.raises(particles.ArgumentError, match="closed"):
         sim.step()
+
+
+def test_choices_are_taken_as_names_or_as_enum_members_and_returned_as_names():
+    scenario = small_cloth().set("integrator", particles.Integrator.backward_euler)
+    assert scenario.integrator == "backward_euler"
+    sim = particles.Simulation(scenario)
+    by_name = sim.render(theme="light", raster="cpu", background="transparent")
+    by_member = sim.render(theme=particles.Theme.light, raster=particles.Raster.cpu,
+                           background=particles.Background.transparent)
+    assert np.array_equal(by_name, by_member)
+    assert particles.Renderer(gl=particles.GlBackend.auto, raster=particles.Raster.auto) is not None
+    assert [m for m in particles.Raster.__members__] == ["auto", "triangles", "tiles", "resident", "cpu"]
+    for bad in ({"theme": "sepia"}, {"theme": particles.Raster.cpu}, {"raster": 3}, {"gl": "vulkan"}):
+        with pytest.raises(particles.ArgumentError, match="takes"):
+            particles.Renderer(**bad)
