@@ -206,16 +206,24 @@ ShapeLimits flowLimits(const NodeLimit& limit) {
   return flow;
 }
 
+// The first two documents' starts in `text`, its nodes counted against `limit` on the way (the
+// flow lists' items first, in the text: yaml-cpp's scanner holds a flow list's tokens until the
+// list ends).
+DocumentMarks markedDocuments(const std::string& text, const std::string& file, const NodeLimit& limit) {
+  checkFlowListLengths(text, file, flowLimits(limit));
+  std::istringstream in(text);
+  YAML::Parser parser(in);
+  DocumentMarks marks(file, limit);
+  for (int i = 0; i < 2 && parser.HandleNextDocument(marks); ++i) {
+  }
+  return marks;
+}
+
 }  // namespace
 
 void checkNodeCount(const std::string& text, const std::string& file, const NodeLimit& limit) {
   try {
-    checkFlowListLengths(text, file, flowLimits(limit));
-    std::istringstream in(text);
-    YAML::Parser parser(in);
-    DocumentMarks marks(file, limit);
-    for (int i = 0; i < 2 && parser.HandleNextDocument(marks); ++i) {
-    }
+    markedDocuments(text, file, limit);
   } catch (const YAML::ParserException& e) {
     throw ScenarioError(file, e.mark.line + 1, e.mark.column + 1, "", fmt::format("YAML syntax error: {}", e.msg));
   }
@@ -223,13 +231,7 @@ void checkNodeCount(const std::string& text, const std::string& file, const Node
 
 YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases, const NodeLimit& limit) {
   try {
-    // yaml-cpp's scanner holds a flow list's tokens until the list ends: counted in the text first.
-    checkFlowListLengths(text, file, flowLimits(limit));
-    std::istringstream in(text);
-    YAML::Parser parser(in);
-    DocumentMarks marks(file, limit);
-    for (int i = 0; i < 2 && parser.HandleNextDocument(marks); ++i) {
-    }
+    const DocumentMarks marks = markedDocuments(text, file, limit);
     if (marks.starts.size() > 1) {
       const YAML::Mark first = marks.starts[0], second = marks.starts[1];
       const bool movedOn = second.pos > first.pos;
