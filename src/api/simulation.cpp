@@ -293,7 +293,7 @@ int indexOf(Simulation::Impl& impl, std::string_view call, std::string_view what
   const std::string closest = input::closestName(name, names);
   throw ArgumentError(fmt::format("Simulation::{}: no {} is named {}{} (names are spelled as in `particles run "
                                   "--trace`: bob, cloth[3][4], #7, body#2)",
-                                  call, what, input::quotedValue(name), closest.empty() ? "" : fmt::format("; did you mean '{}'?", closest)));
+                                  call, what, input::quotedValue(name), closest.empty() ? "" : fmt::format("; did you mean {}?", input::quotedValue(closest))));
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ void Cli::requireKnownCommand(const std::vector<std::string>& args) const {
   if (std::find(names.begin(), names.end(), *word) != names.end()) return;
   const std::string nearest = input::closestName(*word, names);
   throw CLI::ParseError(fmt::format("unknown command {}{}; the commands are {}", input::quotedValue(*word),
-                                    nearest.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", nearest),
+                                    nearest.empty() ? std::string() : fmt::format(" (did you mean {}?)", input::quotedValue(nearest)),
                                     fmt::join(names, ", ")),
                         CLI::ExitCodes::ExtrasError);
 }

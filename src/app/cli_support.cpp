@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "input/printable_text.hpp"
 #include "app/thread_count.hpp"
 #include "core/system.hpp"
 #include "plot/errors.hpp"
@@ -86,8 +87,8 @@ void requireFigurePath(const std::string& option, const std::string& path) {
   try {
     plot::formatForPath(path);
   } catch (const plot::FigureError&) {
-    throw InputError(fmt::format("{} {}: a figure is .svg, .png or .pdf, not '{}'", option, path,
-                                 std::filesystem::path(path).extension().string()));
+    throw InputError(fmt::format("{} {}: a figure is .svg, .png or .pdf, not {}", option, path,
+                                 input::quotedValue(std::filesystem::path(path).extension().string())));
   }
 }
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iterator>
 
+#include "input/printable_text.hpp"
 #include "app/exit_codes.hpp"
 #include "scenario/runner.hpp"
 #include "scenario/scenario.hpp"
@@ -41,9 +42,9 @@ std::unique_ptr<CsvRecorder> CsvRecorder::open(const System& system, double fps,
     const auto it = std::find(all.begin(), all.end(), name);
     if (it == all.end()) {
       throw InputError(
-          fmt::format("--trace-only: nothing in the scenario is named '{}' (names are spelled as in the trace: bob, "
+          fmt::format("--trace-only: nothing in the scenario is named {} (names are spelled as in the trace: bob, "
                       "cloth[3][4], link0, #7)",
-                      name));
+                      input::quotedValue(name)));
     }
     r.points_.push_back(int(it - all.begin()));
   }

@@ -92,7 +92,7 @@ int runJobCommand(const RunJobOptions& o) {
   size_t index = 0;
   const auto [end, ec] = std::from_chars(o.index.data(), o.index.data() + o.index.size(), index);
   if (o.index.empty() || ec != std::errc() || end != o.index.data() + o.index.size()) {
-    throw InputError(fmt::format("job index '{}': expected a whole number from 0", o.index));
+    throw InputError(fmt::format("job index {}: expected a whole number from 0", input::quotedValue(o.index)));
   }
   if (index >= table.rows.size()) {
     throw InputError(fmt::format("no job {} in {}: it has {} (0 … {})", index, table.file, table.rows.size(),
@@ -103,8 +103,8 @@ int runJobCommand(const RunJobOptions& o) {
   args.erase(args.begin());                                                       // the program: this one runs the job
   const std::string command = commandOfStage(row[JobTable::kStage]);
   if (args.front() != command) {
-    throw InputError(fmt::format("{}:{}: job {} is a {} job, but its command runs '{}'", table.file,
-                                 table.rowLines[index], index, row[JobTable::kStage], args.front()));
+    throw InputError(fmt::format("{}:{}: job {} is a {} job, but its command runs {}", table.file,
+                                 table.rowLines[index], index, row[JobTable::kStage], input::quotedValue(args.front())));
   }
   if (o.force) args.push_back("--force");
 

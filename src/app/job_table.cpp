@@ -7,6 +7,7 @@
 #include <charconv>
 #include <set>
 
+#include "input/printable_text.hpp"
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
 #include "input/csv_reader.hpp"
@@ -47,7 +48,7 @@ JobTable parseJobTable(std::string_view text, const std::string& file) {
   for (const std::string& name : header) {
     if (!seen.insert(name).second) {
       throw InputError(
-          fmt::format("{}:1: the column '{}' appears twice; a job table names each column once", file, name));
+          fmt::format("{}:1: the column {} appears twice; a job table names each column once", file, input::quotedValue(name)));
     }
   }
   table.parameters.assign(header.begin() + 3, header.end() - 3);
@@ -60,16 +61,16 @@ JobTable parseJobTable(std::string_view text, const std::string& file) {
     }
     const size_t index = r - 1;
     if (row[JobTable::kIndex] != std::to_string(index)) {
-      throw InputError(fmt::format("{}:{}: index '{}' where job {} belongs; the rows are jobs 0, 1, 2, … in order",
-                                   file, line, row[JobTable::kIndex], index));
+      throw InputError(fmt::format("{}:{}: index {} where job {} belongs; the rows are jobs 0, 1, 2, … in order",
+                                   file, line, input::quotedValue(row[JobTable::kIndex]), index));
     }
     const std::string& stage = row[JobTable::kStage];
     if (stage != "run" && stage != "render" && stage != "stability" && stage != "segment" && stage != "concat") {
-      throw InputError(fmt::format("{}:{}: unknown stage '{}' (expected run, render, stability, segment or concat)",
-                                   file, line, stage));
+      throw InputError(fmt::format("{}:{}: unknown stage {} (expected run, render, stability, segment or concat)",
+                                   file, line, input::quotedValue(stage)));
     }
     if (row[table.dirColumn()] != jobFolder(index)) {
-      throw InputError(fmt::format("{}:{}: job {}'s folder is '{}', not {}", file, line, index, row[table.dirColumn()],
+      throw InputError(fmt::format("{}:{}: job {}'s folder is {}, not {}", file, line, index, input::quotedValue(row[table.dirColumn()]),
                                    jobFolder(index)));
     }
     const auto words = splitCommandText(row[table.commandColumn()]);

@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+#include "input/printable_text.hpp"
 #include "app/cli_support.hpp"
 #include "app/csv_recorder.hpp"
 #include "app/gl_options.hpp"
@@ -70,7 +71,7 @@ render::RenderOptions lookOf(const scenario::Scenario& s, const RenderCommandOpt
   for (const auto& [flag, text] : words) {
     const render::LookOption& option = render::lookOption(flag);
     if (text && !option.read(*text, look)) {
-      throw InputError(fmt::format("{}: expected {}, not '{}'", flag, option.expected, *text));
+      throw InputError(fmt::format("{}: expected {}, not {}", flag, option.expected, input::quotedValue(*text)));
     }
   }
   return look;
@@ -100,7 +101,7 @@ std::pair<long, long> parseFrameRange(const std::string& text, long total) {
   const std::string rest = colon == std::string::npos ? "" : text.substr(colon + 1);
   const long end = rest.empty() ? total : number(rest);
   if (first < 0 || end < 0) {
-    throw InputError(fmt::format("--frames: expected A:B (frames A … B−1) or A: (A to the end), not '{}'", text));
+    throw InputError(fmt::format("--frames: expected A:B (frames A … B−1) or A: (A to the end), not {}", input::quotedValue(text)));
   }
   if (!(first < end && end <= total)) {
     throw InputError(fmt::format("--frames {}: not a range of the video's {} frames (0:{})", text, total, total));

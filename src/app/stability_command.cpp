@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 
+#include "input/printable_text.hpp"
 #include "app/cli_support.hpp"
 #include "app/job_record.hpp"
 #include "app/thread_count.hpp"
@@ -30,7 +31,7 @@ std::vector<Integrator> parseIntegrators(const std::vector<std::string>& names) 
       std::vector<std::string> known = integratorNames();
       const std::string last = known.back();
       known.pop_back();
-      throw InputError(fmt::format("--integrators: unknown integrator '{}' (expected {} or {})", name,
+      throw InputError(fmt::format("--integrators: unknown integrator {} (expected {} or {})", input::quotedValue(name),
                                    fmt::join(known, ", "), last));
     }
     if (std::find(out.begin(), out.end(), *i) == out.end()) out.push_back(*i);
@@ -58,7 +59,7 @@ std::map<std::string, plot::Reference> parseReferences(const std::vector<std::st
   for (const std::string& text : texts) {
     const auto fail = [&](const std::string& why) {
       throw InputError(
-          fmt::format("--reference '{}': {} (expected NAME=DT or NAME=LO:HI, e.g. rk4=0.3:0.4)", text, why));
+          fmt::format("--reference {}: {} (expected NAME=DT or NAME=LO:HI, e.g. rk4=0.3:0.4)", input::quotedValue(text), why));
     };
     const std::size_t eq = text.find('=');
     if (eq == std::string::npos || eq == 0) fail("no integrator name");
@@ -66,7 +67,7 @@ std::map<std::string, plot::Reference> parseReferences(const std::vector<std::st
     std::vector<std::string> names;
     for (Integrator i : studied) names.emplace_back(integratorName(i));
     if (std::find(names.begin(), names.end(), name) == names.end()) {
-      fail(fmt::format("'{}' is not an integrator studied here ({})", name, fmt::join(names, ", ")));
+      fail(fmt::format("{} is not an integrator studied here ({})", input::quotedValue(name), fmt::join(names, ", ")));
     }
     const std::string values = text.substr(eq + 1);
     const std::size_t colon = values.find(':');
@@ -74,7 +75,7 @@ std::map<std::string, plot::Reference> parseReferences(const std::vector<std::st
       double v = 0;
       const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
       if (field.empty() || ec != std::errc() || end != field.data() + field.size() || !(v > 0) || !std::isfinite(v)) {
-        fail(fmt::format("'{}' is not a positive number of seconds", field));
+        fail(fmt::format("{} is not a positive number of seconds", input::quotedValue(field)));
       }
       return v;
     };

@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "input/printable_text.hpp"
 #include "app/cli.hpp"
 #include "app/cli_support.hpp"
 #include "app/exit_codes.hpp"
@@ -164,7 +165,7 @@ class SweepPlanner {
           if (isShorthand(o.name) && overridePath(p) == "simulation." + o.name) {
             failInSweep(
                 spec_, p.at,
-                fmt::format("'{}' is varied here and also given in options ({}:{})", p.key, spec_.file, o.at.line));
+                fmt::format("{} is varied here and also given in options ({}:{})", input::quotedValue(p.key), spec_.file, o.at.line));
           }
         }
       }
@@ -292,7 +293,7 @@ class SweepPlanner {
       if (o.name != "fps") continue;
       const auto [end, ec] = std::from_chars(o.value.data(), o.value.data() + o.value.size(), fps);
       if (ec != std::errc() || end != o.value.data() + o.value.size() || !(fps > 0) || !std::isfinite(fps)) {
-        failInSweep(spec, o.at, fmt::format("fps: expected a number of frames per second > 0, got '{}'", o.value));
+        failInSweep(spec, o.at, fmt::format("fps: expected a number of frames per second > 0, got {}", input::quotedValue(o.value)));
       }
     }
     return fps;
@@ -433,9 +434,9 @@ namespace {
 void checkListPath(const std::string& what, const std::string& path) {
   if (std::any_of(path.begin(), path.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; })) {
     throw InputError(
-        fmt::format("{} '{}' holds a control character (a line break?): the job lists are lines of "
+        fmt::format("{} {} holds a control character (a line break?): the job lists are lines of "
                     "shell text, so give a path without one",
-                    what, shellQuote(path)));
+                    what, input::quotedValue(shellQuote(path))));
   }
 }
 

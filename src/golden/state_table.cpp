@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "input/printable_text.hpp"
 #include "input/csv_reader.hpp"
 #include "output/csv_writer.hpp"
 #include "scenario/scenario.hpp"
@@ -19,7 +20,7 @@ double numberOf(const std::string& text, const std::string& where) {
   double x = 0.0;
   const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), x);
   if (text.empty() || ec != std::errc() || end != text.data() + text.size()) {
-    throw std::invalid_argument(fmt::format("{}: '{}' is not a number", where, text));
+    throw std::invalid_argument(fmt::format("{}: {} is not a number", where, input::quotedValue(text)));
   }
   return x;
 }
@@ -66,7 +67,7 @@ std::vector<StateRow> parseStateText(std::string_view text, const std::string& f
   if (!header.empty() && header.back() == '\r') header.remove_suffix(1);
   if (header != kStateHeader) {
     throw std::invalid_argument(
-        fmt::format("{}:1: the first line is not a state file's header '{}'", file, kStateHeader));
+        fmt::format("{}:1: the first line is not a state file's header {}", file, input::quotedValue(kStateHeader)));
   }
   std::vector<int> lines;
   std::vector<std::vector<std::string>> records;

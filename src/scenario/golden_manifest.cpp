@@ -15,6 +15,7 @@
 #include <map>
 #include <numeric>
 
+#include "input/printable_text.hpp"
 #include "scenario/key_paths.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/yaml_reader.hpp"
@@ -55,12 +56,12 @@ std::pair<int, int> frameSizeOf(const Value& v) {
   const size_t x = text.find_first_of("xX");
   auto side = [&](std::string_view digits) {
     if (digits.empty() || digits.find_first_not_of("0123456789") != std::string_view::npos) {
-      v.fail(fmt::format("expected a size WIDTHxHEIGHT in px, such as 320x240, got '{}'", text));
+      v.fail(fmt::format("expected a size WIDTHxHEIGHT in px, such as 320x240, got {}", input::quotedValue(text)));
     }
     long long n = kMaxImageSide + 1;  // also when the digits are past what a long long holds
     std::from_chars(digits.data(), digits.data() + digits.size(), n);
     if (n < 1 || n > kMaxImageSide) {
-      v.fail(fmt::format("expected each side of the size from 1 to {} px, got '{}'", kMaxImageSide, text));
+      v.fail(fmt::format("expected each side of the size from 1 to {} px, got {}", kMaxImageSide, input::quotedValue(text)));
     }
     return int(n);
   };
@@ -150,9 +151,9 @@ void readSets(const Value& v, GoldenEntry& entry, const std::string& file) {
     } catch (const ScenarioError& e) {
       pathAt.fail(e.message());
     }
-    if (value.empty()) at.fail(fmt::format("expected a value for '{}'", path));
+    if (value.empty()) at.fail(fmt::format("expected a value for {}", input::quotedValue(path)));
     for (const auto& [seen, ignored] : entry.sets) {
-      if (seen == path) pathAt.fail(fmt::format("'{}' is set twice", path));
+      if (seen == path) pathAt.fail(fmt::format("{} is set twice", input::quotedValue(path)));
     }
     entry.sets.emplace_back(path, value);
     entry.setsAt.push_back(goldenPositionOf(at));
@@ -173,7 +174,7 @@ void readSets(const Value& v, GoldenEntry& entry, const std::string& file) {
       const std::string text = item.string();
       const size_t eq = text.find('=');
       if (eq == std::string::npos || eq == 0) {
-        item.fail(fmt::format("expected PATH=VALUE as --set takes it, such as simulation.dt=0.001, got '{}'", text));
+        item.fail(fmt::format("expected PATH=VALUE as --set takes it, such as simulation.dt=0.001, got {}", input::quotedValue(text)));
       }
       add(text.substr(0, eq), text.substr(eq + 1), item, item);
     }
@@ -197,7 +198,7 @@ std::vector<NamePart> parseNamePattern(const std::string& pattern, const Value& 
     if (open > i) parts.push_back({NamePart::From::pattern, pattern.substr(i, open - i)});
     if (open == pattern.size()) break;
     const size_t close = pattern.find('}', open);
-    if (close == std::string::npos) at.fail(fmt::format("the name '{}' opens a '{{' it does not close", pattern));
+    if (close == std::string::npos) at.fail(fmt::format("the name {} opens a '{{' it does not close", input::quotedValue(pattern)));
     const std::string placeholder = pattern.substr(open, close - open + 1);
     if (placeholder == "{scenario}") {
       parts.push_back({NamePart::From::scenario, ""});
@@ -206,7 +207,7 @@ std::vector<NamePart> parseNamePattern(const std::string& pattern, const Value& 
     } else if (placeholder == "{time}") {
       at.fail("a state's name cannot hold {time}: one state file (NAME.csv) holds all of the entry's times");
     } else {
-      at.fail(fmt::format("unknown placeholder '{}' in the name (known: {})", placeholder, known));
+      at.fail(fmt::format("unknown placeholder {} in the name (known: {})", input::quotedValue(placeholder), known));
     }
     i = close + 1;
   }
@@ -230,7 +231,7 @@ std::string expandName(const std::vector<NamePart>& parts, const Value& name, co
     const std::string fix = &at == time        ? "; write the time another way or change the name"
                             : &at == &scenario ? "; give the entry a name"
                                                : "";
-    at.fail(fmt::format("the name '{}' is not a file name: {}{}", expanded, why, fix));
+    at.fail(fmt::format("the name {} is not a file name: {}{}", input::quotedValue(expanded), why, fix));
   };
   for (const auto& [text, from] : pieces) {
     const bool fileChars = std::all_of(text.begin(), text.end(), [](char c) {
@@ -278,7 +279,7 @@ GoldenEntry readGoldenEntry(const Value& v, bool frames, const std::filesystem::
     if (auto t = m.optional("tolerance")) entry.tolerance = readFrameTolerance(*t);
     if (auto e = m.optional("expect")) {
       const std::string expect = e->string();
-      if (expect != "match" && expect != "differ") e->fail(fmt::format("expected match or differ, got '{}'", expect));
+      if (expect != "match" && expect != "differ") e->fail(fmt::format("expected match or differ, got {}", input::quotedValue(expect)));
       entry.expectDiffer = expect == "differ";
     }
     if (auto r = m.optional("reference")) {
@@ -309,9 +310,9 @@ GoldenEntry readGoldenEntry(const Value& v, bool frames, const std::filesystem::
       std::any_of(parts.begin(), parts.end(), [](const NamePart& p) { return p.from == NamePart::From::time; });
   if (!withTime && entry.times.size() > 1) {
     nameValue.fail(
-        fmt::format("the name '{}' has no {{time}}, so the entry's {} frames would share it: add {{time}} "
+        fmt::format("the name {} has no {{time}}, so the entry's {} frames would share it: add {{time}} "
                     "to the name",
-                    pattern, entry.times.size()));
+                    input::quotedValue(pattern), entry.times.size()));
   }
   for (size_t i = 0; i < entry.times.size(); ++i) {
     entry.times[i].frameName = expandName(parts, nameValue, scenario, stem, &timeItems[i]);
@@ -332,9 +333,9 @@ void checkNamesDiffer(std::vector<CheckName>& names, const std::string& file) {
     if (!added) {
       const GoldenPosition& first = it->second->at;
       throw ScenarioError(file, c.at.line, c.at.column, c.at.keyPath,
-                          fmt::format("a second check named '{}' (the first is {} at line {}): frames and states "
+                          fmt::format("a second check named {} (the first is {} at line {}): frames and states "
                                       "share report names, so each needs its own; give one of them a name",
-                                      c.name, first.keyPath, first.line));
+                                      input::quotedValue(c.name), first.keyPath, first.line));
     }
   }
 }

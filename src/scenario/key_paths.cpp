@@ -118,7 +118,7 @@ std::string applyOverride(YAML::Node root, const Override& o, const std::string&
       }
     } else {
       if (!(cur.IsMap() || cur.IsNull() || !cur.IsDefined())) {
-        fail(fmt::format("cannot set key '{}': this is not a map", s.key));
+        fail(fmt::format("cannot set key {}: this is not a map", input::quotedValue(s.key)));
       }
       appendSegment(canonical, s);
       if (last) {

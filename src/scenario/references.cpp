@@ -109,7 +109,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   if (!entry) {
     const std::string suggestion = input::closestName(name, names.names());
     bad(fmt::format("nothing is named {}{}", input::quotedValue(name),
-                    suggestion.empty() ? std::string() : fmt::format("; did you mean '{}'?", suggestion)));
+                    suggestion.empty() ? std::string() : fmt::format("; did you mean {}?", input::quotedValue(suggestion))));
   }
 
   if (rest.empty()) {
@@ -117,11 +117,11 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
       case NamedObjects::Kind::particle: return {Endpoint::ofParticle(entry->index)};
       case NamedObjects::Kind::body:
         if (kind == PointKind::particle) {
-          bad(fmt::format("'{}' is a rigid body, but only particles are allowed here", name));
+          bad(fmt::format("{} is a rigid body, but only particles are allowed here", input::quotedValue(name)));
         }
         return {Endpoint::ofBody(entry->index)};
       case NamedObjects::Kind::grid: {
-        if (!allowList) bad(fmt::format("'{}' is a whole grid; name one particle, as in {}[0][0]", name, name));
+        if (!allowList) bad(fmt::format("{} is a whole grid; name one particle, as in {}[0][0]", input::quotedValue(name), name));
         std::vector<Endpoint> all;
         for (int r = 0; r < entry->grid.rows; ++r)
           for (int c = 0; c < entry->grid.cols; ++c) all.push_back(Endpoint::ofParticle(entry->grid.at(r, c)));
@@ -132,7 +132,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
 
   if (rest[0] == '@') {
     if (entry->kind != NamedObjects::Kind::body) {
-      bad(fmt::format("'{}' is {}; an anchor `name@[x, y]` needs a rigid body", name, kindName(entry->kind)));
+      bad(fmt::format("{} is {}; an anchor `name@[x, y]` needs a rigid body", input::quotedValue(name), kindName(entry->kind)));
     }
     if (kind == PointKind::particle) bad("rigid-body anchors are not allowed here, only particles");
     const std::string inner = trim(std::string_view(rest).substr(1));
@@ -148,7 +148,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
 
   if (rest[0] == '[') {
     if (entry->kind != NamedObjects::Kind::grid) {
-      bad(fmt::format("'{}' is {}, not a grid; only grid particles are addressed as grid[row][col]", name,
+      bad(fmt::format("{} is {}, not a grid; only grid particles are addressed as grid[row][col]", input::quotedValue(name),
                       kindName(entry->kind)));
     }
     const auto parts = cellSelectors(rest);
@@ -160,11 +160,11 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
         return {0, count};
       }
       const auto n = parseIndex(part);
-      if (!n) bad(fmt::format("expected a whole number or '*' as {} index, got '{}'", what, part));
+      if (!n) bad(fmt::format("expected a whole number or '*' as {} index, got {}", what, input::quotedValue(part)));
       const long k = *n < 0 ? *n + count : *n;
       if (k < 0 || k >= count) {
-        bad(fmt::format("{} {} is out of range: grid '{}' has {} {}s (0 to {}, or -1 to -{} from the end)", what, *n,
-                        name, count, what, count - 1, count));
+        bad(fmt::format("{} {} is out of range: grid {} has {} {}s (0 to {}, or -1 to -{} from the end)", what, *n,
+                        input::quotedValue(name), count, what, count - 1, count));
       }
       return {int(k), int(k) + 1};
     };
@@ -176,7 +176,7 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
     return out;
   }
 
-  bad(fmt::format("unexpected '{}' after the name; expected {}", rest, kForms));
+  bad(fmt::format("unexpected {} after the name; expected {}", input::quotedValue(rest), kForms));
   return {};
 }
 
@@ -186,10 +186,10 @@ void NamedObjects::add(const Value& at, const std::string& name, Entry entry) {
   if (name.empty() || !isNameStart(name[0]) ||
       !std::all_of(name.begin(), name.end(), [](char c) { return isNameChar(c); })) {
     at.fail(
-        fmt::format("'{}' is not a valid name: use letters, digits, '_' and '-', starting with a letter or '_'", name));
+        fmt::format("{} is not a valid name: use letters, digits, '_' and '-', starting with a letter or '_'", input::quotedValue(name)));
   }
   if (const Entry* previous = find(name)) {
-    at.fail(fmt::format("duplicate name '{}': already used by {}{}", name, kindName(previous->kind),
+    at.fail(fmt::format("duplicate name {}: already used by {}{}", input::quotedValue(name), kindName(previous->kind),
                         previous->line > 0 ? fmt::format(" on line {}", previous->line) : std::string()));
   }
   entries_.emplace(name, entry);

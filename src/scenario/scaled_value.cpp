@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "input/printable_text.hpp"
 #include "scenario/key_paths.hpp"
 #include "scenario/scenario_error.hpp"
 #include "scenario/yaml_reader.hpp"
@@ -30,7 +31,7 @@ void splitNumbers(const YAML::Node& node, std::vector<std::string>& pieces, std:
   double x = 0.0;
   if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, x) || !std::isfinite(x)) {
     fail(node.IsMap() ? std::string("holds a map, not numbers")
-                      : fmt::format("holds '{}', not a number", node.IsScalar() ? node.Scalar() : ""));
+                      : fmt::format("holds {}, not a number", input::quotedValue(node.IsScalar() ? node.Scalar() : "")));
   }
   numbers.push_back(x);
   pieces.emplace_back();

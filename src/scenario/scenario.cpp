@@ -46,7 +46,7 @@ std::string readType(const Value& entry, const std::vector<std::string>& types) 
   if (std::find(types.begin(), types.end(), name) == types.end()) {
     const std::string suggestion = input::closestName(name, types);
     type.fail(fmt::format("unknown type {}{}; expected one of {}", input::quotedValue(name),
-                          suggestion.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", suggestion),
+                          suggestion.empty() ? std::string() : fmt::format(" (did you mean {}?)", input::quotedValue(suggestion)),
                           fmt::join(types, ", ")));
   }
   return name;
@@ -147,7 +147,7 @@ class detail::Loader {
         for (Integrator k : allIntegrators()) known.emplace_back(integratorName(k));
         const std::string suggestion = input::closestName(name, known);
         i->fail(fmt::format("unknown integrator {}{}; expected one of {}", input::quotedValue(name),
-                            suggestion.empty() ? std::string() : fmt::format(" (did you mean '{}'?)", suggestion),
+                            suggestion.empty() ? std::string() : fmt::format(" (did you mean {}?)", input::quotedValue(suggestion)),
                             fmt::join(known, ", ")));
       }
       s.integrator = *integrator;

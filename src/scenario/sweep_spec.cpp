@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 
+#include "input/printable_text.hpp"
 #include "core/integrators.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/yaml_reader.hpp"
@@ -51,7 +52,7 @@ std::vector<SweepValue> readRange(const Value& v, bool& logSpacing) {
   std::string spacing = "linear";
   if (auto s = r.optional("spacing")) {
     spacing = s->string();
-    if (spacing != "linear" && spacing != "log") s->fail(fmt::format("expected linear or log, got '{}'", spacing));
+    if (spacing != "linear" && spacing != "log") s->fail(fmt::format("expected linear or log, got {}", input::quotedValue(spacing)));
   }
   logSpacing = spacing == "log";
   if (logSpacing && !(from > 0 && to > 0)) {
@@ -77,7 +78,7 @@ SweepParameter readParameter(const Value& v, std::vector<std::string>& names) {
   const Value key = m.required("key");
   p.key = key.string();
   if (p.key.find('=') != std::string::npos || p.key.find(' ') != std::string::npos) {
-    key.fail(fmt::format("expected a key path such as simulation.dt or forces[1].ks, got '{}'", p.key));
+    key.fail(fmt::format("expected a key path such as simulation.dt or forces[1].ks, got {}", input::quotedValue(p.key)));
   }
   if (auto s = m.optional("scale")) p.scale = s->boolean();
   const auto values = m.optional("values");
@@ -100,15 +101,15 @@ SweepParameter readParameter(const Value& v, std::vector<std::string>& names) {
   for (size_t i = 0; i < p.values.size(); ++i) {
     const SweepValue& value = p.values[i];
     const Value at = values ? values->item(i) : *range;
-    if (p.scale && !value.number) at.fail(fmt::format("a scale factor must be a number, got '{}'", value.text));
+    if (p.scale && !value.number) at.fail(fmt::format("a scale factor must be a number, got {}", input::quotedValue(value.text)));
     if (p.key == "integrator") {
       if (!integratorFromName(value.text)) {
         std::vector<std::string> known;
         for (Integrator k : allIntegrators()) known.emplace_back(integratorName(k));
-        at.fail(fmt::format("unknown integrator '{}' (expected one of {})", value.text, fmt::join(known, ", ")));
+        at.fail(fmt::format("unknown integrator {} (expected one of {})", input::quotedValue(value.text), fmt::join(known, ", ")));
       }
     } else if (shorthand && !p.scale && !(value.number && *value.number > 0)) {
-      at.fail(fmt::format("{} must be a number of seconds > 0, got '{}'", p.key, value.text));
+      at.fail(fmt::format("{} must be a number of seconds > 0, got {}", p.key, input::quotedValue(value.text)));
     }
   }
   if (p.scale && p.key == "integrator") v.fail("an integrator cannot be scaled");
@@ -121,12 +122,12 @@ SweepParameter readParameter(const Value& v, std::vector<std::string>& names) {
   }
   if (std::find(std::begin(kReservedColumns), std::end(kReservedColumns), p.name) != std::end(kReservedColumns)) {
     (m.optional("name") ? *m.optional("name") : key)
-        .fail(fmt::format("'{}' names a column the sweep writes itself ({}); give the parameter another 'name'", p.name,
+        .fail(fmt::format("{} names a column the sweep writes itself ({}); give the parameter another 'name'", input::quotedValue(p.name),
                           fmt::join(kReservedColumns, ", ")));
   }
   if (std::find(names.begin(), names.end(), p.name) != names.end()) {
     (m.optional("name") ? *m.optional("name") : key)
-        .fail(fmt::format("a second parameter named '{}' (give each a different 'name')", p.name));
+        .fail(fmt::format("a second parameter named {} (give each a different 'name')", input::quotedValue(p.name)));
   }
   names.push_back(p.name);
   return p;
@@ -145,7 +146,7 @@ std::vector<SweepGroup> readParameters(const Value& v,
     SweepParameter p = readParameter(item, names);
     const std::string key = canonicalKey(p.key);
     if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
-      item.fail(fmt::format("'{}' is varied twice (directly or through its shorthand)", key));
+      item.fail(fmt::format("{} is varied twice (directly or through its shorthand)", input::quotedValue(key)));
     }
     keys.push_back(key);
     g.parameters.push_back(std::move(p));
@@ -166,8 +167,8 @@ std::vector<SweepGroup> readParameters(const Value& v,
         if (g.parameters[k].values.size() != g.parameters[0].values.size()) {
           members[k].fail(
               fmt::format("zipped parameters take one value each per job, so they need lists of one "
-                          "length: '{}' has {}, '{}' has {}",
-                          g.parameters[0].name, g.parameters[0].values.size(), g.parameters[k].name,
+                          "length: {} has {}, {} has {}",
+                          input::quotedValue(g.parameters[0].name), g.parameters[0].values.size(), input::quotedValue(g.parameters[k].name),
                           g.parameters[k].values.size()));
         }
       }
@@ -194,12 +195,12 @@ void readOptions(const Value& v, SweepSpec& spec) {
     const Value key = v.child(keyNode, path, keyNode.Mark());
     const Value value = v.child(it->second, path, keyNode.Mark());
     if (!keyNode.IsScalar()) key.fail("expected an option name, got a list or map as key");
-    if (std::find(seen.begin(), seen.end(), name) != seen.end()) key.fail(fmt::format("duplicate key '{}'", name));
+    if (std::find(seen.begin(), seen.end(), name) != seen.end()) key.fail(fmt::format("duplicate key {}", input::quotedValue(name)));
     seen.push_back(name);
     const std::string bare =
         name.substr(name.find_first_not_of('-') == std::string::npos ? 0 : name.find_first_not_of('-'));
     if (std::find(std::begin(kSweepOwnedOptions), std::end(kSweepOwnedOptions), bare) != std::end(kSweepOwnedOptions)) {
-      key.fail(fmt::format("'{}' is set by the sweep for each job (its outputs go under the output folder)", bare));
+      key.fail(fmt::format("{} is set by the sweep for each job (its outputs go under the output folder)", input::quotedValue(bare)));
     }
     if (bare == "set" || value.isMap()) {
       if (bare != "set") value.fail("expected a value or a list, got a map");
@@ -213,7 +214,7 @@ void readOptions(const Value& v, SweepSpec& spec) {
       continue;
     }
     SweepOption o{bare, "", false, positionOf(key)};
-    if (value.isNull()) value.fail(fmt::format("'{}' needs a value (write true for a flag)", name));
+    if (value.isNull()) value.fail(fmt::format("{} needs a value (write true for a flag)", input::quotedValue(name)));
     if (value.isSequence()) {
       std::vector<std::string> parts;
       for (const Value& item : value.items()) {
@@ -305,7 +306,7 @@ SweepSpec loadSweepText(std::string_view text, const std::string& file) {
   spec.command = command.string();
   spec.commandAt = positionOf(command);
   if (spec.command != "run" && spec.command != "render" && spec.command != "stability") {
-    command.fail(fmt::format("expected run, render or stability, got '{}'", spec.command));
+    command.fail(fmt::format("expected run, render or stability, got {}", input::quotedValue(spec.command)));
   }
   if (auto o = m.optional("options")) readOptions(*o, spec);
 
@@ -327,7 +328,7 @@ SweepSpec loadSweepText(std::string_view text, const std::string& file) {
       const bool control = std::any_of(option.begin(), option.end(),
                                        [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
       if (option.rfind("--", 0) != 0 || control) {
-        line.fail(fmt::format("expected an sbatch option such as --time=00:10:00, got '{}'", option));
+        line.fail(fmt::format("expected an sbatch option such as --time=00:10:00, got {}", input::quotedValue(option)));
       }
       spec.slurm.push_back(option);
     }

@@ -398,7 +398,7 @@ MapReader::MapReader(const Value& value, const std::vector<std::string_view>& al
     if (std::find(allowedNames.begin(), allowedNames.end(), name) == allowedNames.end()) {
       const std::string suggestion = input::closestName(name, allowedNames);
       std::string message = fmt::format("unknown key {}", input::quotedValue(name));
-      if (!suggestion.empty()) message += fmt::format("; did you mean '{}'?", suggestion);
+      if (!suggestion.empty()) message += fmt::format("; did you mean {}?", input::quotedValue(suggestion));
       message += fmt::format(" (valid keys here: {})", fmt::join(allowedNames, ", "));
       keyValue.fail(message);
     }
@@ -424,12 +424,12 @@ std::optional<Value> MapReader::optional(std::string_view key) const {
 Value MapReader::required(std::string_view key) const {
   for (const auto& [name, v] : entries_) {
     if (name == key) {
-      if (v.isNull()) v.fail(fmt::format("'{}' needs a value", key));
+      if (v.isNull()) v.fail(fmt::format("{} needs a value", input::quotedValue(key)));
       return v;
     }
   }
   const std::string path = value_.path().empty() ? std::string(key) : value_.path() + "." + std::string(key);
-  value_.child(value_.node(), path, YAML::Mark::null_mark()).fail(fmt::format("missing required key '{}'", key));
+  value_.child(value_.node(), path, YAML::Mark::null_mark()).fail(fmt::format("missing required key {}", input::quotedValue(key)));
 }
 
 }  // namespace particles::scenario::detail

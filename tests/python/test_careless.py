@@ -491,3 +491,13 @@ def test_choices_are_taken_as_names_or_as_enum_members_and_returned_as_names():
     for bad in ({"theme": "sepia"}, {"theme": particles.Raster.cpu}, {"raster": 3}, {"gl": "vulkan"}):
         with pytest.raises(particles.ArgumentError, match="takes"):
             particles.Renderer(**bad)
+
+
+def test_the_command_line_checks_into_a_report_folder_given_with_a_trailing_slash(tmp_path):
+    manifest, _ = golden_manifest(tmp_path)
+    for _ in range(2):  # written, then replaced
+        result = subprocess.run([str(BINARY), "golden", "check", manifest, "-o", str(tmp_path / "report") + "/"],
+                                capture_output=True, text=True, timeout=CHILD_TIMEOUT)
+        assert "cannot replace" not in result.stderr and result.returncode in (0, 1), result.stderr
+    assert (tmp_path / "report" / "report.html").exists()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["golden.yaml", "report", "s.yaml"]
