@@ -206,8 +206,9 @@ void checkFormatOptions(const OutputFormat& format, const std::filesystem::path&
 
 void checkFrameSize(const OutputFormat& format, int width, int height, bool alpha) {
   if (format.maxSide > 0 && (width > format.maxSide || height > format.maxSide)) {
-    throw std::invalid_argument(fmt::format("{} ({}) frames are at most {} px a side; {}x{} is larger (write PNG frames)",
-                                            format.name, format.codec, format.maxSide, width, height));
+    throw std::invalid_argument(
+        fmt::format("{} ({}) frames are at most {} px a side; {}x{} is larger (write PNG frames)", format.name,
+                    format.codec, format.maxSide, width, height));
   }
   if (format.halvedChroma.empty() || (width >= 2 && height >= 2 && width % 2 == 0 && height % 2 == 0)) return;
   const std::string_view pixels = alpha && format.keepsAlpha ? format.halvedChromaAlpha : format.halvedChroma;

@@ -30,7 +30,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string carelessDemo(const std::string& name) { return (kScenarios / (name + ".yaml")).string(); }
+std::string carelessDemo(const std::string& name) {
+  return (kScenarios / (name + ".yaml")).string();
+}
 
 particles::Image plainFrame(int width, int height, std::uint8_t red) {
   particles::Image image{width, height, std::vector<std::uint8_t>(size_t(width) * size_t(height) * 4, 255)};

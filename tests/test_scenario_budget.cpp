@@ -205,12 +205,14 @@ TEST_CASE("scene budget: --limit NAME=N") {
   CHECK(limits.particles == 1);
   const std::pair<const char*, const char*> bad[] = {
       {"springs", "expected NAME=N with NAME one of particles, springs, constraints, endpoints, entries, nodes"},
-      {"spring=5", "unknown limit 'spring'; expected one of particles, springs, constraints, endpoints, entries, "
-                   "nodes"},
+      {"spring=5",
+       "unknown limit 'spring'; expected one of particles, springs, constraints, endpoints, entries, "
+       "nodes"},
       {"springs=0", "expected a whole number from 1 to 1000000000 after '=', got '0'"},
       {"springs=1e6", "expected a whole number from 1 to 1000000000 after '=', got '1e6'"},
-      {"springs=99999999999999999999999", "expected a whole number from 1 to 1000000000 after '=', got "
-                                          "'99999999999999999999999'"},
+      {"springs=99999999999999999999999",
+       "expected a whole number from 1 to 1000000000 after '=', got "
+       "'99999999999999999999999'"},
       {"springs=", "expected a whole number from 1 to 1000000000 after '=', got ''"},
   };
   for (const auto& [text, message] : bad) {
@@ -233,7 +235,8 @@ TEST_CASE("scene budget: the YAML nodes of a file, counted before any is built")
   CHECK_NOTHROW(loadScenarioText(text, "s.yaml", {}, exact));
   SceneLimits below;
   below.nodes = 11;
-  CHECK_THROWS_WITH_AS(loadScenarioText(text, "s.yaml", {}, below), doctest::Contains("--limit nodes=N"), ScenarioError);
+  CHECK_THROWS_WITH_AS(loadScenarioText(text, "s.yaml", {}, below), doctest::Contains("--limit nodes=N"),
+                       ScenarioError);
   // A flow list longer than the limit is refused at its bracket, before yaml-cpp's scanner holds it.
   try {
     loadScenarioText("name: a\ndescription: [1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13]\n", "s.yaml", {}, below);

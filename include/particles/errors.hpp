@@ -70,8 +70,7 @@ class PARTICLES_API ScenarioError : public Error {
 // state.
 class PARTICLES_API SimulationError : public Error {
  public:
-  SimulationError(const std::string& what, std::string reason, long step, double time, Integrator integrator,
-                  double dt)
+  SimulationError(const std::string& what, std::string reason, long step, double time, Integrator integrator, double dt)
       : Error(what), reason_(std::move(reason)), step_(step), time_(time), integrator_(integrator), dt_(dt) {}
   const std::string& reason() const { return reason_; }
   long step() const { return step_; }          // the step that failed, counted from 1

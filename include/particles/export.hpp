@@ -12,7 +12,8 @@
 #define PARTICLES_CPLUSPLUS __cplusplus
 #endif
 #if PARTICLES_CPLUSPLUS < 202002L
-#error "particles' headers need C++20: compile with -std=c++20 (CMake: the particles::particles target sets it; pkg-config: its --cflags carry it)"
+#error \
+    "particles' headers need C++20: compile with -std=c++20 (CMake: the particles::particles target sets it; pkg-config: its --cflags carry it)"
 #endif
 
 #if defined(__GNUC__) || defined(__clang__)

@@ -33,13 +33,13 @@ struct PARTICLES_API Image {
 
 // The options of `particles render` that set a frame's look; the names are the command line's.
 struct RenderSettings {
-  int width = 0, height = 0;                     // px; 0 and 0: the scenario's render.size
+  int width = 0, height = 0;  // px; 0 and 0: the scenario's render.size
   Theme theme = Theme::dark;
-  int msaa = 4;                                  // samples per pixel: 1 (off), 2, 4, 8 or 16
-  Background background = Background::theme;     // transparent: alpha = coverage
+  int msaa = 4;                               // samples per pixel: 1 (off), 2, 4, 8 or 16
+  Background background = Background::theme;  // transparent: alpha = coverage
   Raster raster = Raster::automatic;
   GlBackend gl = GlBackend::automatic;
-  bool gpu = false;                              // a hardware EGL device instead of llvmpipe
+  bool gpu = false;  // a hardware EGL device instead of llvmpipe
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -72,12 +72,13 @@ Choice choiceOf(const py::handle& value, const char* call, const char* what, con
   const std::string given = py::isinstance<py::str>(value) ? quoted(value.cast<std::string>()) : "a " + typeName(value);
   throw ArgumentError(std::string(call) + ": " + what + " takes " + names + " (or its enum's members), not " + given);
 }
-inline constexpr Integrator kIntegrators[] = {Integrator::euler,   Integrator::midpoint,      Integrator::rk4,
-                                              Integrator::symplecticEuler, Integrator::verlet, Integrator::backwardEuler,
-                                              Integrator::bdf2};
+inline constexpr Integrator kIntegrators[] = {
+    Integrator::euler,  Integrator::midpoint,      Integrator::rk4, Integrator::symplecticEuler,
+    Integrator::verlet, Integrator::backwardEuler, Integrator::bdf2};
 inline constexpr Theme kThemes[] = {Theme::dark, Theme::light};
 inline constexpr Background kBackgrounds[] = {Background::theme, Background::transparent};
-inline constexpr Raster kRasters[] = {Raster::automatic, Raster::triangles, Raster::tiles, Raster::resident, Raster::cpu};
+inline constexpr Raster kRasters[] = {Raster::automatic, Raster::triangles, Raster::tiles, Raster::resident,
+                                      Raster::cpu};
 inline constexpr GlBackend kGlBackends[] = {GlBackend::automatic, GlBackend::egl, GlBackend::osmesa};
 inline constexpr golden::Outcome kOutcomes[] = {golden::Outcome::passed, golden::Outcome::failed,
                                                 golden::Outcome::missing, golden::Outcome::error};

@@ -51,50 +51,208 @@ std::optional<golden::Shard> shardOf(const py::object& shard) {
 }  // namespace
 
 void bindGolden(py::module_& module) {
-  py::class_<Object<golden::FrameCheck>>(module, "FrameCheck", "One frame's result of a golden check (particles.golden.check).")
-      .def_property_readonly("name", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.name); }, "The frame's name in the manifest (cloth_t2.5).")
-      .def_property_readonly("scenario", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.scenario); }, "Its scenario, as the manifest writes it.")
-      .def_property_readonly("time", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.time); }, "Its time, s, as the manifest writes it.")
-      .def_property_readonly("control", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").control; }, "An `expect: differ` control: passes when it differs.")
-      .def_property_readonly("outcome", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return std::string(name(c.outcome)); }, "'passed', 'failed', 'missing' or 'error'.")
-      .def_property_readonly("message", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return text(c.message); }, "Why, in one line; '' when it passed.")
-      .def_property_readonly("differing", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").differing; }, "Pixels beyond the threshold.")
-      .def_property_readonly("pixels", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").pixels; }, "Pixels compared: width × height.")
-      .def_property_readonly("largest", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").largest; }, "The largest channel difference, 0 to 255.")
-      .def_property_readonly("actual", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return pathText(c.actual); }, "The frame drawn, relative to the report folder ('' when not kept).")
-      .def_property_readonly("expected", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return pathText(c.expected); }, "The reference, as kept in the report folder.")
-      .def_property_readonly("diff", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return pathText(c.diff); }, "The difference picture, as kept in the report folder.")
-      .def_property_readonly("reproduce", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& c = valueOf(o, "FrameCheck"); return textList(c.reproduce); }, "Shell commands that reproduce the result.")
-      .def("__repr__", [](const Object<golden::FrameCheck>& o) { const golden::FrameCheck& f = valueOf(o, "FrameCheck"); return text("<FrameCheck " + f.name + ": " + std::string(name(f.outcome)) + ">"); });
-  py::class_<Object<golden::StateCheck>>(module, "StateCheck", "One state's result of a golden check (particles.golden.check).")
-      .def_property_readonly("name", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.name); }, "The state's name in the manifest.")
-      .def_property_readonly("scenario", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.scenario); }, "Its scenario, as the manifest writes it.")
-      .def_property_readonly("times", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return textList(c.times); }, "Its times, as the manifest writes them.")
-      .def_property_readonly("outcome", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return std::string(name(c.outcome)); }, "'passed', 'failed', 'missing' or 'error'.")
-      .def_property_readonly("message", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.message); }, "Why, in one line; '' when it passed.")
-      .def_property_readonly("values", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").values; }, "Values compared.")
-      .def_property_readonly("point", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.point); }, "The first value beyond its tolerance (else the largest): its point.")
-      .def_property_readonly("quantity", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return text(c.quantity); }, "... its quantity: x, y, vx, vy, angle or omega.")
-      .def_property_readonly("expected", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").expected; }, "... the reference's value.")
-      .def_property_readonly("actual", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").actual; }, "... this run's value.")
-      .def_property_readonly("difference", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").difference; }, "... actual − expected.")
-      .def_property_readonly("tolerance", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").tolerance; }, "... the tolerance it was held to.")
-      .def_property_readonly("reproduce", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& c = valueOf(o, "StateCheck"); return textList(c.reproduce); }, "Shell commands that reproduce the result.")
-      .def("__repr__", [](const Object<golden::StateCheck>& o) { const golden::StateCheck& s = valueOf(o, "StateCheck"); return text("<StateCheck " + s.name + ": " + std::string(name(s.outcome)) + ">"); });
-  py::class_<Object<golden::Report>>(module, "GoldenReport", "What a golden check found (particles.golden.check).")
-      .def_property_readonly("frames", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").frames); }, "Each frame's FrameCheck, in manifest order.")
-      .def_property_readonly("states", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").states); }, "Each state's StateCheck, in manifest order.")
-      .def_property_readonly("passed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").passed; }, "How many checks passed.")
-      .def_property_readonly("failed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").failed; }, "How many failed.")
-      .def_property_readonly("missing", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").missing; }, "How many have no reference yet.")
-      .def_property_readonly("errors", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").errors; }, "How many could not be checked.")
-      .def_property_readonly("bad_reference", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").badReference; }, "A reference was not a usable file.")
-      .def_property_readonly("html", [](const Object<golden::Report>& o) { const golden::Report& c = valueOf(o, "GoldenReport"); return pathText(c.html); }, "report.html's path: expected, actual and diff of each failure.")
-      .def_property_readonly("summary", [](const Object<golden::Report>& o) { const golden::Report& c = valueOf(o, "GoldenReport"); return text(c.summary); }, "The line `particles golden check` prints last.")
+  py::class_<Object<golden::FrameCheck>>(module, "FrameCheck",
+                                         "One frame's result of a golden check (particles.golden.check).")
       .def_property_readonly(
-          "all_passed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").allPassed(); }, "Every check passed.")
+          "name",
+          [](const Object<golden::FrameCheck>& o) {
+            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
+            return text(c.name);
+          },
+          "The frame's name in the manifest (cloth_t2.5).")
+      .def_property_readonly(
+          "scenario",
+          [](const Object<golden::FrameCheck>& o) {
+            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
+            return text(c.scenario);
+          },
+          "Its scenario, as the manifest writes it.")
+      .def_property_readonly(
+          "time",
+          [](const Object<golden::FrameCheck>& o) {
+            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
+            return text(c.time);
+          },
+          "Its time, s, as the manifest writes it.")
+      .def_property_readonly(
+          "control", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").control; },
+          "An `expect: differ` control: passes when it differs.")
+      .def_property_readonly(
+          "outcome",
+          [](const Object<golden::FrameCheck>& o) {
+            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
+            return std::string(name(c.outcome));
+          },
+          "'passed', 'failed', 'missing' or 'error'.")
+      .def_property_readonly(
+          "message",
+          [](const Object<golden::FrameCheck>& o) {
+            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
+            return text(c.message);
+          },
+          "Why, in one line; '' when it passed.")
+      .def_property_readonly(
+          "differing", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").differing; },
+          "Pixels beyond the threshold.")
+      .def_property_readonly(
+          "pixels", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").pixels; },
+          "Pixels compared: width × height.")
+      .def_property_readonly(
+          "largest", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").largest; },
+          "The largest channel difference, 0 to 255.")
+      .def_property_readonly(
+          "actual",
+          [](const Object<golden::FrameCheck>& o) {
+            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
+            return pathText(c.actual);
+          },
+          "The frame drawn, relative to the report folder ('' when not kept).")
+      .def_property_readonly(
+          "expected",
+          [](const Object<golden::FrameCheck>& o) {
+            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
+            return pathText(c.expected);
+          },
+          "The reference, as kept in the report folder.")
+      .def_property_readonly(
+          "diff",
+          [](const Object<golden::FrameCheck>& o) {
+            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
+            return pathText(c.diff);
+          },
+          "The difference picture, as kept in the report folder.")
+      .def_property_readonly(
+          "reproduce",
+          [](const Object<golden::FrameCheck>& o) {
+            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
+            return textList(c.reproduce);
+          },
+          "Shell commands that reproduce the result.")
+      .def("__repr__", [](const Object<golden::FrameCheck>& o) {
+        const golden::FrameCheck& f = valueOf(o, "FrameCheck");
+        return text("<FrameCheck " + f.name + ": " + std::string(name(f.outcome)) + ">");
+      });
+  py::class_<Object<golden::StateCheck>>(module, "StateCheck",
+                                         "One state's result of a golden check (particles.golden.check).")
+      .def_property_readonly(
+          "name",
+          [](const Object<golden::StateCheck>& o) {
+            const golden::StateCheck& c = valueOf(o, "StateCheck");
+            return text(c.name);
+          },
+          "The state's name in the manifest.")
+      .def_property_readonly(
+          "scenario",
+          [](const Object<golden::StateCheck>& o) {
+            const golden::StateCheck& c = valueOf(o, "StateCheck");
+            return text(c.scenario);
+          },
+          "Its scenario, as the manifest writes it.")
+      .def_property_readonly(
+          "times",
+          [](const Object<golden::StateCheck>& o) {
+            const golden::StateCheck& c = valueOf(o, "StateCheck");
+            return textList(c.times);
+          },
+          "Its times, as the manifest writes them.")
+      .def_property_readonly(
+          "outcome",
+          [](const Object<golden::StateCheck>& o) {
+            const golden::StateCheck& c = valueOf(o, "StateCheck");
+            return std::string(name(c.outcome));
+          },
+          "'passed', 'failed', 'missing' or 'error'.")
+      .def_property_readonly(
+          "message",
+          [](const Object<golden::StateCheck>& o) {
+            const golden::StateCheck& c = valueOf(o, "StateCheck");
+            return text(c.message);
+          },
+          "Why, in one line; '' when it passed.")
+      .def_property_readonly(
+          "values", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").values; },
+          "Values compared.")
+      .def_property_readonly(
+          "point",
+          [](const Object<golden::StateCheck>& o) {
+            const golden::StateCheck& c = valueOf(o, "StateCheck");
+            return text(c.point);
+          },
+          "The first value beyond its tolerance (else the largest): its point.")
+      .def_property_readonly(
+          "quantity",
+          [](const Object<golden::StateCheck>& o) {
+            const golden::StateCheck& c = valueOf(o, "StateCheck");
+            return text(c.quantity);
+          },
+          "... its quantity: x, y, vx, vy, angle or omega.")
+      .def_property_readonly(
+          "expected", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").expected; },
+          "... the reference's value.")
+      .def_property_readonly(
+          "actual", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").actual; },
+          "... this run's value.")
+      .def_property_readonly(
+          "difference", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").difference; },
+          "... actual − expected.")
+      .def_property_readonly(
+          "tolerance", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").tolerance; },
+          "... the tolerance it was held to.")
+      .def_property_readonly(
+          "reproduce",
+          [](const Object<golden::StateCheck>& o) {
+            const golden::StateCheck& c = valueOf(o, "StateCheck");
+            return textList(c.reproduce);
+          },
+          "Shell commands that reproduce the result.")
+      .def("__repr__", [](const Object<golden::StateCheck>& o) {
+        const golden::StateCheck& s = valueOf(o, "StateCheck");
+        return text("<StateCheck " + s.name + ": " + std::string(name(s.outcome)) + ">");
+      });
+  py::class_<Object<golden::Report>>(module, "GoldenReport", "What a golden check found (particles.golden.check).")
+      .def_property_readonly(
+          "frames", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").frames); },
+          "Each frame's FrameCheck, in manifest order.")
+      .def_property_readonly(
+          "states", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").states); },
+          "Each state's StateCheck, in manifest order.")
+      .def_property_readonly(
+          "passed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").passed; },
+          "How many checks passed.")
+      .def_property_readonly(
+          "failed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").failed; },
+          "How many failed.")
+      .def_property_readonly(
+          "missing", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").missing; },
+          "How many have no reference yet.")
+      .def_property_readonly(
+          "errors", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").errors; },
+          "How many could not be checked.")
+      .def_property_readonly(
+          "bad_reference", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").badReference; },
+          "A reference was not a usable file.")
+      .def_property_readonly(
+          "html",
+          [](const Object<golden::Report>& o) {
+            const golden::Report& c = valueOf(o, "GoldenReport");
+            return pathText(c.html);
+          },
+          "report.html's path: expected, actual and diff of each failure.")
+      .def_property_readonly(
+          "summary",
+          [](const Object<golden::Report>& o) {
+            const golden::Report& c = valueOf(o, "GoldenReport");
+            return text(c.summary);
+          },
+          "The line `particles golden check` prints last.")
+      .def_property_readonly(
+          "all_passed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").allPassed(); },
+          "Every check passed.")
       .def("__bool__", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").allPassed(); })
-      .def("__repr__", [](const Object<golden::Report>& o) { const golden::Report& r = valueOf(o, "GoldenReport"); return text("<GoldenReport " + r.summary + ">"); });
+      .def("__repr__", [](const Object<golden::Report>& o) {
+        const golden::Report& r = valueOf(o, "GoldenReport");
+        return text("<GoldenReport " + r.summary + ">");
+      });
 
   module.def(
       "_golden_check",
@@ -114,8 +272,7 @@ void bindGolden(py::module_& module) {
         return Object<golden::Report>(withoutGil([&] { return golden::check(manifest, options); }));
       },
       "manifest"_a, "output"_a, "only"_a, "shard"_a, "gl"_a, "gpu"_a, "raster"_a, "threshold"_a, "max_share"_a,
-      "jobs"_a,
-      "particles.golden.check's C++ side.");
+      "jobs"_a, "particles.golden.check's C++ side.");
 }
 
 }  // namespace particles::python

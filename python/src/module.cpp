@@ -150,7 +150,8 @@ void appendYaml(std::string& out, const py::handle& value, std::string_view path
   } else {
     throw ArgumentError("Scenario.set: the value of " + std::string(path) +
                         " must be a str, int, float, bool, None, a list, tuple or dict of those, or a numpy scalar or "
-                        "array; not " + typeName(value));
+                        "array; not " +
+                        typeName(value));
   }
 }
 
@@ -179,14 +180,19 @@ void setAll(Scenario& scenario, const py::object& settings) {
 }
 
 // The Scenario behind a Python one (Registered::require).
-const Scenario& scenarioOf(const ScenarioObject& object) { return valueOf(object, "Scenario"); }
-Scenario& scenarioOf(ScenarioObject& object) { return valueOf(object, "Scenario"); }
+const Scenario& scenarioOf(const ScenarioObject& object) {
+  return valueOf(object, "Scenario");
+}
+Scenario& scenarioOf(ScenarioObject& object) {
+  return valueOf(object, "Scenario");
+}
 
 std::string describeScenario(const Scenario& scenario) {
-  return "<particles.Scenario '" + scenario.name() + "' from " + scenario.file() + ": " + std::string(name(scenario.integrator())) +
+  return "<particles.Scenario '" + scenario.name() + "' from " + scenario.file() + ": " +
+         std::string(name(scenario.integrator())) +
          ", dt = " + py::repr(py::float_(scenario.dt())).cast<std::string>() + " s, " +
-         py::repr(py::float_(scenario.duration())).cast<std::string>() + " s, " + std::to_string(scenario.particleCount()) +
-         " particles, " + std::to_string(scenario.bodyCount()) + " bodies>";
+         py::repr(py::float_(scenario.duration())).cast<std::string>() + " s, " +
+         std::to_string(scenario.particleCount()) + " particles, " + std::to_string(scenario.bodyCount()) + " bodies>";
 }
 
 unsigned long mainThreadId = 0;
@@ -221,8 +227,12 @@ void Registered::require(const void* self, const char* cls) {
                       "the function that returns it");
 }
 
-py::str text(std::string_view bytes) { return decoded(bytes, "backslashreplace"); }
-py::str pathText(std::string_view bytes) { return decoded(bytes, "surrogateescape"); }
+py::str text(std::string_view bytes) {
+  return decoded(bytes, "backslashreplace");
+}
+py::str pathText(std::string_view bytes) {
+  return decoded(bytes, "surrogateescape");
+}
 
 py::list textList(const std::vector<std::string>& items) {
   py::list out(items.size());
@@ -252,8 +262,8 @@ void bindChoices(py::module_& module) {
   bindChoice(module, "Theme", "A frame's colours: dark for the screen, light for printed reports.", kThemes);
   bindChoice(module, "Background", "What is behind the scene: the theme's colour, or nothing (alpha = coverage).",
              kBackgrounds);
-  bindChoice(module, "Raster", "How a frame is drawn: auto, GL triangles, GL tiles, the resident GPU path, or the cpu raster.",
-             kRasters);
+  bindChoice(module, "Raster",
+             "How a frame is drawn: auto, GL triangles, GL tiles, the resident GPU path, or the cpu raster.", kRasters);
   bindChoice(module, "GlBackend", "The GL backend: auto (EGL, else OSMesa), egl or osmesa.", kGlBackends);
   bindChoice(module, "Outcome", "A golden check's result: passed, failed, missing or error.", kOutcomes);
 }
@@ -346,8 +356,8 @@ void bindErrors(py::module_& module) {
                      "key_path"_a = text(e.keyPath()), "message"_a = text(e.message()), "origin"_a = text(e.origin())));
     } catch (const SimulationError& e) {
       raise(classes.simulationError, e.what(),
-            py::dict("step"_a = e.step(), "time"_a = e.time(), "integrator"_a = std::string(name(e.integrator())), "dt"_a = e.dt(),
-                     "reason"_a = text(e.reason())));
+            py::dict("step"_a = e.step(), "time"_a = e.time(), "integrator"_a = std::string(name(e.integrator())),
+                     "dt"_a = e.dt(), "reason"_a = text(e.reason())));
     } catch (const OutputError& e) {
       raise(classes.outputError, e.what());
     } catch (const ArgumentError& e) {
@@ -359,7 +369,8 @@ void bindErrors(py::module_& module) {
 }
 
 void bindScenario(py::module_& module) {
-  py::class_<ScenarioObject>(module, "Scenario", R"doc(A scenario: what `particles run` reads from a YAML file, with settings changed
+  py::class_<ScenarioObject>(module, "Scenario",
+                             R"doc(A scenario: what `particles run` reads from a YAML file, with settings changed
 as `--set` changes them. A Simulation is made from it; changing the scenario afterwards does not
 change simulations made before.
 
@@ -401,36 +412,93 @@ calls chain. The value: a str is YAML text as --set takes it ("[50, 2]"); a bool
 (exactly: it reads back as the same double), None, list, tuple, dict or numpy scalar or array is
 written as the YAML of that value. Checked at once: a bad key or value raises ScenarioError and
 leaves the scenario as it was.)doc")
-      .def("copy", [](const ScenarioObject& s) { return ScenarioObject(scenarioOf(s)); }, "An independent copy.")
+      .def(
+          "copy", [](const ScenarioObject& s) { return ScenarioObject(scenarioOf(s)); }, "An independent copy.")
       .def("__copy__", [](const ScenarioObject& s) { return ScenarioObject(scenarioOf(s)); })
       .def(
           "__deepcopy__", [](const ScenarioObject& s, const py::handle&) { return ScenarioObject(scenarioOf(s)); },
           "memo"_a)
       .def(
-          "summary", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return text(s.summary()); },
+          "summary",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return text(s.summary());
+          },
           "What `particles check` prints for it: one line naming its contents, integrator, dt and duration.")
       .def_property_readonly(
-          "name", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return text(s.name()); }, "The scenario's name.")
+          "name",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return text(s.name());
+          },
+          "The scenario's name.")
       .def_property_readonly(
-          "description", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return text(s.description()); }, "Its description, or ''.")
+          "description",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return text(s.description());
+          },
+          "Its description, or ''.")
       .def_property_readonly(
-          "file", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return pathText(s.file()); },
+          "file",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return pathText(s.file());
+          },
           "The path it was loaded from, or from_text's label.")
       .def_property_readonly(
-          "integrator", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return std::string(name(s.integrator())); },
+          "integrator",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return std::string(name(s.integrator()));
+          },
           "The integrator, as scenarios name it (rk4, ...).")
-      .def_property_readonly("dt", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.dt(); }, "The time step, s.")
       .def_property_readonly(
-          "duration", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.duration(); }, "The simulated seconds `particles run` covers.")
+          "dt",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return s.dt();
+          },
+          "The time step, s.")
       .def_property_readonly(
-          "steps", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.steps(); }, "The steps of dt that cover the duration.")
+          "duration",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return s.duration();
+          },
+          "The simulated seconds `particles run` covers.")
       .def_property_readonly(
-          "fps", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.fps(); }, "Frames per simulated second when rendered.")
+          "steps",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return s.steps();
+          },
+          "The steps of dt that cover the duration.")
       .def_property_readonly(
-          "particle_count", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.particleCount(); }, "How many particles it has.")
+          "fps",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return s.fps();
+          },
+          "Frames per simulated second when rendered.")
       .def_property_readonly(
-          "body_count", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return s.bodyCount(); }, "How many rigid bodies it has.")
-      .def("__repr__", [](const ScenarioObject& o) { const Scenario& s = scenarioOf(o); return text(describeScenario(s)); });
+          "particle_count",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return s.particleCount();
+          },
+          "How many particles it has.")
+      .def_property_readonly(
+          "body_count",
+          [](const ScenarioObject& o) {
+            const Scenario& s = scenarioOf(o);
+            return s.bodyCount();
+          },
+          "How many rigid bodies it has.")
+      .def("__repr__", [](const ScenarioObject& o) {
+        const Scenario& s = scenarioOf(o);
+        return text(describeScenario(s));
+      });
 }
 
 }  // namespace particles::python

@@ -55,9 +55,13 @@ const VideoHandle& handleOf(const VideoHandle& handle) {
   return handle;
 }
 
-VideoWriter& writerOf(VideoHandle& handle) { return *handleOf(handle).writer; }
+VideoWriter& writerOf(VideoHandle& handle) {
+  return *handleOf(handle).writer;
+}
 
-Renderer& rendererOf(Object<Renderer>& renderer) { return valueOf(renderer, "Renderer"); }
+Renderer& rendererOf(Object<Renderer>& renderer) {
+  return valueOf(renderer, "Renderer");
+}
 
 }  // namespace
 
@@ -126,7 +130,8 @@ void bindRendering(py::module_& module) {
       },
       "frame"_a, "path"_a, "alpha"_a = false, "Writes the frame as a PNG, whole or not at all.");
 
-  py::class_<Object<Renderer>>(module, "Renderer", R"doc(Draws simulations off screen, as `particles render` does, into frames: (h, w, 4)
+  py::class_<Object<Renderer>>(module, "Renderer",
+                               R"doc(Draws simulations off screen, as `particles render` does, into frames: (h, w, 4)
 uint8 RGBA numpy arrays (particles.Frame). Simulation.render() keeps one for its last settings;
 a Renderer of your own can draw several simulations with one GL context.
 
@@ -153,8 +158,8 @@ gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)
           "simulation"_a, "The simulation's state now, drawn: a Frame (h, w, 4) uint8.")
       .def_property_readonly(
           "gl_description", [](Object<Renderer>& renderer) { return text(rendererOf(renderer).glDescription()); },
-                             "The GL backend, device and renderer that drew the last frame ('' before the first; "
-                             "'none (the cpu raster)' where no GL drew it).");
+          "The GL backend, device and renderer that drew the last frame ('' before the first; "
+          "'none (the cpu raster)' where no GL drew it).");
 
   // Simulation.render: defined here, beside the Renderer it keeps.
   const py::object simulation = module.attr("Simulation");
@@ -175,13 +180,14 @@ gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)
         if (handle.simulation == shared) handle.lastRenderer = std::move(slot);
         return frameOf(std::move(image));
       },
-      py::name("render"), py::is_method(simulation), py::kw_only(), "size"_a = py::none(),
-      "theme"_a = "dark", "msaa"_a = 4, "background"_a = "theme", "raster"_a = "auto", "gl"_a = "auto", "gpu"_a = false,
+      py::name("render"), py::is_method(simulation), py::kw_only(), "size"_a = py::none(), "theme"_a = "dark",
+      "msaa"_a = 4, "background"_a = "theme", "raster"_a = "auto", "gl"_a = "auto", "gpu"_a = false,
       R"doc(The state now, drawn as `particles render --at` draws it: a Frame, an (h, w, 4)
 uint8 RGBA numpy array that a notebook shows. The options are Renderer's; the renderer is kept for
 the next call with the same ones.)doc");
 
-  py::class_<VideoHandle>(module, "VideoWriter", R"doc(Writes frames to an MP4, WebM or GIF file (by its extension), as `particles
+  py::class_<VideoHandle>(module, "VideoWriter",
+                          R"doc(Writes frames to an MP4, WebM or GIF file (by its extension), as `particles
 render` does. The file appears whole when the writer finishes; a writer that stops early (an
 exception, Ctrl-C, abort()) leaves nothing, and an existing file stays as it was.
 
@@ -202,7 +208,8 @@ exception, Ctrl-C, abort()) leaves nothing, and an existing file stays as it was
              }
              if (!crf.is_none()) {
                const int quality = wholeInt(crf, "VideoWriter", "crf (or None for the format's default)");
-               if (quality < 0) throw ArgumentError("VideoWriter: crf must be 0 or more, or None for the format's default");
+               if (quality < 0)
+                 throw ArgumentError("VideoWriter: crf must be 0 or more, or None for the format's default");
                settings.crf = quality;  // the C++ constructor checks the format's range
              }
              settings.preset = std::move(preset);

@@ -37,8 +37,10 @@ py::array stateView(const SharedSimulation& simulation, std::span<const double> 
 int particleOf(const Simulation& simulation, const py::handle& particle, const char* call) {
   if (py::isinstance<py::str>(particle)) return simulation.particleIndex(particle.cast<std::string>());
   if (py::isinstance<py::bool_>(particle) || !PyIndex_Check(particle.ptr())) {
-    throw ArgumentError(std::string(call) + ": a particle is named by its index (an int, numpy's too) or its name "
-                        "(str), not " + typeName(particle));
+    throw ArgumentError(std::string(call) +
+                        ": a particle is named by its index (an int, numpy's too) or its name "
+                        "(str), not " +
+                        typeName(particle));
   }
   return wholeInt(particle, call, "a particle's index");  // the C++ call checks the range and says it
 }
@@ -62,7 +64,6 @@ Point pointOf(const py::handle& value, const char* what) {
 
 py::tuple tupleOf(Point p) { return py::make_tuple(p.x, p.y); }
 
-
 // A thread count: None is default_threads(); the C++ call checks the range and says it.
 int threadsOf(const py::object& threads, const char* call) {
   if (threads.is_none()) return defaultThreads();
@@ -82,9 +83,9 @@ std::string describeSimulation(const SimulationHandle& handle) {
   if (!handle.simulation) return "<particles.Simulation, closed>";
   const Simulation& s = *handle.simulation;
   return "<particles.Simulation time = " + py::repr(py::float_(s.time())).cast<std::string>() + " s after " +
-         std::to_string(s.steps()) + " steps: " + std::string(name(s.integrator())) + ", dt = " + py::repr(py::float_(s.dt())).cast<std::string>() +
-         " s, " + std::to_string(s.particleCount()) + " particles, " + std::to_string(s.bodyCount()) + " bodies, " +
-         std::to_string(s.threads()) + " threads>";
+         std::to_string(s.steps()) + " steps: " + std::string(name(s.integrator())) +
+         ", dt = " + py::repr(py::float_(s.dt())).cast<std::string>() + " s, " + std::to_string(s.particleCount()) +
+         " particles, " + std::to_string(s.bodyCount()) + " bodies, " + std::to_string(s.threads()) + " threads>";
 }
 
 }  // namespace
@@ -123,7 +124,8 @@ void bindSimulation(py::module_& module) {
              "The thread count a Simulation takes with threads=None, as `particles run` without --threads: "
              "PARTICLES_THREADS when set, else the CPUs this process may use.");
 
-  py::class_<SimulationHandle>(module, "Simulation", R"doc(A simulation made from a Scenario, at t = 0: steps it with the scenario's
+  py::class_<SimulationHandle>(module, "Simulation",
+                               R"doc(A simulation made from a Scenario, at t = 0: steps it with the scenario's
 integrator and time step, reads and changes its state, and draws it. The steps give the same bits
 as `particles run` for the same scenario, on any number of threads.
 
@@ -232,13 +234,15 @@ view keeps the state's memory alive: after close() it still reads the last state
           },
           "threads"_a, "The threads the next steps run on (1 to 1024; None: default_threads()), as .threads = n.")
       .def(
-          "position", [](const SimulationHandle& h, const py::handle& p) {
+          "position",
+          [](const SimulationHandle& h, const py::handle& p) {
             const Simulation& s = *h.get("position");
             return tupleOf(s.position(particleOf(s, p, "Simulation.position")));
           },
           "particle"_a, "A particle's (x, y), m; the particle by index or name.")
       .def(
-          "velocity", [](const SimulationHandle& h, const py::handle& p) {
+          "velocity",
+          [](const SimulationHandle& h, const py::handle& p) {
             const Simulation& s = *h.get("velocity");
             return tupleOf(s.velocity(particleOf(s, p, "Simulation.velocity")));
           },
@@ -297,14 +301,17 @@ mouse can be given one: Scenario.set("mouse", "[{grab: 'cloth[24][12]', from: 0,
           "penetration", [](const SimulationHandle& h) { return h.get("penetration")->penetration(); },
           "How deep the deepest point is inside a collider now, m.")
       .def_property_readonly(
-          "particle_names", [](const SimulationHandle& h) { return textList(h.get("particle_names")->particleNames()); },
+          "particle_names",
+          [](const SimulationHandle& h) { return textList(h.get("particle_names")->particleNames()); },
           "The particles' names, in index order: the names `particles run --trace` writes.")
       .def_property_readonly(
           "body_names", [](const SimulationHandle& h) { return textList(h.get("body_names")->bodyNames()); },
           "The rigid bodies' names, in index order.")
       .def(
           "particle_index",
-          [](const SimulationHandle& h, const std::string& name) { return h.get("particle_index")->particleIndex(name); },
+          [](const SimulationHandle& h, const std::string& name) {
+            return h.get("particle_index")->particleIndex(name);
+          },
           "name"_a, "The index of the particle of that name; ArgumentError (with the closest name) otherwise.")
       .def(
           "body_index",

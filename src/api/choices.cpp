@@ -34,12 +34,16 @@ constexpr std::string_view kBackgroundNames[] = {"theme", "transparent"};
 std::string_view name(Integrator integrator) noexcept {
   return roundTrip(integrator, integratorName, integratorFromName);
 }
-std::string_view name(Theme theme) noexcept { return roundTrip(theme, render::themeNameOf, render::themeFromName); }
+std::string_view name(Theme theme) noexcept {
+  return roundTrip(theme, render::themeNameOf, render::themeFromName);
+}
 std::string_view name(Background background) noexcept {
   const auto index = static_cast<unsigned>(background);
   return index < std::size(kBackgroundNames) ? kBackgroundNames[index] : std::string_view();
 }
-std::string_view name(Raster raster) noexcept { return roundTrip(raster, render::rasterNameOf, render::rasterFromName); }
+std::string_view name(Raster raster) noexcept {
+  return roundTrip(raster, render::rasterNameOf, render::rasterFromName);
+}
 std::string_view name(GlBackend backend) noexcept {
   return roundTrip(backend, render::glBackendName, render::glBackendFromName);
 }
@@ -83,8 +87,8 @@ std::optional<GlBackend> fromName<GlBackend>(std::string_view text) noexcept {
 }
 template <>
 std::optional<golden::Outcome> fromName<golden::Outcome>(std::string_view text) noexcept {
-  return named(text, {golden::Outcome::passed, golden::Outcome::failed, golden::Outcome::missing,
-                      golden::Outcome::error});
+  return named(text,
+               {golden::Outcome::passed, golden::Outcome::failed, golden::Outcome::missing, golden::Outcome::error});
 }
 
 }  // namespace particles

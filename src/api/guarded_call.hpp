@@ -36,7 +36,8 @@ template <class Body>
 decltype(auto) guardedCall(std::string_view call, Body&& body) {
   try {
     return body();
-  } PARTICLES_PASS_FORCED_UNWIND catch (...) {
+  }
+  PARTICLES_PASS_FORCED_UNWIND catch (...) {
     rethrowAsPublicError(call);
   }
 }

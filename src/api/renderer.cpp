@@ -40,7 +40,7 @@ struct Renderer::Impl {
   bool sizeGiven = false;
   render::GlRequest gl;
   std::unique_ptr<render::Renderer> renderer;  // made at the first frame, again for a new size
-  unsigned madeAtFork = 0;                      // forkCount() when `renderer` was made
+  unsigned madeAtFork = 0;                     // forkCount() when `renderer` was made
 
   // A renderer made before this process was forked: its GL context's threads (llvmpipe's) stayed in
   // the parent, and freeing it would wait for them forever. It is left as it is, never used or freed

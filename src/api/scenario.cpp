@@ -94,10 +94,18 @@ std::string Scenario::summary() const {
   });
 }
 
-std::string Scenario::name() const { return loadedOf(impl_, "name").name; }
-std::string Scenario::description() const { return loadedOf(impl_, "description").description; }
-std::string Scenario::file() const { return loadedOf(impl_, "file").file; }
-Integrator Scenario::integrator() const { return loadedOf(impl_, "integrator").simulation.integrator; }
+std::string Scenario::name() const {
+  return loadedOf(impl_, "name").name;
+}
+std::string Scenario::description() const {
+  return loadedOf(impl_, "description").description;
+}
+std::string Scenario::file() const {
+  return loadedOf(impl_, "file").file;
+}
+Integrator Scenario::integrator() const {
+  return loadedOf(impl_, "integrator").simulation.integrator;
+}
 double Scenario::dt() const { return loadedOf(impl_, "dt").simulation.dt; }
 double Scenario::duration() const { return loadedOf(impl_, "duration").simulation.duration; }
 long Scenario::steps() const { return loadedOf(impl_, "steps").simulation.steps(); }

@@ -82,7 +82,9 @@ Simulation::~Simulation() = default;
 
 void Simulation::step(long n) { step(n, KeepGoing()); }
 void Simulation::advance(double seconds) { advance(seconds, KeepGoing()); }
-void Simulation::advanceTo(double t) { advanceTo(t, KeepGoing()); }
+void Simulation::advanceTo(double t) {
+  advanceTo(t, KeepGoing());
+}
 
 namespace {
 
@@ -95,7 +97,8 @@ class StopCheck {
     if (!keepGoing_) return true;
     try {
       return keepGoing_();
-    } PARTICLES_PASS_FORCED_UNWIND catch (...) {
+    }
+    PARTICLES_PASS_FORCED_UNWIND catch (...) {
       thrown_ = std::current_exception();
       return false;
     }
@@ -181,7 +184,8 @@ bool Simulation::advanceTo(double t, const KeepGoing& keepGoing) {
     const double now = impl.system().time(), dt = impl.scenario.simulation.dt;
     // Behind by less than Stepper's tolerance is the step already reached (k / fps computed another way).
     if (!std::isfinite(t) || (t - now) / dt < -1e-9) {
-      throw ArgumentError(fmt::format("Simulation::advanceTo: expected a finite time not before t = {} s, got {}", now, t));
+      throw ArgumentError(
+          fmt::format("Simulation::advanceTo: expected a finite time not before t = {} s, got {}", now, t));
     }
     ExclusiveUse use(impl.busy, "Simulation::advanceTo");
     const bool all = stepToTime(impl, "advanceTo", t, check);
@@ -196,7 +200,9 @@ bool Simulation::advanceTo(double t, const KeepGoing& keepGoing) {
 double Simulation::time() const { return implOf(impl_, "time").system().time(); }
 long Simulation::steps() const { return implOf(impl_, "steps").stepper.steps(); }
 double Simulation::dt() const { return implOf(impl_, "dt").scenario.simulation.dt; }
-Integrator Simulation::integrator() const { return implOf(impl_, "integrator").scenario.simulation.integrator; }
+Integrator Simulation::integrator() const {
+  return implOf(impl_, "integrator").scenario.simulation.integrator;
+}
 
 void Simulation::setThreads(int threads) {
   api::guardedCall("Simulation::setThreads", [&] {
@@ -291,9 +297,11 @@ int indexOf(Simulation::Impl& impl, std::string_view call, std::string_view what
   const auto it = std::find(names.begin(), names.end(), name);
   if (it != names.end()) return int(it - names.begin());
   const std::string closest = input::closestName(name, names);
-  throw ArgumentError(fmt::format("Simulation::{}: no {} is named {}{} (names are spelled as in `particles run "
-                                  "--trace`: bob, cloth[3][4], #7, body#2)",
-                                  call, what, input::quotedValue(name), closest.empty() ? "" : fmt::format("; did you mean {}?", input::quotedValue(closest))));
+  throw ArgumentError(
+      fmt::format("Simulation::{}: no {} is named {}{} (names are spelled as in `particles run "
+                  "--trace`: bob, cloth[3][4], #7, body#2)",
+                  call, what, input::quotedValue(name),
+                  closest.empty() ? "" : fmt::format("; did you mean {}?", input::quotedValue(closest))));
 }
 
 }  // namespace

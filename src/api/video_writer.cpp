@@ -38,9 +38,10 @@ struct VideoWriter::Impl {
   bool inherited() const { return madeAtFork != forkCount(); }
   void requireOwnProcess(std::string_view call) const {
     if (inherited()) {
-      throw Error(fmt::format("VideoWriter::{}: this writer was made before this process was forked; its encoder and "
-                              "{}'s temporary file are the parent's: write from there, or make a writer here",
-                              call, input::quotedValue(path)));
+      throw Error(
+          fmt::format("VideoWriter::{}: this writer was made before this process was forked; its encoder and "
+                      "{}'s temporary file are the parent's: write from there, or make a writer here",
+                      call, input::quotedValue(path)));
     }
   }
   ~Impl() {
@@ -49,7 +50,8 @@ struct VideoWriter::Impl {
 
   // write() and finish() refuse to go on after abort() (under `calls`).
   void requireNotAborted(std::string_view call) const {
-    if (aborted) throw ArgumentError(fmt::format("VideoWriter::{}: the writer was aborted; {} is not written", call, path));
+    if (aborted)
+      throw ArgumentError(fmt::format("VideoWriter::{}: the writer was aborted; {} is not written", call, path));
   }
 };
 
@@ -73,9 +75,10 @@ VideoWriter::VideoWriter(const std::string& path, const VideoSettings& settings)
   impl_ = api::guardedCall("VideoWriter", [&] {
     const render::OutputFormat& format = render::outputFormatOf(path);
     if (format.oneFrameAt || format.kind == render::OutputKind::pngSequence) {
-      throw ArgumentError(fmt::format("VideoWriter: {} is not a video: give a .mp4, .webm or .gif path "
-                                      "(one frame: Image::savePng)",
-                                      input::quotedValue(path)));
+      throw ArgumentError(
+          fmt::format("VideoWriter: {} is not a video: give a .mp4, .webm or .gif path "
+                      "(one frame: Image::savePng)",
+                      input::quotedValue(path)));
     }
     const int fps = fpsFor(format, settings.fps);
     if (!render::isX264Preset(settings.preset)) {
@@ -145,7 +148,8 @@ void VideoWriter::finish() {
     impl_->requireNotAborted("finish");
     if (impl_->finished) return;
     if (!impl_->writer) {
-      throw ArgumentError(fmt::format("VideoWriter::finish: no frame was written to {}", input::quotedValue(impl_->path)));
+      throw ArgumentError(
+          fmt::format("VideoWriter::finish: no frame was written to {}", input::quotedValue(impl_->path)));
     }
     impl_->writer->finish();
     impl_->finished = true;

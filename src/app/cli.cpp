@@ -42,10 +42,11 @@ void Cli::requireKnownCommand(const std::vector<std::string>& args) const {
   for (const auto& command : commands_) names.emplace_back(command->name());
   if (std::find(names.begin(), names.end(), *word) != names.end()) return;
   const std::string nearest = input::closestName(*word, names);
-  throw CLI::ParseError(fmt::format("unknown command {}{}; the commands are {}", input::quotedValue(*word),
-                                    nearest.empty() ? std::string() : fmt::format(" (did you mean {}?)", input::quotedValue(nearest)),
-                                    fmt::join(names, ", ")),
-                        CLI::ExitCodes::ExtrasError);
+  throw CLI::ParseError(
+      fmt::format("unknown command {}{}; the commands are {}", input::quotedValue(*word),
+                  nearest.empty() ? std::string() : fmt::format(" (did you mean {}?)", input::quotedValue(nearest)),
+                  fmt::join(names, ", ")),
+      CLI::ExitCodes::ExtrasError);
 }
 
 const BoundCommand* Cli::parsedCommand() const {

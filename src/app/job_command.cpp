@@ -104,7 +104,8 @@ int runJobCommand(const RunJobOptions& o) {
   const std::string command = commandOfStage(row[JobTable::kStage]);
   if (args.front() != command) {
     throw InputError(fmt::format("{}:{}: job {} is a {} job, but its command runs {}", table.file,
-                                 table.rowLines[index], index, row[JobTable::kStage], input::quotedValue(args.front())));
+                                 table.rowLines[index], index, row[JobTable::kStage],
+                                 input::quotedValue(args.front())));
   }
   if (o.force) args.push_back("--force");
 

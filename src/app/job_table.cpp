@@ -47,8 +47,8 @@ JobTable parseJobTable(std::string_view text, const std::string& file) {
   std::set<std::string_view> seen;
   for (const std::string& name : header) {
     if (!seen.insert(name).second) {
-      throw InputError(
-          fmt::format("{}:1: the column {} appears twice; a job table names each column once", file, input::quotedValue(name)));
+      throw InputError(fmt::format("{}:1: the column {} appears twice; a job table names each column once", file,
+                                   input::quotedValue(name)));
     }
   }
   table.parameters.assign(header.begin() + 3, header.end() - 3);
@@ -61,17 +61,17 @@ JobTable parseJobTable(std::string_view text, const std::string& file) {
     }
     const size_t index = r - 1;
     if (row[JobTable::kIndex] != std::to_string(index)) {
-      throw InputError(fmt::format("{}:{}: index {} where job {} belongs; the rows are jobs 0, 1, 2, … in order",
-                                   file, line, input::quotedValue(row[JobTable::kIndex]), index));
+      throw InputError(fmt::format("{}:{}: index {} where job {} belongs; the rows are jobs 0, 1, 2, … in order", file,
+                                   line, input::quotedValue(row[JobTable::kIndex]), index));
     }
     const std::string& stage = row[JobTable::kStage];
     if (stage != "run" && stage != "render" && stage != "stability" && stage != "segment" && stage != "concat") {
-      throw InputError(fmt::format("{}:{}: unknown stage {} (expected run, render, stability, segment or concat)",
-                                   file, line, input::quotedValue(stage)));
+      throw InputError(fmt::format("{}:{}: unknown stage {} (expected run, render, stability, segment or concat)", file,
+                                   line, input::quotedValue(stage)));
     }
     if (row[table.dirColumn()] != jobFolder(index)) {
-      throw InputError(fmt::format("{}:{}: job {}'s folder is {}, not {}", file, line, index, input::quotedValue(row[table.dirColumn()]),
-                                   jobFolder(index)));
+      throw InputError(fmt::format("{}:{}: job {}'s folder is {}, not {}", file, line, index,
+                                   input::quotedValue(row[table.dirColumn()]), jobFolder(index)));
     }
     const auto words = splitCommandText(row[table.commandColumn()]);
     if (!words || words->size() < 2) {

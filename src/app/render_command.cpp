@@ -101,7 +101,8 @@ std::pair<long, long> parseFrameRange(const std::string& text, long total) {
   const std::string rest = colon == std::string::npos ? "" : text.substr(colon + 1);
   const long end = rest.empty() ? total : number(rest);
   if (first < 0 || end < 0) {
-    throw InputError(fmt::format("--frames: expected A:B (frames A … B−1) or A: (A to the end), not {}", input::quotedValue(text)));
+    throw InputError(
+        fmt::format("--frames: expected A:B (frames A … B−1) or A: (A to the end), not {}", input::quotedValue(text)));
   }
   if (!(first < end && end <= total)) {
     throw InputError(fmt::format("--frames {}: not a range of the video's {} frames (0:{})", text, total, total));

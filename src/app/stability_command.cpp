@@ -58,8 +58,8 @@ std::map<std::string, plot::Reference> parseReferences(const std::vector<std::st
   std::map<std::string, plot::Reference> out;
   for (const std::string& text : texts) {
     const auto fail = [&](const std::string& why) {
-      throw InputError(
-          fmt::format("--reference {}: {} (expected NAME=DT or NAME=LO:HI, e.g. rk4=0.3:0.4)", input::quotedValue(text), why));
+      throw InputError(fmt::format("--reference {}: {} (expected NAME=DT or NAME=LO:HI, e.g. rk4=0.3:0.4)",
+                                   input::quotedValue(text), why));
     };
     const std::size_t eq = text.find('=');
     if (eq == std::string::npos || eq == 0) fail("no integrator name");

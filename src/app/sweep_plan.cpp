@@ -163,9 +163,9 @@ class SweepPlanner {
         plan_.columns.push_back(p.name);
         for (const auto& o : spec_.options) {
           if (isShorthand(o.name) && overridePath(p) == "simulation." + o.name) {
-            failInSweep(
-                spec_, p.at,
-                fmt::format("{} is varied here and also given in options ({}:{})", input::quotedValue(p.key), spec_.file, o.at.line));
+            failInSweep(spec_, p.at,
+                        fmt::format("{} is varied here and also given in options ({}:{})", input::quotedValue(p.key),
+                                    spec_.file, o.at.line));
           }
         }
       }
@@ -293,7 +293,9 @@ class SweepPlanner {
       if (o.name != "fps") continue;
       const auto [end, ec] = std::from_chars(o.value.data(), o.value.data() + o.value.size(), fps);
       if (ec != std::errc() || end != o.value.data() + o.value.size() || !(fps > 0) || !std::isfinite(fps)) {
-        failInSweep(spec, o.at, fmt::format("fps: expected a number of frames per second > 0, got {}", input::quotedValue(o.value)));
+        failInSweep(
+            spec, o.at,
+            fmt::format("fps: expected a number of frames per second > 0, got {}", input::quotedValue(o.value)));
       }
     }
     return fps;

@@ -80,7 +80,9 @@ class EnterTask {
 
 WorkerPool::WorkerPool(int threads) : threads_(std::max(threads, 1)), workersFork_(forkCount()) {}
 
-bool WorkerPool::inheritedWorkers() const { return !workers_.empty() && workersFork_ != forkCount(); }
+bool WorkerPool::inheritedWorkers() const {
+  return !workers_.empty() && workersFork_ != forkCount();
+}
 
 void WorkerPool::dropInheritedWorkers() {
   if (!inheritedWorkers()) return;

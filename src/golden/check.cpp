@@ -56,7 +56,8 @@ std::vector<GoldenCheck> selectChecks(const GoldenManifest& manifest, const Chec
   for (const std::string& name : options.only) {
     if (std::find(all.begin(), all.end(), name) == all.end()) {
       const std::string closest = input::closestName(name, all);
-      throw std::invalid_argument(fmt::format("no frame or state of the manifest is named {}{}", input::quotedValue(name),
+      throw std::invalid_argument(fmt::format("no frame or state of the manifest is named {}{}",
+                                              input::quotedValue(name),
                                               closest.empty() ? "" : fmt::format("; did you mean {}?", closest)));
     }
   }

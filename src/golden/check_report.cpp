@@ -117,7 +117,6 @@ void makeParent(const fs::path& folder) {
   if (ec) throw output::OutputError(fmt::format("cannot create {}: {}", parent.string(), ec.message()));
 }
 
-
 namespace {
 
 // renameat2(2), which glibc 2.28 declares in <stdio.h> only with _GNU_SOURCE: called by number, so
@@ -206,9 +205,10 @@ fs::path reportFolderPath(const fs::path& given, const std::string& folderName) 
   while (text.size() > 1 && text.back() == '/') text.pop_back();
   const fs::path folder(text);
   if (text.empty() || folder.filename() == "." || folder.filename() == ".." || text == "/") {
-    throw ReportFolderError(fmt::format("{} {}: name the report folder itself (e.g. golden-report/): it is replaced "
-                                        "whole",
-                                        folderName, input::quotedValue(given.string())));
+    throw ReportFolderError(
+        fmt::format("{} {}: name the report folder itself (e.g. golden-report/): it is replaced "
+                    "whole",
+                    folderName, input::quotedValue(given.string())));
   }
   return folder;
 }
@@ -222,8 +222,8 @@ std::optional<std::pair<int, int>> shardFromText(const std::string& text, const 
     auto [q, ec2] = std::from_chars(p + 1, end, n);
     if (ec2 == std::errc() && q == end) return std::pair{k, n};
   }
-  throw std::invalid_argument(fmt::format("{} {}: expected K/N with 1 ≤ K ≤ N, e.g. 1/2", optionName,
-                                          input::printableText(text)));
+  throw std::invalid_argument(
+      fmt::format("{} {}: expected K/N with 1 ≤ K ≤ N, e.g. 1/2", optionName, input::printableText(text)));
 }
 
 int defaultJobs() { return std::max(1, input::availableCores() / 2); }

@@ -65,8 +65,8 @@ render::RenderOptions frameLookOf(const GoldenManifest& manifest, const GoldenEn
   for (const LookSetting& setting : lookSettingsOf(laid)) {
     const render::LookOption& option = render::lookOption(setting.flag);
     if (!option.read(setting.text, look)) {
-      throw std::invalid_argument(
-          fmt::format("{}: expected {}, got {}", setting.at.keyPath, option.expected, input::quotedValue(setting.text)));
+      throw std::invalid_argument(fmt::format("{}: expected {}, got {}", setting.at.keyPath, option.expected,
+                                              input::quotedValue(setting.text)));
     }
   }
   return look;

@@ -32,9 +32,9 @@ class ReadError : public std::runtime_error {
 };
 
 // Which files a reader takes. A scenario or a CSV may come from a pipe (`particles check
-// /dev/stdin`), though not from a FIFO with no writer (refused at once, never waited on); a file the program wrote itself (a job record, a sweep's jobs.csv) is a regular
-// file, so anything else at its path (a FIFO, a device, a socket) was put there by someone else
-// and is refused without blocking: opened non-blocking, checked, never read.
+// /dev/stdin`), though not from a FIFO with no writer (refused at once, never waited on); a file the program wrote
+// itself (a job record, a sweep's jobs.csv) is a regular file, so anything else at its path (a FIFO, a device, a
+// socket) was put there by someone else and is refused without blocking: opened non-blocking, checked, never read.
 enum class Accept { anyFile, regularOnly };
 
 // The whole of `file`, at most maxMiB mebibytes and without NUL bytes; throws ReadError. The

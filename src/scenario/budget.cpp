@@ -149,7 +149,8 @@ void applyLimitOption(SceneLimits& limits, std::string_view text) {
   long long n = 0;
   const auto [end, ec] = std::from_chars(number.data(), number.data() + number.size(), n);
   if (ec != std::errc() || end != number.data() + number.size() || n < 1 || n > kMaxSceneLimit) {
-    bad(fmt::format("expected a whole number from 1 to {} after '=', got {}", kMaxSceneLimit, input::quotedValue(number)));
+    bad(fmt::format("expected a whole number from 1 to {} after '=', got {}", kMaxSceneLimit,
+                    input::quotedValue(number)));
   }
   for (const SceneLimitName& l : kSceneLimitNames) {
     if (l.name == name) {

@@ -35,7 +35,9 @@ EntryArgs::EntryArgs(const KindSpec& kind, const Value& entry, bool typed, const
 
 const ParamSpec& EntryArgs::spec(std::string_view key) const {
   const ParamSpec* p = kind_.param(key);
-  if (!p) throw std::logic_error(fmt::format("kind {} reads the undeclared key {}", input::quotedValue(kind_.type), input::quotedValue(key)));
+  if (!p)
+    throw std::logic_error(
+        fmt::format("kind {} reads the undeclared key {}", input::quotedValue(kind_.type), input::quotedValue(key)));
   return *p;
 }
 
@@ -46,13 +48,15 @@ std::optional<Value> EntryArgs::value(const ParamSpec& spec) const {
       // At whichever of the two the kind declares second, as a reader meets it.
       const bool mineFirst = kind_.param(spec.key) < kind_.param(spec.insteadOf);
       reader_.optional(mineFirst ? spec.insteadOf : spec.key)
-          ->fail(fmt::format("give either {} or {}, not both", input::quotedValue(mineFirst ? spec.key : spec.insteadOf),
+          ->fail(fmt::format("give either {} or {}, not both",
+                             input::quotedValue(mineFirst ? spec.key : spec.insteadOf),
                              input::quotedValue(mineFirst ? spec.insteadOf : spec.key)));
     }
     if (!mine && !other) {
       reader_.self()
           .child(reader_.self().node(), reader_.self().path() + "." + std::string(spec.key), YAML::Mark::null_mark())
-          .fail(fmt::format("missing required key {} (or {})", input::quotedValue(spec.key), input::quotedValue(spec.insteadOf)));
+          .fail(fmt::format("missing required key {} (or {})", input::quotedValue(spec.key),
+                            input::quotedValue(spec.insteadOf)));
     }
   }
   if (spec.required) return reader_.required(spec.key);
@@ -67,21 +71,27 @@ bool EntryArgs::has(std::string_view key) const {
 double EntryArgs::number(std::string_view key) const {
   const ParamSpec& s = spec(key);
   if (const auto v = value(s)) return v->bounded(s.min, s.max);
-  if (!s.defaultNumber) throw std::logic_error(fmt::format("kind {} reads {}, absent without a default", input::quotedValue(kind_.type), input::quotedValue(key)));
+  if (!s.defaultNumber)
+    throw std::logic_error(fmt::format("kind {} reads {}, absent without a default", input::quotedValue(kind_.type),
+                                       input::quotedValue(key)));
   return *s.defaultNumber;
 }
 
 Vec2 EntryArgs::vec2(std::string_view key) const {
   const ParamSpec& s = spec(key);
   if (const auto v = value(s)) return v->vec2();
-  if (!s.defaultVec2) throw std::logic_error(fmt::format("kind {} reads {}, absent without a default", input::quotedValue(kind_.type), input::quotedValue(key)));
+  if (!s.defaultVec2)
+    throw std::logic_error(fmt::format("kind {} reads {}, absent without a default", input::quotedValue(kind_.type),
+                                       input::quotedValue(key)));
   return *s.defaultVec2;
 }
 
 std::vector<Endpoint> EntryArgs::points(std::string_view key) const {
   const ParamSpec& s = spec(key);
   const auto v = value(s);
-  if (!v) throw std::logic_error(fmt::format("kind {} reads the absent optional points {}", input::quotedValue(kind_.type), input::quotedValue(key)));
+  if (!v)
+    throw std::logic_error(fmt::format("kind {} reads the absent optional points {}", input::quotedValue(kind_.type),
+                                       input::quotedValue(key)));
   const bool particlesOnly = s.type == ParamType::particle || s.type == ParamType::particles;
   const bool list = s.type == ParamType::particles || s.type == ParamType::endpoints;
   return resolvePoints(*v, names_, particlesOnly ? PointKind::particle : PointKind::endpoint, list);
@@ -89,7 +99,9 @@ std::vector<Endpoint> EntryArgs::points(std::string_view key) const {
 
 std::vector<Vec2> EntryArgs::path(std::string_view key) const {
   const auto v = value(spec(key));
-  if (!v) throw std::logic_error(fmt::format("kind {} reads the absent optional path {}", input::quotedValue(kind_.type), input::quotedValue(key)));
+  if (!v)
+    throw std::logic_error(fmt::format("kind {} reads the absent optional path {}", input::quotedValue(kind_.type),
+                                       input::quotedValue(key)));
   std::vector<Vec2> out;
   for (const Value& point : v->items()) out.push_back(point.vec2());
   if (out.empty()) v->fail("a path needs at least one point [x, y]");

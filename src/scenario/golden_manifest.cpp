@@ -61,7 +61,8 @@ std::pair<int, int> frameSizeOf(const Value& v) {
     long long n = kMaxImageSide + 1;  // also when the digits are past what a long long holds
     std::from_chars(digits.data(), digits.data() + digits.size(), n);
     if (n < 1 || n > kMaxImageSide) {
-      v.fail(fmt::format("expected each side of the size from 1 to {} px, got {}", kMaxImageSide, input::quotedValue(text)));
+      v.fail(fmt::format("expected each side of the size from 1 to {} px, got {}", kMaxImageSide,
+                         input::quotedValue(text)));
     }
     return int(n);
   };
@@ -174,7 +175,8 @@ void readSets(const Value& v, GoldenEntry& entry, const std::string& file) {
       const std::string text = item.string();
       const size_t eq = text.find('=');
       if (eq == std::string::npos || eq == 0) {
-        item.fail(fmt::format("expected PATH=VALUE as --set takes it, such as simulation.dt=0.001, got {}", input::quotedValue(text)));
+        item.fail(fmt::format("expected PATH=VALUE as --set takes it, such as simulation.dt=0.001, got {}",
+                              input::quotedValue(text)));
       }
       add(text.substr(0, eq), text.substr(eq + 1), item, item);
     }
@@ -198,7 +200,8 @@ std::vector<NamePart> parseNamePattern(const std::string& pattern, const Value& 
     if (open > i) parts.push_back({NamePart::From::pattern, pattern.substr(i, open - i)});
     if (open == pattern.size()) break;
     const size_t close = pattern.find('}', open);
-    if (close == std::string::npos) at.fail(fmt::format("the name {} opens a '{{' it does not close", input::quotedValue(pattern)));
+    if (close == std::string::npos)
+      at.fail(fmt::format("the name {} opens a '{{' it does not close", input::quotedValue(pattern)));
     const std::string placeholder = pattern.substr(open, close - open + 1);
     if (placeholder == "{scenario}") {
       parts.push_back({NamePart::From::scenario, ""});
@@ -279,7 +282,8 @@ GoldenEntry readGoldenEntry(const Value& v, bool frames, const std::filesystem::
     if (auto t = m.optional("tolerance")) entry.tolerance = readFrameTolerance(*t);
     if (auto e = m.optional("expect")) {
       const std::string expect = e->string();
-      if (expect != "match" && expect != "differ") e->fail(fmt::format("expected match or differ, got {}", input::quotedValue(expect)));
+      if (expect != "match" && expect != "differ")
+        e->fail(fmt::format("expected match or differ, got {}", input::quotedValue(expect)));
       entry.expectDiffer = expect == "differ";
     }
     if (auto r = m.optional("reference")) {

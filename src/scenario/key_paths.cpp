@@ -12,7 +12,9 @@ namespace {
 
 // A key path as an error names it: a path longer than a message quotes (a 10 MB one given by
 // mistake) is shown cut, with its size (input::quotedValue).
-std::string shownPath(const std::string& path) { return input::shownValue(path); }
+std::string shownPath(const std::string& path) {
+  return input::shownValue(path);
+}
 
 }  // namespace
 
@@ -83,10 +85,11 @@ YAML::Node overrideValue(const Override& o, const std::string& file) {
     value = YAML::Load(o.value);
   } catch (const ScenarioError& e) {
     throw ScenarioError(file, 0, 0, shownPath(o.path),
-                        fmt::format("cannot read the value {}: {}", input::quotedValue(o.value), e.message()), o.origin);
-  } catch (const YAML::Exception& e) {
-    throw ScenarioError(file, 0, 0, shownPath(o.path), fmt::format("cannot read the value {}: {}", input::quotedValue(o.value), e.msg),
+                        fmt::format("cannot read the value {}: {}", input::quotedValue(o.value), e.message()),
                         o.origin);
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(file, 0, 0, shownPath(o.path),
+                        fmt::format("cannot read the value {}: {}", input::quotedValue(o.value), e.msg), o.origin);
   }
   if (value.IsNull()) {
     throw ScenarioError(file, 0, 0, shownPath(o.path), "expected a value after '='", o.origin);
@@ -197,10 +200,9 @@ Override parseOverride(std::string_view text) {
   const std::string origin = fmt::format("--set {}", input::shownValue(text));
   const size_t eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0) {
-    throw ScenarioError(
-        "command line", 0, 0, "",
-        fmt::format("expected --set path.to.key=value, as in --set simulation.dt=0.005; got {}",
-                    input::quotedValue(text)));
+    throw ScenarioError("command line", 0, 0, "",
+                        fmt::format("expected --set path.to.key=value, as in --set simulation.dt=0.005; got {}",
+                                    input::quotedValue(text)));
   }
   return Override{std::string(text.substr(0, eq)), std::string(text.substr(eq + 1)), origin};
 }

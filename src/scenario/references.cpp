@@ -108,8 +108,9 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
   const NamedObjects::Entry* entry = names.find(name);
   if (!entry) {
     const std::string suggestion = input::closestName(name, names.names());
-    bad(fmt::format("nothing is named {}{}", input::quotedValue(name),
-                    suggestion.empty() ? std::string() : fmt::format("; did you mean {}?", input::quotedValue(suggestion))));
+    bad(fmt::format(
+        "nothing is named {}{}", input::quotedValue(name),
+        suggestion.empty() ? std::string() : fmt::format("; did you mean {}?", input::quotedValue(suggestion))));
   }
 
   if (rest.empty()) {
@@ -121,7 +122,8 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
         }
         return {Endpoint::ofBody(entry->index)};
       case NamedObjects::Kind::grid: {
-        if (!allowList) bad(fmt::format("{} is a whole grid; name one particle, as in {}[0][0]", input::quotedValue(name), name));
+        if (!allowList)
+          bad(fmt::format("{} is a whole grid; name one particle, as in {}[0][0]", input::quotedValue(name), name));
         std::vector<Endpoint> all;
         for (int r = 0; r < entry->grid.rows; ++r)
           for (int c = 0; c < entry->grid.cols; ++c) all.push_back(Endpoint::ofParticle(entry->grid.at(r, c)));
@@ -132,7 +134,8 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
 
   if (rest[0] == '@') {
     if (entry->kind != NamedObjects::Kind::body) {
-      bad(fmt::format("{} is {}; an anchor `name@[x, y]` needs a rigid body", input::quotedValue(name), kindName(entry->kind)));
+      bad(fmt::format("{} is {}; an anchor `name@[x, y]` needs a rigid body", input::quotedValue(name),
+                      kindName(entry->kind)));
     }
     if (kind == PointKind::particle) bad("rigid-body anchors are not allowed here, only particles");
     const std::string inner = trim(std::string_view(rest).substr(1));
@@ -148,8 +151,8 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
 
   if (rest[0] == '[') {
     if (entry->kind != NamedObjects::Kind::grid) {
-      bad(fmt::format("{} is {}, not a grid; only grid particles are addressed as grid[row][col]", input::quotedValue(name),
-                      kindName(entry->kind)));
+      bad(fmt::format("{} is {}, not a grid; only grid particles are addressed as grid[row][col]",
+                      input::quotedValue(name), kindName(entry->kind)));
     }
     const auto parts = cellSelectors(rest);
     if (!parts) bad(fmt::format("expected {}[row][col]", name));
@@ -185,8 +188,8 @@ std::vector<Endpoint> resolveOne(const Value& at, const std::string& raw, const 
 void NamedObjects::add(const Value& at, const std::string& name, Entry entry) {
   if (name.empty() || !isNameStart(name[0]) ||
       !std::all_of(name.begin(), name.end(), [](char c) { return isNameChar(c); })) {
-    at.fail(
-        fmt::format("{} is not a valid name: use letters, digits, '_' and '-', starting with a letter or '_'", input::quotedValue(name)));
+    at.fail(fmt::format("{} is not a valid name: use letters, digits, '_' and '-', starting with a letter or '_'",
+                        input::quotedValue(name)));
   }
   if (const Entry* previous = find(name)) {
     at.fail(fmt::format("duplicate name {}: already used by {}{}", input::quotedValue(name), kindName(previous->kind),

@@ -30,8 +30,9 @@ void splitNumbers(const YAML::Node& node, std::vector<std::string>& pieces, std:
   }
   double x = 0.0;
   if (!node.IsScalar() || node.Tag() == "!" || !YAML::convert<double>::decode(node, x) || !std::isfinite(x)) {
-    fail(node.IsMap() ? std::string("holds a map, not numbers")
-                      : fmt::format("holds {}, not a number", input::quotedValue(node.IsScalar() ? node.Scalar() : "")));
+    fail(node.IsMap()
+             ? std::string("holds a map, not numbers")
+             : fmt::format("holds {}, not a number", input::quotedValue(node.IsScalar() ? node.Scalar() : "")));
   }
   numbers.push_back(x);
   pieces.emplace_back();
@@ -42,8 +43,8 @@ void splitNumbers(const YAML::Node& node, std::vector<std::string>& pieces, std:
 ScaledValue::ScaledValue(std::string_view text, const std::string& file, const std::string& path) : pieces_(1) {
   const Override o{path, "", ""};
   const std::vector<detail::PathSegment> segments = detail::splitPath(o, file);
-  YAML::Node cur =
-      detail::loadOneDocument(std::string(text), file, nullptr, detail::NodeLimit::scenario(std::uintmax_t(SceneLimits{}.nodes)));
+  YAML::Node cur = detail::loadOneDocument(std::string(text), file, nullptr,
+                                           detail::NodeLimit::scenario(std::uintmax_t(SceneLimits{}.nodes)));
   std::string canonical;
   for (const detail::PathSegment& s : segments) {
     detail::appendSegment(canonical, s);

@@ -45,9 +45,10 @@ std::string readType(const Value& entry, const std::vector<std::string>& types) 
   const std::string name = type.string();
   if (std::find(types.begin(), types.end(), name) == types.end()) {
     const std::string suggestion = input::closestName(name, types);
-    type.fail(fmt::format("unknown type {}{}; expected one of {}", input::quotedValue(name),
-                          suggestion.empty() ? std::string() : fmt::format(" (did you mean {}?)", input::quotedValue(suggestion)),
-                          fmt::join(types, ", ")));
+    type.fail(fmt::format(
+        "unknown type {}{}; expected one of {}", input::quotedValue(name),
+        suggestion.empty() ? std::string() : fmt::format(" (did you mean {}?)", input::quotedValue(suggestion)),
+        fmt::join(types, ", ")));
   }
   return name;
 }
@@ -146,9 +147,10 @@ class detail::Loader {
         std::vector<std::string> known;
         for (Integrator k : allIntegrators()) known.emplace_back(integratorName(k));
         const std::string suggestion = input::closestName(name, known);
-        i->fail(fmt::format("unknown integrator {}{}; expected one of {}", input::quotedValue(name),
-                            suggestion.empty() ? std::string() : fmt::format(" (did you mean {}?)", input::quotedValue(suggestion)),
-                            fmt::join(known, ", ")));
+        i->fail(fmt::format(
+            "unknown integrator {}{}; expected one of {}", input::quotedValue(name),
+            suggestion.empty() ? std::string() : fmt::format(" (did you mean {}?)", input::quotedValue(suggestion)),
+            fmt::join(known, ", ")));
       }
       s.integrator = *integrator;
     }
@@ -359,7 +361,8 @@ auto readingYaml(const std::string& file, const Read& read) {
 
 Scenario loadDocument(const std::string& text, const std::string& file, std::span<const Override> overrides,
                       const SceneLimits& limits) {
-  YAML::Node root = detail::loadOneDocument(text, file, nullptr, detail::NodeLimit::scenario(std::uintmax_t(limits.nodes)));
+  YAML::Node root =
+      detail::loadOneDocument(text, file, nullptr, detail::NodeLimit::scenario(std::uintmax_t(limits.nodes)));
   if (!root.IsMap()) {
     const YAML::Mark m = root.Mark();
     throw ScenarioError(file, m.line + 1, m.column + 1, "", "expected a scenario (a map of keys such as 'name')");

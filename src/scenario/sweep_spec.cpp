@@ -52,7 +52,8 @@ std::vector<SweepValue> readRange(const Value& v, bool& logSpacing) {
   std::string spacing = "linear";
   if (auto s = r.optional("spacing")) {
     spacing = s->string();
-    if (spacing != "linear" && spacing != "log") s->fail(fmt::format("expected linear or log, got {}", input::quotedValue(spacing)));
+    if (spacing != "linear" && spacing != "log")
+      s->fail(fmt::format("expected linear or log, got {}", input::quotedValue(spacing)));
   }
   logSpacing = spacing == "log";
   if (logSpacing && !(from > 0 && to > 0)) {
@@ -78,7 +79,8 @@ SweepParameter readParameter(const Value& v, std::vector<std::string>& names) {
   const Value key = m.required("key");
   p.key = key.string();
   if (p.key.find('=') != std::string::npos || p.key.find(' ') != std::string::npos) {
-    key.fail(fmt::format("expected a key path such as simulation.dt or forces[1].ks, got {}", input::quotedValue(p.key)));
+    key.fail(
+        fmt::format("expected a key path such as simulation.dt or forces[1].ks, got {}", input::quotedValue(p.key)));
   }
   if (auto s = m.optional("scale")) p.scale = s->boolean();
   const auto values = m.optional("values");
@@ -101,12 +103,14 @@ SweepParameter readParameter(const Value& v, std::vector<std::string>& names) {
   for (size_t i = 0; i < p.values.size(); ++i) {
     const SweepValue& value = p.values[i];
     const Value at = values ? values->item(i) : *range;
-    if (p.scale && !value.number) at.fail(fmt::format("a scale factor must be a number, got {}", input::quotedValue(value.text)));
+    if (p.scale && !value.number)
+      at.fail(fmt::format("a scale factor must be a number, got {}", input::quotedValue(value.text)));
     if (p.key == "integrator") {
       if (!integratorFromName(value.text)) {
         std::vector<std::string> known;
         for (Integrator k : allIntegrators()) known.emplace_back(integratorName(k));
-        at.fail(fmt::format("unknown integrator {} (expected one of {})", input::quotedValue(value.text), fmt::join(known, ", ")));
+        at.fail(fmt::format("unknown integrator {} (expected one of {})", input::quotedValue(value.text),
+                            fmt::join(known, ", ")));
       }
     } else if (shorthand && !p.scale && !(value.number && *value.number > 0)) {
       at.fail(fmt::format("{} must be a number of seconds > 0, got {}", p.key, input::quotedValue(value.text)));
@@ -122,8 +126,8 @@ SweepParameter readParameter(const Value& v, std::vector<std::string>& names) {
   }
   if (std::find(std::begin(kReservedColumns), std::end(kReservedColumns), p.name) != std::end(kReservedColumns)) {
     (m.optional("name") ? *m.optional("name") : key)
-        .fail(fmt::format("{} names a column the sweep writes itself ({}); give the parameter another 'name'", input::quotedValue(p.name),
-                          fmt::join(kReservedColumns, ", ")));
+        .fail(fmt::format("{} names a column the sweep writes itself ({}); give the parameter another 'name'",
+                          input::quotedValue(p.name), fmt::join(kReservedColumns, ", ")));
   }
   if (std::find(names.begin(), names.end(), p.name) != names.end()) {
     (m.optional("name") ? *m.optional("name") : key)
@@ -168,8 +172,8 @@ std::vector<SweepGroup> readParameters(const Value& v,
           members[k].fail(
               fmt::format("zipped parameters take one value each per job, so they need lists of one "
                           "length: {} has {}, {} has {}",
-                          input::quotedValue(g.parameters[0].name), g.parameters[0].values.size(), input::quotedValue(g.parameters[k].name),
-                          g.parameters[k].values.size()));
+                          input::quotedValue(g.parameters[0].name), g.parameters[0].values.size(),
+                          input::quotedValue(g.parameters[k].name), g.parameters[k].values.size()));
         }
       }
     } else {
@@ -195,12 +199,14 @@ void readOptions(const Value& v, SweepSpec& spec) {
     const Value key = v.child(keyNode, path, keyNode.Mark());
     const Value value = v.child(it->second, path, keyNode.Mark());
     if (!keyNode.IsScalar()) key.fail("expected an option name, got a list or map as key");
-    if (std::find(seen.begin(), seen.end(), name) != seen.end()) key.fail(fmt::format("duplicate key {}", input::quotedValue(name)));
+    if (std::find(seen.begin(), seen.end(), name) != seen.end())
+      key.fail(fmt::format("duplicate key {}", input::quotedValue(name)));
     seen.push_back(name);
     const std::string bare =
         name.substr(name.find_first_not_of('-') == std::string::npos ? 0 : name.find_first_not_of('-'));
     if (std::find(std::begin(kSweepOwnedOptions), std::end(kSweepOwnedOptions), bare) != std::end(kSweepOwnedOptions)) {
-      key.fail(fmt::format("{} is set by the sweep for each job (its outputs go under the output folder)", input::quotedValue(bare)));
+      key.fail(fmt::format("{} is set by the sweep for each job (its outputs go under the output folder)",
+                           input::quotedValue(bare)));
     }
     if (bare == "set" || value.isMap()) {
       if (bare != "set") value.fail("expected a value or a list, got a map");

@@ -429,7 +429,8 @@ Value MapReader::required(std::string_view key) const {
     }
   }
   const std::string path = value_.path().empty() ? std::string(key) : value_.path() + "." + std::string(key);
-  value_.child(value_.node(), path, YAML::Mark::null_mark()).fail(fmt::format("missing required key {}", input::quotedValue(key)));
+  value_.child(value_.node(), path, YAML::Mark::null_mark())
+      .fail(fmt::format("missing required key {}", input::quotedValue(key)));
 }
 
 }  // namespace particles::scenario::detail

@@ -32,8 +32,7 @@ struct NodeLimit {
   // A scenario's, with --limit nodes=N's words (SceneLimits::nodes).
   static NodeLimit scenario(std::uintmax_t maxNodes);
 };
-YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases,
-                           const NodeLimit& limit);
+YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases, const NodeLimit& limit);
 // The same count alone, for text that is parsed otherwise (a --set value): ScenarioError past it.
 void checkNodeCount(const std::string& text, const std::string& file, const NodeLimit& limit);
 
