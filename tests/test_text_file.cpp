@@ -2,11 +2,12 @@
 // regular files (from their size, before reading), for pipes that never end, and a NUL byte ends
 // the reading at once.
 #include <doctest/doctest.h>
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <csignal>
-#include <cstdio>
+#include <atomic>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -66,20 +67,46 @@ TEST_CASE("text file: a pipe that never ends is refused once past the limit") {
   TextFileDir t;
   const fs::path fifo = t.dir / "endless";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  // The writer is there before the reader opens (a FIFO without one is refused at once, below): a
+  // reader of the test's own lets its open return, and holds the FIFO open until the end, so that
+  // the writer's writes, non-blocking, never wait on a full pipe.
+  const int keeper = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  REQUIRE(keeper >= 0);
+  const int out = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+  REQUIRE(out >= 0);
+  std::atomic<bool> done{false};
   std::thread writer([&] {
-    std::FILE* out = std::fopen(fifo.c_str(), "wb");
-    REQUIRE(out != nullptr);
     const std::string block(4096, 'a');
-    // Writes until the reader has gone (EPIPE; SIGPIPE is ignored below) or far past the limit.
-    for (int i = 0; i < 4096 && std::fwrite(block.data(), 1, block.size(), out) == block.size(); ++i) {
+    while (!done.load()) {
+      if (::write(out, block.data(), block.size()) < 0 && errno != EAGAIN) break;
+      std::this_thread::yield();
     }
-    std::fclose(out);
+    ::close(out);
   });
   std::string message;
-  const auto previous = std::signal(SIGPIPE, SIG_IGN);
   CHECK(reasonOf(fifo, 1, message) == ReadError::Reason::tooLarge);
+  done.store(true);
   writer.join();
-  std::signal(SIGPIPE, previous);
+  ::close(keeper);
+}
+
+TEST_CASE("text file: a FIFO with no writer is refused at once, one with a writer read to its end") {
+  TextFileDir t;
+  const fs::path fifo = t.dir / "scenario.yaml";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  std::string message;
+  CHECK(reasonOf(fifo, 1, message) == ReadError::Reason::noWriter);
+  CHECK(message == "cannot read: it is a FIFO (a named pipe) with no writer, so nothing can arrive; start its writer "
+                   "first");
+  // A writer that wrote and left: what it wrote is read (the pipe keeps it while a reader holds it).
+  const int keeper = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  REQUIRE(keeper >= 0);
+  const int out = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+  REQUIRE(out >= 0);
+  REQUIRE(::write(out, "name: a\n", 8) == 8);
+  ::close(out);
+  CHECK(readTextFile(fifo, 1) == "name: a\n");
+  ::close(keeper);
 }
 
 TEST_CASE("text file: a NUL byte, a directory, a missing file") {
