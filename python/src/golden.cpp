@@ -26,6 +26,29 @@ py::list objectsOf(const std::vector<T>& results) {
 
 namespace {
 
+// A result's field as a getter: its value, its text (text()), its path (pathText()), its texts, or
+// the name of its choice. `cls` names the Python class (Registered::require).
+template <class T, class V>
+auto fieldOf(V T::*member, const char* cls) {
+  return [member, cls](const Object<T>& o) { return valueOf(o, cls).*member; };
+}
+template <class T>
+auto textOf(std::string T::*member, const char* cls) {
+  return [member, cls](const Object<T>& o) { return text(valueOf(o, cls).*member); };
+}
+template <class T>
+auto pathOf(std::string T::*member, const char* cls) {
+  return [member, cls](const Object<T>& o) { return pathText(valueOf(o, cls).*member); };
+}
+template <class T>
+auto textsOf(std::vector<std::string> T::*member, const char* cls) {
+  return [member, cls](const Object<T>& o) { return textList(valueOf(o, cls).*member); };
+}
+template <class T>
+auto nameOf(golden::Outcome T::*member, const char* cls) {
+  return [member, cls](const Object<T>& o) { return std::string(name(valueOf(o, cls).*member)); };
+}
+
 // shard= as "K/N" (the command line's --shard) or a (K, N) pair; None: all. The range is the C++
 // call's to check.
 std::optional<golden::Shard> shardOf(const py::object& shard) {
@@ -53,158 +76,62 @@ std::optional<golden::Shard> shardOf(const py::object& shard) {
 void bindGolden(py::module_& module) {
   py::class_<Object<golden::FrameCheck>>(module, "FrameCheck",
                                          "One frame's result of a golden check (particles.golden.check).")
-      .def_property_readonly(
-          "name",
-          [](const Object<golden::FrameCheck>& o) {
-            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
-            return text(c.name);
-          },
-          "The frame's name in the manifest (cloth_t2.5).")
-      .def_property_readonly(
-          "scenario",
-          [](const Object<golden::FrameCheck>& o) {
-            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
-            return text(c.scenario);
-          },
-          "Its scenario, as the manifest writes it.")
-      .def_property_readonly(
-          "time",
-          [](const Object<golden::FrameCheck>& o) {
-            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
-            return text(c.time);
-          },
-          "Its time, s, as the manifest writes it.")
-      .def_property_readonly(
-          "control", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").control; },
-          "An `expect: differ` control: passes when it differs.")
-      .def_property_readonly(
-          "outcome",
-          [](const Object<golden::FrameCheck>& o) {
-            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
-            return std::string(name(c.outcome));
-          },
-          "'passed', 'failed', 'missing' or 'error'.")
-      .def_property_readonly(
-          "message",
-          [](const Object<golden::FrameCheck>& o) {
-            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
-            return text(c.message);
-          },
-          "Why, in one line; '' when it passed.")
-      .def_property_readonly(
-          "differing", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").differing; },
-          "Pixels beyond the threshold.")
-      .def_property_readonly(
-          "pixels", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").pixels; },
-          "Pixels compared: width × height.")
-      .def_property_readonly(
-          "largest", [](const Object<golden::FrameCheck>& o) { return valueOf(o, "FrameCheck").largest; },
-          "The largest channel difference, 0 to 255.")
-      .def_property_readonly(
-          "actual",
-          [](const Object<golden::FrameCheck>& o) {
-            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
-            return pathText(c.actual);
-          },
-          "The frame drawn, relative to the report folder ('' when not kept).")
-      .def_property_readonly(
-          "expected",
-          [](const Object<golden::FrameCheck>& o) {
-            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
-            return pathText(c.expected);
-          },
-          "The reference, as kept in the report folder.")
-      .def_property_readonly(
-          "diff",
-          [](const Object<golden::FrameCheck>& o) {
-            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
-            return pathText(c.diff);
-          },
-          "The difference picture, as kept in the report folder.")
-      .def_property_readonly(
-          "reproduce",
-          [](const Object<golden::FrameCheck>& o) {
-            const golden::FrameCheck& c = valueOf(o, "FrameCheck");
-            return textList(c.reproduce);
-          },
-          "Shell commands that reproduce the result.")
+      .def_property_readonly("name", textOf(&golden::FrameCheck::name, "FrameCheck"),
+                             "The frame's name in the manifest (cloth_t2.5).")
+      .def_property_readonly("scenario", textOf(&golden::FrameCheck::scenario, "FrameCheck"),
+                             "Its scenario, as the manifest writes it.")
+      .def_property_readonly("time", textOf(&golden::FrameCheck::time, "FrameCheck"),
+                             "Its time, s, as the manifest writes it.")
+      .def_property_readonly("control", fieldOf(&golden::FrameCheck::control, "FrameCheck"),
+                             "An `expect: differ` control: passes when it differs.")
+      .def_property_readonly("outcome", nameOf(&golden::FrameCheck::outcome, "FrameCheck"),
+                             "'passed', 'failed', 'missing' or 'error'.")
+      .def_property_readonly("message", textOf(&golden::FrameCheck::message, "FrameCheck"),
+                             "Why, in one line; '' when it passed.")
+      .def_property_readonly("differing", fieldOf(&golden::FrameCheck::differing, "FrameCheck"),
+                             "Pixels beyond the threshold.")
+      .def_property_readonly("pixels", fieldOf(&golden::FrameCheck::pixels, "FrameCheck"),
+                             "Pixels compared: width × height.")
+      .def_property_readonly("largest", fieldOf(&golden::FrameCheck::largest, "FrameCheck"),
+                             "The largest channel difference, 0 to 255.")
+      .def_property_readonly("actual", pathOf(&golden::FrameCheck::actual, "FrameCheck"),
+                             "The frame drawn, relative to the report folder ('' when not kept).")
+      .def_property_readonly("expected", pathOf(&golden::FrameCheck::expected, "FrameCheck"),
+                             "The reference, as kept in the report folder.")
+      .def_property_readonly("diff", pathOf(&golden::FrameCheck::diff, "FrameCheck"),
+                             "The difference picture, as kept in the report folder.")
+      .def_property_readonly("reproduce", textsOf(&golden::FrameCheck::reproduce, "FrameCheck"),
+                             "Shell commands that reproduce the result.")
       .def("__repr__", [](const Object<golden::FrameCheck>& o) {
         const golden::FrameCheck& f = valueOf(o, "FrameCheck");
         return text("<FrameCheck " + f.name + ": " + std::string(name(f.outcome)) + ">");
       });
   py::class_<Object<golden::StateCheck>>(module, "StateCheck",
                                          "One state's result of a golden check (particles.golden.check).")
-      .def_property_readonly(
-          "name",
-          [](const Object<golden::StateCheck>& o) {
-            const golden::StateCheck& c = valueOf(o, "StateCheck");
-            return text(c.name);
-          },
-          "The state's name in the manifest.")
-      .def_property_readonly(
-          "scenario",
-          [](const Object<golden::StateCheck>& o) {
-            const golden::StateCheck& c = valueOf(o, "StateCheck");
-            return text(c.scenario);
-          },
-          "Its scenario, as the manifest writes it.")
-      .def_property_readonly(
-          "times",
-          [](const Object<golden::StateCheck>& o) {
-            const golden::StateCheck& c = valueOf(o, "StateCheck");
-            return textList(c.times);
-          },
-          "Its times, as the manifest writes them.")
-      .def_property_readonly(
-          "outcome",
-          [](const Object<golden::StateCheck>& o) {
-            const golden::StateCheck& c = valueOf(o, "StateCheck");
-            return std::string(name(c.outcome));
-          },
-          "'passed', 'failed', 'missing' or 'error'.")
-      .def_property_readonly(
-          "message",
-          [](const Object<golden::StateCheck>& o) {
-            const golden::StateCheck& c = valueOf(o, "StateCheck");
-            return text(c.message);
-          },
-          "Why, in one line; '' when it passed.")
-      .def_property_readonly(
-          "values", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").values; },
-          "Values compared.")
-      .def_property_readonly(
-          "point",
-          [](const Object<golden::StateCheck>& o) {
-            const golden::StateCheck& c = valueOf(o, "StateCheck");
-            return text(c.point);
-          },
-          "The first value beyond its tolerance (else the largest): its point.")
-      .def_property_readonly(
-          "quantity",
-          [](const Object<golden::StateCheck>& o) {
-            const golden::StateCheck& c = valueOf(o, "StateCheck");
-            return text(c.quantity);
-          },
-          "... its quantity: x, y, vx, vy, angle or omega.")
-      .def_property_readonly(
-          "expected", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").expected; },
-          "... the reference's value.")
-      .def_property_readonly(
-          "actual", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").actual; },
-          "... this run's value.")
-      .def_property_readonly(
-          "difference", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").difference; },
-          "... actual − expected.")
-      .def_property_readonly(
-          "tolerance", [](const Object<golden::StateCheck>& o) { return valueOf(o, "StateCheck").tolerance; },
-          "... the tolerance it was held to.")
-      .def_property_readonly(
-          "reproduce",
-          [](const Object<golden::StateCheck>& o) {
-            const golden::StateCheck& c = valueOf(o, "StateCheck");
-            return textList(c.reproduce);
-          },
-          "Shell commands that reproduce the result.")
+      .def_property_readonly("name", textOf(&golden::StateCheck::name, "StateCheck"),
+                             "The state's name in the manifest.")
+      .def_property_readonly("scenario", textOf(&golden::StateCheck::scenario, "StateCheck"),
+                             "Its scenario, as the manifest writes it.")
+      .def_property_readonly("times", textsOf(&golden::StateCheck::times, "StateCheck"),
+                             "Its times, as the manifest writes them.")
+      .def_property_readonly("outcome", nameOf(&golden::StateCheck::outcome, "StateCheck"),
+                             "'passed', 'failed', 'missing' or 'error'.")
+      .def_property_readonly("message", textOf(&golden::StateCheck::message, "StateCheck"),
+                             "Why, in one line; '' when it passed.")
+      .def_property_readonly("values", fieldOf(&golden::StateCheck::values, "StateCheck"), "Values compared.")
+      .def_property_readonly("point", textOf(&golden::StateCheck::point, "StateCheck"),
+                             "The first value beyond its tolerance (else the largest): its point.")
+      .def_property_readonly("quantity", textOf(&golden::StateCheck::quantity, "StateCheck"),
+                             "... its quantity: x, y, vx, vy, angle or omega.")
+      .def_property_readonly("expected", fieldOf(&golden::StateCheck::expected, "StateCheck"),
+                             "... the reference's value.")
+      .def_property_readonly("actual", fieldOf(&golden::StateCheck::actual, "StateCheck"), "... this run's value.")
+      .def_property_readonly("difference", fieldOf(&golden::StateCheck::difference, "StateCheck"),
+                             "... actual − expected.")
+      .def_property_readonly("tolerance", fieldOf(&golden::StateCheck::tolerance, "StateCheck"),
+                             "... the tolerance it was held to.")
+      .def_property_readonly("reproduce", textsOf(&golden::StateCheck::reproduce, "StateCheck"),
+                             "Shell commands that reproduce the result.")
       .def("__repr__", [](const Object<golden::StateCheck>& o) {
         const golden::StateCheck& s = valueOf(o, "StateCheck");
         return text("<StateCheck " + s.name + ": " + std::string(name(s.outcome)) + ">");
@@ -216,35 +143,18 @@ void bindGolden(py::module_& module) {
       .def_property_readonly(
           "states", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").states); },
           "Each state's StateCheck, in manifest order.")
-      .def_property_readonly(
-          "passed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").passed; },
-          "How many checks passed.")
-      .def_property_readonly(
-          "failed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").failed; },
-          "How many failed.")
-      .def_property_readonly(
-          "missing", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").missing; },
-          "How many have no reference yet.")
-      .def_property_readonly(
-          "errors", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").errors; },
-          "How many could not be checked.")
-      .def_property_readonly(
-          "bad_reference", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").badReference; },
-          "A reference was not a usable file.")
-      .def_property_readonly(
-          "html",
-          [](const Object<golden::Report>& o) {
-            const golden::Report& c = valueOf(o, "GoldenReport");
-            return pathText(c.html);
-          },
-          "report.html's path: expected, actual and diff of each failure.")
-      .def_property_readonly(
-          "summary",
-          [](const Object<golden::Report>& o) {
-            const golden::Report& c = valueOf(o, "GoldenReport");
-            return text(c.summary);
-          },
-          "The line `particles golden check` prints last.")
+      .def_property_readonly("passed", fieldOf(&golden::Report::passed, "GoldenReport"), "How many checks passed.")
+      .def_property_readonly("failed", fieldOf(&golden::Report::failed, "GoldenReport"), "How many failed.")
+      .def_property_readonly("missing", fieldOf(&golden::Report::missing, "GoldenReport"),
+                             "How many have no reference yet.")
+      .def_property_readonly("errors", fieldOf(&golden::Report::errors, "GoldenReport"),
+                             "How many could not be checked.")
+      .def_property_readonly("bad_reference", fieldOf(&golden::Report::badReference, "GoldenReport"),
+                             "A reference was not a usable file.")
+      .def_property_readonly("html", pathOf(&golden::Report::html, "GoldenReport"),
+                             "report.html's path: expected, actual and diff of each failure.")
+      .def_property_readonly("summary", textOf(&golden::Report::summary, "GoldenReport"),
+                             "The line `particles golden check` prints last.")
       .def_property_readonly(
           "all_passed", [](const Object<golden::Report>& o) { return valueOf(o, "GoldenReport").allPassed(); },
           "Every check passed.")

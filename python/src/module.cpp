@@ -187,6 +187,22 @@ Scenario& scenarioOf(ScenarioObject& object) {
   return valueOf(object, "Scenario");
 }
 
+// A Scenario getter as a Python one: its value, its text (text()), its path (pathText()), or the
+// name of its choice.
+template <class R>
+auto scenarioValue(R (Scenario::*method)() const) {
+  return [method](const ScenarioObject& o) { return (scenarioOf(o).*method)(); };
+}
+auto scenarioText(std::string (Scenario::*method)() const) {
+  return [method](const ScenarioObject& o) { return text((scenarioOf(o).*method)()); };
+}
+auto scenarioPath(std::string (Scenario::*method)() const) {
+  return [method](const ScenarioObject& o) { return pathText((scenarioOf(o).*method)()); };
+}
+auto scenarioChoice(Integrator (Scenario::*method)() const) {
+  return [method](const ScenarioObject& o) { return std::string(name((scenarioOf(o).*method)())); };
+}
+
 std::string describeScenario(const Scenario& scenario) {
   return "<particles.Scenario '" + scenario.name() + "' from " + scenario.file() + ": " +
          std::string(name(scenario.integrator())) +
@@ -418,83 +434,21 @@ leaves the scenario as it was.)doc")
       .def(
           "__deepcopy__", [](const ScenarioObject& s, const py::handle&) { return ScenarioObject(scenarioOf(s)); },
           "memo"_a)
-      .def(
-          "summary",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return text(s.summary());
-          },
-          "What `particles check` prints for it: one line naming its contents, integrator, dt and duration.")
-      .def_property_readonly(
-          "name",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return text(s.name());
-          },
-          "The scenario's name.")
-      .def_property_readonly(
-          "description",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return text(s.description());
-          },
-          "Its description, or ''.")
-      .def_property_readonly(
-          "file",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return pathText(s.file());
-          },
-          "The path it was loaded from, or from_text's label.")
-      .def_property_readonly(
-          "integrator",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return std::string(name(s.integrator()));
-          },
-          "The integrator, as scenarios name it (rk4, ...).")
-      .def_property_readonly(
-          "dt",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return s.dt();
-          },
-          "The time step, s.")
-      .def_property_readonly(
-          "duration",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return s.duration();
-          },
-          "The simulated seconds `particles run` covers.")
-      .def_property_readonly(
-          "steps",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return s.steps();
-          },
-          "The steps of dt that cover the duration.")
-      .def_property_readonly(
-          "fps",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return s.fps();
-          },
-          "Frames per simulated second when rendered.")
-      .def_property_readonly(
-          "particle_count",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return s.particleCount();
-          },
-          "How many particles it has.")
-      .def_property_readonly(
-          "body_count",
-          [](const ScenarioObject& o) {
-            const Scenario& s = scenarioOf(o);
-            return s.bodyCount();
-          },
-          "How many rigid bodies it has.")
+      .def("summary", scenarioText(&Scenario::summary),
+           "What `particles check` prints for it: one line naming its contents, integrator, dt and duration.")
+      .def_property_readonly("name", scenarioText(&Scenario::name), "The scenario's name.")
+      .def_property_readonly("description", scenarioText(&Scenario::description), "Its description, or ''.")
+      .def_property_readonly("file", scenarioPath(&Scenario::file),
+                             "The path it was loaded from, or from_text's label.")
+      .def_property_readonly("integrator", scenarioChoice(&Scenario::integrator),
+                             "The integrator, as scenarios name it (rk4, ...).")
+      .def_property_readonly("dt", scenarioValue(&Scenario::dt), "The time step, s.")
+      .def_property_readonly("duration", scenarioValue(&Scenario::duration),
+                             "The simulated seconds `particles run` covers.")
+      .def_property_readonly("steps", scenarioValue(&Scenario::steps), "The steps of dt that cover the duration.")
+      .def_property_readonly("fps", scenarioValue(&Scenario::fps), "Frames per simulated second when rendered.")
+      .def_property_readonly("particle_count", scenarioValue(&Scenario::particleCount), "How many particles it has.")
+      .def_property_readonly("body_count", scenarioValue(&Scenario::bodyCount), "How many rigid bodies it has.")
       .def("__repr__", [](const ScenarioObject& o) {
         const Scenario& s = scenarioOf(o);
         return text(describeScenario(s));
