@@ -26,7 +26,8 @@ namespace {
 // editDistance(a, b) when it is below `bound`, else `bound` or more: only the band of cells within
 // bound − 1 of the diagonal can hold a smaller distance, and the rows stop once every cell of one
 // reaches the bound. A name of 2,000 letters against 100,000 short ones is then refused by its
-// length alone, instead of 2,000 × 12 cells for each.
+// length alone, instead of 2,000 × 12 cells for each (bench/README.md, "Measurements behind
+// choices in the source").
 size_t editDistanceBelow(std::string_view a, std::string_view b, size_t bound) {
   const size_t longer = std::max(a.size(), b.size()), shorter = std::min(a.size(), b.size());
   if (longer - shorter >= bound) return bound;

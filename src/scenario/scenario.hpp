@@ -35,9 +35,10 @@ struct SceneLimits {
   long long constraints = 1'000'000;   // the constraints section's constraints
   long long endpoints = 16'000'000;    // points the references name, whole grids and lists expanded
   long long entries = 1'000'000;       // entries of the kind sections, YAML aliases expanded
-  // Values, keys and lists in the file (YAML nodes), counted before yaml-cpp builds them (about
-  // 900 bytes each, so a 4 MB list of numbers took 1 GB): 250,000 keep a scenario's tree within
-  // about 200 MiB. A large system is a grid, a few nodes for any number of points.
+  // Values, keys and lists in the file (YAML nodes), counted before yaml-cpp builds them, which
+  // costs hundreds of bytes each: 250,000 keep a scenario's tree within about 200 MiB (bench/
+  // README.md, "Measurements behind choices in the source"). A large system is a grid, a few nodes
+  // for any number of points.
   long long nodes = 250'000;
 };
 // The largest value `--limit` accepts: particle indices are ints.
