@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/syscall.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <charconv>
 #include <chrono>
 #include <cstdlib>
+#include <optional>
 #include <set>
 
 #include "golden/references.hpp"
@@ -77,20 +79,48 @@ std::vector<std::string> earlierReport(const fs::path& folder, std::uintmax_t ma
 // refused, not overwritten. That it holds nothing the command reads is the rule of its files
 // (goldenFiles, and reportFolderHoldsNoInput for what the manifest names). Returns the earlier
 // report's files and folders, the only things `publish` removes.
-std::vector<std::string> checkReportFolder(const fs::path& folder, std::uintmax_t maxInputMiB,
-                                           const std::string& folderName) {
+namespace {
+
+// The folder's identity (device and inode), or nothing where there is none.
+std::optional<std::pair<dev_t, ino_t>> folderIdentity(const fs::path& folder) {
+  struct stat st {};
+  if (::lstat(folder.c_str(), &st) != 0) return std::nullopt;
+  return std::pair{st.st_dev, st.st_ino};
+}
+
+std::vector<std::string> checkReportFolderOnce(const fs::path& folder, std::uintmax_t maxInputMiB,
+                                               const std::string& folderName) {
   std::error_code ec;
   const fs::file_status st = fs::symlink_status(folder, ec);
   if (st.type() == fs::file_type::not_found) return {};
   const std::string shown = input::printableText(folder.string());
   if (st.type() == fs::file_type::symlink) {
-    throw ReportFolderError(fmt::format("{} {}: a symbolic link; give the folder itself (it is replaced whole)", folderName, shown));
+    throw ReportFolderError(
+        fmt::format("{} {}: a symbolic link; give the folder itself (it is replaced whole)", folderName, shown));
   }
   if (st.type() != fs::file_type::directory) {
     throw ReportFolderError(fmt::format("{} {}: not a folder; the report is a folder", folderName, shown));
   }
   if (fs::is_empty(folder, ec)) return {};
   return earlierReport(folder, maxInputMiB, folderName);
+}
+
+}  // namespace
+
+std::vector<std::string> checkReportFolder(const fs::path& folder, std::uintmax_t maxInputMiB,
+                                           const std::string& folderName) {
+  // Another check publishing into the same folder meanwhile swaps it whole (publish): a look that
+  // began on one folder and ended on another, or on none, read two reports, or neither, and says
+  // nothing about either. It is taken again, on the folder as it is then; a few times at most.
+  for (int attempt = 0;; ++attempt) {
+    const auto before = folderIdentity(folder);
+    try {
+      std::vector<std::string> earlier = checkReportFolderOnce(folder, maxInputMiB, folderName);
+      if (folderIdentity(folder) == before || attempt == 4) return earlier;
+    } catch (const ReportFolderError&) {
+      if (folderIdentity(folder) == before || attempt == 4) throw;
+    }
+  }
 }
 
 
