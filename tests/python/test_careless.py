@@ -106,7 +106,7 @@ def test_write_racing_abort_gets_a_message_that_names_no_internal_class(tmp_path
 
     def writer():
         try:
-            for _ in range(200):
+            for _ in range(1_000_000):  # until abort() stops it
                 video.write(frame)
         except particles.Error as e:
             errors.append(str(e))
