@@ -21,7 +21,6 @@ namespace particles {
 
 struct VideoWriter::Impl {
   std::string path;
-  const render::OutputFormat* format = nullptr;
   render::FrameWriterOptions options;  // the size is the first frame's
   std::unique_ptr<render::FrameWriter> writer;
   bool finished = false;
@@ -105,7 +104,6 @@ VideoWriter::VideoWriter(const std::string& path, const VideoSettings& settings)
     render::setLibavVerbose(settings.verbose);
     auto impl = std::make_unique<Impl>();
     impl->path = path;
-    impl->format = &format;
     impl->options.video.fps = fps;
     if (settings.crf != -1) impl->options.video.crf = settings.crf;
     impl->options.video.preset = settings.preset;
