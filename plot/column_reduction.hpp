@@ -9,7 +9,7 @@
 // Internal to plot/.
 //
 // Why: cairo rasterises a stroke as one polygon, at a cost that grows with its edges times the rows
-// they cross: 100,000 points alternating ±1 took seconds to draw into a PNG (issue 26), and a small
+// they cross: 100,000 points alternating ±1 took seconds to draw into a PNG, and a small
 // cost per row once reduced (bench/bench_plot.cpp; bench/README.md, "Figures of long runs").
 
 #include <cstddef>

@@ -104,13 +104,13 @@ AxisTicks linearTicks(double dataLo, double dataHi, int targetCount, bool widenT
       hi = 1;
     } else {
       // Stopping at the largest double: a constant near ±1.8e308 gave a non-finite end and no
-      // pixel for its points (issue 40: the marked-series test counts them).
+      // pixel for its points (tests/test_plot_figure.cpp's marked series count them).
       lo = std::max(c - 0.1 * std::fabs(c), std::numeric_limits<double>::lowest());
       hi = std::min(c + 0.1 * std::fabs(c), std::numeric_limits<double>::max());
     }
   }
   // Nor is a span below kMinLinearSpan: it is widened to that around its middle, so that the step,
-  // its power of ten and the ticks are normal doubles (issue 26: 5e-324 and -5e-324 once gave a
+  // its power of ten and the ticks are normal doubles (5e-324 and -5e-324 once gave a
   // zero step, an axis from 0 to 0 and non-finite pixels).
   if (hi - lo < kMinLinearSpan) {
     const double c = 0.5 * lo + 0.5 * hi;

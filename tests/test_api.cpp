@@ -1,4 +1,4 @@
-// The public C++ API (include/particles/, issue 41): what a program that embeds particles sees.
+// The public C++ API (include/particles/): what a program that embeds particles sees.
 // Every case calls the public headers alone, as a user's program would; reading a PNG back to
 // compare it uses the renderer's reader.
 #include <doctest/doctest.h>
@@ -209,7 +209,7 @@ TEST_CASE("api: positions and velocities are views of the state itself, which st
   CHECK(chain.constraintError() >= 0.0);
 }
 
-// Issue 41, "one truth": the API steps the command line's way. Each scenario for a short while,
+// One truth: the API steps the command line's way. Each scenario for a short while,
 // on 1 and 2 threads, against `particles run --trace`'s last rows, every number to the bit.
 TEST_CASE("api: stepping gives the bits of particles run --trace, for the demos and the stiff cloth, on 1 and 2 threads") {
   const std::pair<const char*, const char*> runs[] = {
@@ -297,7 +297,7 @@ TEST_CASE("api: version() is the headers' version") {
                                                       std::to_string(PARTICLES_VERSION_PATCH));
 }
 
-// Issue 41, "one truth": a frame drawn through the API is the frame `particles render --at` writes,
+// One truth: a frame drawn through the API is the frame `particles render --at` writes,
 // byte for byte, for the three demos at a time each, in the golden checks' size.
 TEST_CASE("api: render() draws the pixels of particles render --at, and Image::savePng writes them") {
   const std::pair<const char*, const char*> frames[] = {{"cloth", "1.5"}, {"soft_body", "12"}, {"rigid_chain", "1"}};
@@ -385,7 +385,7 @@ TEST_CASE("api: defaultThreads() reads PARTICLES_THREADS as the command line doe
   if (before) ::setenv("PARTICLES_THREADS", saved.c_str(), 1);
 }
 
-// Issue 41, "move the mouse target": a mouse taken over is the scripted mouse held at that target.
+// Moving the mouse target: a mouse taken over is the scripted mouse held at that target.
 TEST_CASE("api: setMouseTarget holds the scenario's mouse at a target, the bits of the same script") {
   particles::Scenario cloth = particles::Scenario::load(scenarioPath("cloth"));
   particles::Simulation moved(cloth);
@@ -408,7 +408,7 @@ TEST_CASE("api: setMouseTarget holds the scenario's mouse at a target, the bits 
   CHECK_THROWS_WITH_AS(lone.releaseMouse(), doctest::Contains("has none"), particles::ArgumentError);
 }
 
-// Issue 41: golden::check is `particles golden check`: the same function (golden/check_report.hpp).
+// golden::check is `particles golden check`: the same function (golden/check_report.hpp).
 TEST_CASE("api: golden::check checks a manifest into its report, and refuses bad options and folders") {
   Scratch scratch;
   const std::string manifest = (std::filesystem::path(kSource) / "golden" / "golden.yaml").string();

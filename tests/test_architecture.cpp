@@ -110,7 +110,7 @@ TEST_CASE("the core uses no files, YAML, GL, images or video") {
   CHECK(checked > 20);
 }
 
-// The public headers are all a user's program includes (issue 41): they include each other and the
+// The public headers are all a user's program includes: they include each other and the
 // standard library, never a room's header, Eigen, GL, libav or yaml-cpp, so that the installed
 // package is all a consumer needs.
 TEST_CASE("the public headers include only each other and the standard library") {
@@ -126,7 +126,7 @@ TEST_CASE("the public headers include only each other and the standard library")
   CHECK(checked >= 8);
 }
 
-// The Python module is built on the public API alone, as any user's program (issue 41): its files
+// The Python module is built on the public API alone, as any user's program: its files
 // include the public headers, pybind11, the standard library (with libstdc++'s cxxabi.h, for
 // abi::__forced_unwind) and each other, never a room.
 TEST_CASE("the Python module includes only the public headers, pybind11 and the standard library") {

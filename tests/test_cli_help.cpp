@@ -1,4 +1,4 @@
-// The numbers that `particles COMMAND --help` states are the code's (issue 30): a help text once
+// The numbers that `particles COMMAND --help` states are the code's: a help text once
 // said tiles were drawn from 5000 shapes when the renderer switched at 20000. Each number is read
 // back from the help of a freshly built command line and compared with the constant it stands for.
 #include <doctest/doctest.h>

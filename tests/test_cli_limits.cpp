@@ -1,10 +1,9 @@
-// Issue 26, rows 10, 11, 12 and 16: inputs and outputs too large for memory, and damaged video
-// segments. Memory that runs out is an error with exit 3 ("out of memory: …"), never a crash and
-// never exit 1 ("simulation failed", "frames differ"); what does not need memory does not take it
-// (compare's sizes from the PNG headers, concat's segments one at a time); concat joins only what
-// decodes whole. The runs are bounded as tests/test_hostile_input.cpp's are (an address-space cap
-// and a wall-clock guard); under AddressSanitizer there is no cap, and the cases that need one are
-// skipped.
+// Inputs and outputs too large for memory, and damaged video segments. Memory that runs out is an
+// error with exit 3 ("out of memory: …"), never a crash and never exit 1 ("simulation failed",
+// "frames differ"); what does not need memory does not take it (compare's sizes from the PNG
+// headers, concat's segments one at a time); concat joins only what decodes whole. The runs are
+// bounded as tests/test_hostile_input.cpp's are (an address-space cap and a wall-clock guard);
+// under AddressSanitizer there is no cap, and the cases that need one are skipped.
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 #include <zlib.h>
@@ -84,7 +83,7 @@ void checkOutOfMemory(const Result& r) {
 
 }  // namespace
 
-TEST_CASE("issue 26 row 16: a 16384² render under a 2 GiB cap ends in exit 3 (or 2), not SIGSEGV, on every backend") {
+TEST_CASE("a 16384² render under a 2 GiB cap ends in exit 3 (or 2), not SIGSEGV, on every backend") {
   if (kSanitized) return particles::test::skipTest("no address-space cap under ASan: the frame would be drawn");
   Scratch s;
   s.write("s.yaml", kSwingScenario);
@@ -109,7 +108,7 @@ TEST_CASE("issue 26 row 16: a 16384² render under a 2 GiB cap ends in exit 3 (o
   }
 }
 
-TEST_CASE("issue 26 row 16 on the cpu path: a 16384² frame under a 1 GiB cap ends in exit 3, naming the frame") {
+TEST_CASE("on the cpu path, a 16384² frame under a 1 GiB cap ends in exit 3, naming the frame") {
   if (kSanitized) return particles::test::skipTest("no address-space cap under ASan: the frame would be drawn");
   Scratch s;
   s.write("s.yaml", kSwingScenario);
@@ -126,7 +125,7 @@ TEST_CASE("issue 26 row 16 on the cpu path: a 16384² frame under a 1 GiB cap en
   }
 }
 
-TEST_CASE("issue 26 row 16: a frame over one of the GL's size limits is refused naming the limit") {
+TEST_CASE("a frame over one of the GL's size limits is refused naming the limit") {
   // llvmpipe's limits are the renderer's own largest side (16384), which the options refuse first,
   // so the check is seen here with smaller ones, as a GPU's may be.
   const std::vector<particles::render::GlSizeLimit> limits = {{"GL_MAX_VIEWPORT_DIMS", 16384, 16384},
@@ -141,7 +140,7 @@ TEST_CASE("issue 26 row 16: a frame over one of the GL's size limits is refused 
         "a 16x16385 frame is larger than this OpenGL draws: its GL_MAX_VIEWPORT_DIMS is 16384x16384 pixels");
 }
 
-TEST_CASE("issue 26 row 12: compare tells sizes apart from the PNG headers, and running out of memory is exit 3") {
+TEST_CASE("compare tells sizes apart from the PNG headers, and running out of memory is exit 3") {
   Scratch s;
   writeGreyPng(s.dir / "big.png", 16384, 16384, 128);
   writeGreyPng(s.dir / "small.png", 16, 16, 128);
@@ -162,7 +161,7 @@ TEST_CASE("issue 26 row 12: compare tells sizes apart from the PNG headers, and 
   }
 }
 
-TEST_CASE("issue 26 row 12: a simulation that runs out of memory is exit 3, not 'simulation failed'") {
+TEST_CASE("a simulation that runs out of memory is exit 3, not 'simulation failed'") {
   if (kSanitized) return particles::test::skipTest("no address-space cap under AddressSanitizer");
   Scratch s;
   // A million particles and two million springs: ~580 MiB to run, over a 640 MiB cap with the
@@ -180,7 +179,7 @@ TEST_CASE("issue 26 row 12: a simulation that runs out of memory is exit 3, not 
   checkOutOfMemory(r);
 }
 
-TEST_CASE("issue 26 row 10: concat refuses a segment that does not decode whole, naming it, and writes nothing") {
+TEST_CASE("concat refuses a segment that does not decode whole, naming it, and writes nothing") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   REQUIRE(s.run("render s.yaml -o a.mp4 --frames 0:9 --size 64x48 --quiet").code == 0);
@@ -207,7 +206,7 @@ TEST_CASE("issue 26 row 10: concat refuses a segment that does not decode whole,
   }
 }
 
-TEST_CASE("issue 26 row 11: concat opens one segment at a time: 2000 segments join in bounded memory") {
+TEST_CASE("concat opens one segment at a time: 2000 segments join in bounded memory") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   REQUIRE(s.run("render s.yaml -o part.mp4 --frames 0:2 --size 64x48 --quiet").code == 0);

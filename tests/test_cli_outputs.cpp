@@ -1,5 +1,5 @@
-// Issue 26, through the real program: an output is never one of the command's inputs nor another
-// of its outputs (src/output/distinct_files.hpp), refused with exit 2 before any work and with every
+// Through the real program: an output is never one of the command's inputs nor another of its
+// outputs (src/output/distinct_files.hpp), refused with exit 2 before any work and with every
 // file left as it was; options whose outputs cannot be written (a figure's extension, a --record
 // folder, --diff not a PNG) refused up front; outputs at a FIFO that no process reads refused at
 // once instead of hanging in open(); and SIGTERM ending a render whose writes block. Every run is
@@ -68,7 +68,7 @@ std::string sameFile(const std::string& a, const std::string& b, const char* wha
 
 }  // namespace
 
-TEST_CASE("issue 26 row 8: --record is never another output or the scenario") {
+TEST_CASE("a --record file is never another output or the scenario") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   s.write("x.csv", "a previous run's stats\n");
@@ -97,7 +97,7 @@ TEST_CASE("issue 26 row 8: --record is never another output or the scenario") {
          });
 }
 
-TEST_CASE("issue 26 row 9: concat -o never names a segment, by its name, through .. or a link") {
+TEST_CASE("concat -o never names a segment, by its name, through .. or a link") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   REQUIRE(s.run("render s.yaml -o a0.mp4 --frames 0:5 --quiet").code == 0);
@@ -116,7 +116,7 @@ TEST_CASE("issue 26 row 9: concat -o never names a segment, by its name, through
   CHECK_MESSAGE(twice.code == 0, twice.err);
 }
 
-TEST_CASE("issue 26 row 13: compare --diff never replaces the frames it compares") {
+TEST_CASE("compare --diff never replaces the frames it compares") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   REQUIRE(s.run("render s.yaml -o a.png --at 0.2 --quiet").code == 0);
@@ -130,7 +130,7 @@ TEST_CASE("issue 26 row 13: compare --diff never replaces the frames it compares
       });
 }
 
-TEST_CASE("issue 26 row 14: gather's outputs are never its job table, a record or each other, plot's never its CSV") {
+TEST_CASE("gather's outputs are never its job table, a record or each other, plot's never its CSV") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   s.write("sweep.yaml",
@@ -165,7 +165,7 @@ std::string inFolder(const std::string& folder, const std::string& input) {
          "' is in it; an output never replaces an input\n";
 }
 
-TEST_CASE("issue 40: golden's report folder never holds what it reads, a sweep never writes over its inputs") {
+TEST_CASE("golden's report folder never holds what it reads, a sweep never writes over its inputs") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   s.write("m.yaml", "references: report/refs\nstates:\n  - {scenario: s.yaml, times: [0.1]}\n");
@@ -196,7 +196,7 @@ TEST_CASE("issue 40: golden's report folder never holds what it reads, a sweep n
                });
 }
 
-TEST_CASE("issue 26: a figure's extension, a --record folder and --diff's format are refused before any work") {
+TEST_CASE("a figure's extension, a --record folder and --diff's format are refused before any work") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   REQUIRE(s.run("run s.yaml --quiet --duration 0.2 --stats good.csv").code == 0);
@@ -225,7 +225,7 @@ TEST_CASE("issue 26: a figure's extension, a --record folder and --diff's format
          });
 }
 
-TEST_CASE("issue 26 row 15: an output at a FIFO nobody reads is refused at once, and stays a FIFO") {
+TEST_CASE("an output at a FIFO nobody reads is refused at once, and stays a FIFO") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   REQUIRE(s.run("run s.yaml --quiet --duration 0.2 --stats good.csv").code == 0);
@@ -246,7 +246,7 @@ TEST_CASE("issue 26 row 15: an output at a FIFO nobody reads is refused at once,
       {"run s.yaml --quiet --stats k.csv", 3, "error: cannot write k.csv: it is a FIFO and no process is reading it\n"},
       {"plot good.csv -o k.svg --quiet", 3, "error: cannot write k.svg: it is a FIFO and no process is reading it\n"},
       {"sweep sweep.yaml -o out --emit parallel --quiet", 3,
-       // The sweep's own folder: a FIFO there is refused whether or not someone reads it (issue 39).
+       // The sweep's own folder: a FIFO there is refused whether or not someone reads it.
        "error: cannot write " + (s.dir / "out/jobs.csv").string() + ": it is a FIFO; a file of " +
            (s.dir / "out").string() + " is a regular file\n"},
       {"run s.yaml --quiet --record record.txt", 2,
@@ -279,7 +279,7 @@ TEST_CASE("issue 26 row 15: an output at a FIFO nobody reads is refused at once,
 // A render writing --trace into a FIFO whose reader holds it open but never reads: once the pipe
 // is full every write waits, and the old program, whose handler only set a flag that the blocked
 // frame loop never saw again, could be stopped by SIGKILL alone.
-TEST_CASE("issue 26 row 15: SIGTERM ends a render whose output blocks") {
+TEST_CASE("SIGTERM ends a render whose output blocks") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   const fs::path fifo = s.dir / "trace.csv";

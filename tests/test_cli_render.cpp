@@ -59,7 +59,7 @@ int x264Threads(const std::string& mp4) {
 
 }  // namespace
 
-// Issue 42: a thread count the user gives caps x264; without one x264 picks its own (about 1.5 per
+// A thread count the user gives caps x264; without one x264 picks its own (about 1.5 per
 // CPU, at least 1), which encodes faster than one per CPU.
 TEST_CASE("cli render: --threads and PARTICLES_THREADS cap x264's threads, without them x264 chooses") {
   Scratch s;

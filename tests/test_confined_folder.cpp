@@ -1,4 +1,4 @@
-// The rule of issue 39 (output/confined_folder.hpp): every file a command writes, replaces or
+// The confined-folder rule (output/confined_folder.hpp): every file a command writes, replaces or
 // removes in a folder it owns lies beneath that folder once resolved. Each case puts a decoy outside
 // the folder and checks it untouched.
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-// Results do not depend on the thread count (issue 28; src/core/worker_pool.hpp, docs/architecture.md,
+// Results do not depend on the thread count (src/core/worker_pool.hpp, docs/architecture.md,
 // "Threads"): the state vector, and what the program reports from it, are the same bits on 1, 2, 3,
 // 4 and 8 threads. The three demos and the stiff cloth through their scripted drags, and the 100²
 // and 316² cloths (several chunks per pass: 19,800 and 199,080 springs) with every integrator,
@@ -272,7 +272,7 @@ TEST_CASE("determinism: the 100² cloth in contact with a half-plane and a disk,
   if (!kUnderSanitizer) checkCloth(100, Integrator::backwardEuler, 2, colliders);
 }
 
-// 316² (the issue's benchmark scene): 25 chunks per pointwise pass. A step of RK4 costs about
+// 316² (the large cloth of the benchmarks): 25 chunks per pointwise pass. A step of RK4 costs about
 // 10 ms there, one of backward Euler about 100 ms and its first (which lays out the matrix) about
 // 300 ms (bench/README.md), so few steps: backward Euler's later steps are the 100² cloth's.
 // Under ThreadSanitizer loading the scene takes 1 s and backward Euler's first step 11 s: there,

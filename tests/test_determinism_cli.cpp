@@ -1,4 +1,4 @@
-// The program's outputs do not depend on the thread count (issue 28): `particles run --trace
+// The program's outputs do not depend on the thread count: `particles run --trace
 // --stats` writes the same bytes with --threads 1, --threads 3 and PARTICLES_THREADS=2
 // (src/app/thread_count.hpp), and `particles render` the same frames with --threads 1 (everything
 // on the calling thread) and 3 (the simulation, llvmpipe and x264 on 3 threads each). The

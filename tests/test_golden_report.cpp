@@ -673,7 +673,7 @@ TEST_CASE("golden report: results.json nested more than 64 deep is refused where
   std::string objects;
   for (std::size_t i = 0; i < limit; ++i) objects += "{\"a\":";
   CHECK(refusal(t.dir, replaced(valid, "\"version\": 1", "\"version\": " + objects)).starts_with(file + ": line 3, "));
-  // Issue 39: 200,000 levels overflowed the stack (exit 139) when the message printed the value.
+  // 200,000 levels once overflowed the stack (exit 139) when the message printed the value.
   CHECK(refusal(t.dir, replaced(valid, "\"version\": 1", "\"version\": " + nested(200'000))) == past);
   // Brackets in strings are text, an escaped quote does not end its string, an escaped backslash
   // does not escape the quote after it.

@@ -1,4 +1,4 @@
-// `golden` and `job` under hostile folders (issue 39), end to end as a user runs them: references
+// `golden` and `job` under hostile folders, end to end as a user runs them: references
 // that are links out of their folder, job rows and records that point elsewhere, report folders
 // that are not reports, references that are the run's own inputs, shards whose kept files collide,
 // and names with control bytes on the terminal. In every case the decoy outside is checked

@@ -1,4 +1,4 @@
-// One source for every number a user reads (issue 40): a message or help text that writes a named
+// One source for every number a user reads: a message or help text that writes a named
 // limit as a literal ("from 1 to 1000" next to kMaxFps = 1000) goes stale the day the constant
 // changes. Messages format the constant instead. This test reads the rooms' sources, collects the
 // named integer constants (`constexpr … kName = N;`, N ≥ kSmallestLimit) and fails on any string

@@ -1,8 +1,8 @@
 // The output room (src/output/): the rule that an output is never an input or another output
-// (distinct_files.hpp, issue 26); what PendingOutput and OutputFile do with what is at the
+// (distinct_files.hpp); what PendingOutput and OutputFile do with what is at the
 // destination (nothing, a regular file, a device, a FIFO, a link, a directory, a socket), what is on
 // disk while writing, after commit, after discard and after a SIGKILL, and the removal of
-// temporaries left by killed runs. Issue 13: never clobber what is not ours.
+// temporaries left by killed runs. Above all: never clobber what is not ours.
 #include <doctest/doctest.h>
 #include <fcntl.h>
 #include <signal.h>

@@ -1,7 +1,7 @@
-// `particles plot` on numbers at the ends of the doubles and on long files (issue 26, rows 17 and
-// 18), through the real program: valid numbers give a figure (exit 0), text that is not a finite
-// number is bad input naming the file and line (exit 2), never an output failure (exit 3); a long
-// file is drawn within a generous CPU guard (not a speed measurement: that is bench/bench_plot.cpp).
+// `particles plot` on numbers at the ends of the doubles and on long files, through the real
+// program: valid numbers give a figure (exit 0), text that is not a finite number is bad input
+// naming the file and line (exit 2), never an output failure (exit 3); a long file is drawn within
+// a generous CPU guard (not a speed measurement: that is bench/bench_plot.cpp).
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -20,7 +20,7 @@ const std::string kHeaderLine = "t,kinetic,potential,total,constraint_error,pene
 
 TEST_CASE("plot cli: subnormal, huge and single-valued columns give a figure, exit 0, in every format") {
   Scratch s;
-  s.write("denormal.csv", kHeaderLine + "0,5e-324,0,0,0,0\n0.1,-5e-324,0,0,0,0\n");  // the issue's rows
+  s.write("denormal.csv", kHeaderLine + "0,5e-324,0,0,0,0\n0.1,-5e-324,0,0,0,0\n");  // once exit 3
   s.write("huge.csv", kHeaderLine + "0,1e308,1,1,0,0\n0.1,-1e308,1,1,0,0\n");
   s.write("single.csv", kHeaderLine + "0,3,3,3,3,3\n0.1,3,3,3,3,3\n");
   s.write("tiny_log.csv", kHeaderLine + "0,1,1,1,5e-324,1e-323\n0.1,1,1,1,1e-320,5e-324\n");

@@ -207,7 +207,7 @@ TEST_CASE("plot: empty, constant and all-non-positive data make a panel each, wi
 }
 
 // gather's figure: markers on log or linear axes, fitted to a parameter and results that may lie
-// anywhere in the doubles (issue 26 row 17: such ranges were refused as an output failure).
+// anywhere in the doubles (such ranges were once refused as an output failure).
 TEST_CASE("plot: marked series on log and linear axes at the ends of the doubles are drawn") {
   const double tiny = std::numeric_limits<double>::denorm_min(), big = std::numeric_limits<double>::max();
   const std::vector<std::vector<double>> columns = {

@@ -1,6 +1,6 @@
 // Dense lines thinned to at most 4 points per column before cairo strokes them
 // (plot/column_reduction.hpp): sparse lines unchanged, each column's extremes kept, the same pixels.
-// Issue 26 row 18: 100,000 rows alternating ±1 took 8.8 s to draw as a PNG.
+// 100,000 rows alternating ±1 once took 8.8 s to draw as a PNG.
 
 #include <cairo.h>
 #include <doctest/doctest.h>
@@ -152,7 +152,7 @@ TEST_CASE("plot reduction: a dense line keeps each column's first, lowest, highe
 // and 11; sine: 3 and 0.
 TEST_CASE("plot reduction: the reduced line has the full line's pixels, up to anti-aliasing at its edges") {
   const std::vector<std::vector<Point>> lines = {
-      spread(20'000, 25, 275, [](std::size_t i) { return i % 2 ? 20.0 : 180.0; }),  // ±1, the issue's
+      spread(20'000, 25, 275, [](std::size_t i) { return i % 2 ? 20.0 : 180.0; }),  // ±1, once slow
       randomWalk(20'000, 25, 275, 100, 1),
       spread(20'000, 25, 275, [](std::size_t i) { return 100 + 80 * std::sin(5e-4 * double(i)); })};
   for (std::size_t n = 0; n < lines.size(); ++n) {

@@ -351,12 +351,12 @@ TEST_CASE("plot stats figure: values up to the largest double give a figure with
   CHECK(colourAt(penetration[0], penetration[1], 0));
 }
 
-// Issue 26 row 17: rows 5e-324 and -5e-324 were refused as an output failure ("cannot draw figure:
+// Rows 5e-324 and -5e-324 were once refused as an output failure ("cannot draw figure:
 // invalid matrix", exit 3). Valid numbers at any scale are drawn, in every format, and the line is there.
 TEST_CASE("plot stats figure: subnormal, huge, single-valued and tiny log values are drawn in every format") {
   TempDir dir;
   const std::vector<std::string> tables = {
-      "0,5e-324,0,0,0,0\n0.1,-5e-324,0,0,0,0\n",                                         // the issue's rows
+      "0,5e-324,0,0,0,0\n0.1,-5e-324,0,0,0,0\n",                                         // once refused, exit 3
       "0,5e-324,5e-324,5e-324,5e-324,5e-324\n0.1,5e-324,5e-324,5e-324,5e-324,5e-324\n",  // one subnormal value
       "0,1e308,1,1,0,0\n0.1,-1e308,1,1,0,0\n",                                           // huge, in one column
       "0,1e-310,2e-310,3e-310,5e-324,1e-323\n0.1,1e-310,2e-310,3e-310,1e-320,5e-324\n",  // log panels, tiny positives

@@ -85,7 +85,7 @@ TEST_CASE("plot ticks: constant, zero and non-finite ranges fall back to somethi
 
 // Data near the ends of the double range once overflowed the span to infinity, cast it to int
 // (undefined) and looped for ever on a zero step; every finite range must give a few finite ticks.
-// Issue 26 row 17: stats rows 5e-324 and -5e-324 gave a step of 0, an axis from 0 to 0, non-finite
+// Stats rows 5e-324 and -5e-324 once gave a step of 0, an axis from 0 to 0, non-finite
 // pixels and "cannot draw figure: invalid matrix" (exit 3, an output failure, for valid input).
 TEST_CASE("plot ticks: any finite range, down to subnormals and up to the largest double, gives distinct ticks") {
   const double big = std::numeric_limits<double>::max(), tiny = std::numeric_limits<double>::denorm_min();

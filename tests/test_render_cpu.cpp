@@ -1,4 +1,4 @@
-// The cpu path (render/tile_composite.hpp, issue 42): the tile path's records composited by the
+// The cpu path (render/tile_composite.hpp): the tile path's records composited by the
 // program's own threads into the image, without GL. Its pixels against the triangle path's and the
 // GL tile pass's on the demos, its rule for a sample exactly on an edge, the same bytes for every
 // thread count, frame after frame from one renderer against fresh ones, and what `auto` picks.

@@ -1,4 +1,4 @@
-// The resident path (render/resident_program.hpp, issue 42): a scene's springs and particles kept
+// The resident path (render/resident_program.hpp): a scene's springs and particles kept
 // in GL's buffers, positions sent each frame, particles drawn as instances and springs expanded in
 // the vertex shader. System::draw's springs by index against its springs by position; the path's
 // pixels against the triangle path's on the demos (on llvmpipe, as CI draws); the topology sent

@@ -177,8 +177,8 @@ TEST_CASE("scene budget: the key where a total passes its limit, with the number
   }
 }
 
-TEST_CASE("scene budget: the issue's expanding files are refused before the grid is built") {
-  // 736 bytes in the report: a 1000 × 1000 grid and a spring list of 200 whole-grid references
+TEST_CASE("scene budget: small files that expand to millions of springs are refused before the grid is built") {
+  // 736 bytes: a 1000 × 1000 grid and a spring list of 200 whole-grid references
   // (200,000,000 endpoints). Here at the default limits.
   std::string refs;
   for (int i = 0; i < 200; ++i) refs += i ? ", g" : "g";

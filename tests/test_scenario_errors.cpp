@@ -232,8 +232,9 @@ TEST_CASE("scenario error: two documents in one file") {
   expectError("name: t\n---\nname: u\n", 3, "", "more than one YAML document");
 }
 
-// yaml-cpp 0.7's LoadAll loops forever, allocating, on these (yaml-cpp issue 1040): the loader
-// counts documents through the event parser instead. A regression hangs here until CTest's limit.
+// yaml-cpp 0.7's LoadAll loops forever, allocating, on these (https://github.com/jbeder/yaml-cpp/issues/1040): the
+// loader counts documents through the event parser instead. A regression hangs here until CTest's
+// limit.
 TEST_CASE("scenario error: input on which yaml-cpp's LoadAll never returns") {
   for (const char* text : {",", ",t4", "name: t\n,\n", "[a, b],"}) {
     CAPTURE(text);

@@ -1,4 +1,4 @@
-// Sweeps, jobs and gather under hostile input (issue 26): a sweep file may come from someone else
+// Sweeps, jobs and gather under hostile input: a sweep file may come from someone else
 // and a sweep's folder may be touched by anyone, yet no value, path or name is ever executed, a
 // job list is one line per job whatever the values hold, a reserved column cannot be a parameter,
 // counts are checked before anything is built, and every file read is bounded and refused without
@@ -160,7 +160,7 @@ TEST_CASE("sweep: hostile values run as data under GNU parallel and as Slurm arr
 TEST_CASE("sweep: a split render's segments and joins run as jobs by index, the joins under concat.sbatch") {
   Scratch s;
   s.write("swing.yaml", particles::test::kSwingScenario);
-  // options.duration shortens the video: the segments are counted from it (row 4).
+  // options.duration shortens the video: the segments are counted from it.
   s.write("split.yaml",
           "scenarios: [swing.yaml]\ncommand: render\nsplit: 2\n"
           "options: {duration: 0.4, msaa: 1}\n"

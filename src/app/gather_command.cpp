@@ -174,7 +174,7 @@ std::vector<std::string> resultsRow(const GatheredRow& row, const Gathered& gath
 
 // results.csv: a row per job.
 Tally writeResultsTable(const Gathered& gathered, const JobTable& table, const GatherOptions& o) {
-  // The default results.csv is the sweep folder's own file, written beneath it (issue 39); a
+  // The default results.csv is the sweep folder's own file, written beneath it (output/confined_folder.hpp); a
   // file that -o names is the user's choice.
   std::optional<output::ConfinedFolder> sweepFolder;
   if (o.output.empty()) sweepFolder.emplace(o.outDir);

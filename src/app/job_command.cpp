@@ -46,11 +46,12 @@ void addRunJobOptions(CLI::App& command, RunJobOptions& o) {
       "  SLURM_ARRAY_TASK_ID=3 bash cloth-sweep/sweep.sbatch   # what a Slurm array task runs\n");
 }
 
-// Every file the row's command writes lies beneath the sweep's folder (issue 39): its command line
-// names it inside the folder, and it is reached from there without a link that leads out. The job's
-// folder and record are what `particles sweep` made them: a folder, and a record or nothing; a link
-// or a file of another kind there is refused, as is an output that is a link. The folder is anyone's
-// to touch (docs/sweeps.md): a row edited to `--stats /elsewhere/victim.csv` stops here, exit 2.
+// Every file the row's command writes lies beneath the sweep's folder (output/confined_folder.hpp):
+// its command line names it inside the folder, and it is reached from there without a link that
+// leads out. The job's folder and record are what `particles sweep` made them: a folder, and a
+// record or nothing; a link or a file of another kind there is refused, as is an output that is a
+// link. The folder is anyone's to touch (docs/sweeps.md): a row edited to
+// `--stats /elsewhere/victim.csv` stops here, exit 2.
 void requireFilesBeneath(const std::filesystem::path& outDir, const JobTable& table, size_t index, const Cli& cli) {
   const std::string where = fmt::format("{}:{}: job {}", table.file, table.rowLines[index], index);
   const output::ConfinedFolder folder(outDir);

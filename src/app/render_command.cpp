@@ -235,7 +235,7 @@ int renderCommand(const RenderCommandOptions& options) {
   // --threads (or PARTICLES_THREADS) is the whole command's cap: the simulation's (loadScenario),
   // llvmpipe's and the encoder's. Without one, the simulation takes the CPUs and llvmpipe and x264
   // choose their own counts (x264 about 1.5 threads per CPU, its frame threads overlapping), which
-  // encode faster than x264 held to one thread per CPU (bench/README.md, issue 42).
+  // encode faster than x264 held to one thread per CPU (bench/README.md).
   job.threads = threadCountGiven(common.threads) ? threadCountOf(common.threads) : 0;
   job.video.crf = options.crf;
   job.video.keyintSeconds = options.keyint;

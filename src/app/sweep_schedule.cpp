@@ -13,10 +13,11 @@ namespace particles::app {
 namespace {
 
 // Up to this many jobs of one scenario, each job's own scenario is loaded for its estimate. Past it,
-// loading each would delay the first job by the planning time issue 39 removed (a large scenario
-// written point by point takes a noticeable fraction of a second to load: bench/README.md, "Measurements behind choices in the source"), while the estimate
-// only orders the jobs longest first and decides whether one runs alone on every core: with many
-// more jobs than cores, every job of a scenario is taken at the cost of its first one.
+// loading each would delay the first job by seconds of planning (a large scenario written point by
+// point takes a noticeable fraction of a second to load: bench/README.md, "Measurements behind
+// choices in the source"), while the estimate only orders the jobs longest first and decides
+// whether one runs alone on every core: with many more jobs than cores, every job of a scenario is
+// taken at the cost of its first one.
 constexpr size_t kJobsEstimatedEach = 64;
 
 }  // namespace

@@ -1,5 +1,5 @@
 #pragma once
-// The rule for every file a command writes, replaces or removes inside a folder it owns (issue 39):
+// The rule for every file a command writes, replaces or removes inside a folder it owns:
 // the file lies beneath that folder once resolved. No `..` leaves it, and no symbolic link on the
 // way or at the end leads outside it. The golden references folder, a golden report folder, a
 // sweep's output folder and the folders a job writes into are such folders.

@@ -1,5 +1,5 @@
 #pragma once
-// The rule (issue 26): an output is never one of the command's inputs, and no two of its outputs
+// The rule: an output is never one of the command's inputs, and no two of its outputs
 // are one file. Every command checks its files with requireDistinctFiles before any work starts,
 // so a typo or a clever path cannot make `--record` replace `--stats`, `concat -o` a segment it
 // joins, or `compare --diff` the frame it compares.

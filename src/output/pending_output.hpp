@@ -1,5 +1,5 @@
 #pragma once
-// One output file that appears whole or not at all, and never clobbers what is not ours (issue 13).
+// One output file that appears whole or not at all, and never clobbers what is not ours.
 //
 // What the destination is decides how it is written:
 //  - absent or a regular file: a temporary is written and, on commit(), renamed over the

@@ -187,8 +187,9 @@ class ShapeCheck final : public YAML::EventHandler {
 }  // namespace
 
 // The file's one document. yaml-cpp 0.7's LoadAll never returns on some malformed input (a lone
-// ',': the parser reports document after document without reading on, yaml-cpp issue 1040), so the
-// documents are counted through the event parser, two at most, and the first is loaded alone.
+// ',': the parser reports document after document without reading on,
+// https://github.com/jbeder/yaml-cpp/issues/1040), so the documents are counted through the event parser, two at
+// most, and the first is loaded alone.
 NodeLimit NodeLimit::scenario(std::uintmax_t maxNodes) {
   return {maxNodes, fmt::format("more than {} values, keys and lists (YAML nodes) in one scenario; a large system is "
                                 "a grid, not a list of its points, or raise the limit with --limit nodes=N",

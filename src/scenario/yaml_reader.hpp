@@ -21,8 +21,8 @@ namespace particles::scenario::detail {
 
 // The one document of a scenario's text, which must not be empty; throws ScenarioError at the
 // second document or at a syntax error. Works around yaml-cpp 0.7's LoadAll, which never returns
-// on some malformed input (yaml-cpp issue 1040). With `aliases`, sets it to whether the document
-// repeats a node by an alias (`*name`): its tree then holds that node at two key paths.
+// on some malformed input (https://github.com/jbeder/yaml-cpp/issues/1040). With `aliases`, sets it to whether
+// the document repeats a node by an alias (`*name`): its tree then holds that node at two key paths.
 // The document holds at most limit.maxNodes nodes (values, keys and lists; a list's items count
 // one each, an alias one): past that, ScenarioError with limit.tooMany at the node that passes,
 // before yaml-cpp builds any, in the time of reading up to it and in constant memory.

@@ -1,4 +1,4 @@
-// libFuzzer harness for job records (issue 26): the text of OUT/jobs/NNNNNN/record.txt, which
+// libFuzzer harness for job records: the text of OUT/jobs/NNNNNN/record.txt, which
 // `particles gather`, `particles sweep` and every job given --record read, parsed by
 // parseJobRecord; nullopt is the normal outcome for anything that is not a record. The record's
 // command line goes through splitCommandText, and what splits must quote back to the same words

@@ -1,4 +1,4 @@
-// libFuzzer harness for a sweep's job table (issue 26): the text of OUT/jobs.csv, which
+// libFuzzer harness for a sweep's job table: the text of OUT/jobs.csv, which
 // `particles job` and `particles gather` read, through parseJobTable; InputError with the file and
 // line is the normal outcome for a table that is not one the sweep wrote. A table that is accepted
 // must hold what its readers rely on: every row as wide as the header, its folder its own.

@@ -1,7 +1,6 @@
-// libFuzzer harness for the PNG reader (`particles compare`, the golden-frame tests) (issue 13,
-// "hostile input"): bytes in, an RGBA8 image or an OutputError naming libpng's message out. Any
-// other exception escapes and any crash aborts: both are findings. How to run it: README.md,
-// "Fuzzing".
+// libFuzzer harness for the PNG reader (`particles compare`, the golden-frame tests): bytes in, an
+// RGBA8 image or an OutputError naming libpng's message out. Any other exception escapes and any
+// crash aborts: both are findings. How to run it: README.md, "Fuzzing".
 #include <cstddef>
 #include <cstdint>
 #include <span>

@@ -1,4 +1,4 @@
-// libFuzzer harness for a golden report's results.json (issue 39): text in, through
+// libFuzzer harness for a golden report's results.json: text in, through
 // parseResultsJson, as `golden report` and `golden update --from` read it (the folder's own check,
 // kept files behind symbolic links, needs files and is not fuzzed). std::invalid_argument naming
 // the file is the normal outcome for a text that is not a results file. Beside not crashing:

@@ -1,4 +1,4 @@
-// libFuzzer harness for sweep files (issue 26): text in, a SweepSpec or a ScenarioError with its
+// libFuzzer harness for sweep files: text in, a SweepSpec or a ScenarioError with its
 // file, line and key out, as `particles sweep` reads them before planning. Scenario files are not
 // opened here (planning is the program's), so only the sweep file's own reader is fuzzed: its
 // lexical count of flow lists, the event check of list lengths and aliases, and the key readers.

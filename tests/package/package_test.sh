@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The library as a user gets it (issue 41): `cmake --install BUILD --prefix P` into a new folder,
+# The library as a user gets it: `cmake --install BUILD --prefix P` into a new folder,
 # then examples/cpp built against P twice, by its CMake project (find_package(particles)) and by
 # hand with pkg-config, and run on the cloth. Checks on the way:
 #   - libparticles.so's SONAME is libparticles.so.MAJOR and it exports particles:: names alone;

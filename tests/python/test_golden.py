@@ -1,4 +1,4 @@
-"""particles.golden.check: the checks of `particles golden check`, from Python (issue 41)."""
+"""particles.golden.check: the checks of `particles golden check`, from Python."""
 
 import json
 

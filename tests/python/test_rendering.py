@@ -1,5 +1,5 @@
 """Frames and videos from Python: the pixels of `particles render --at`, PNGs, VideoWriter's
-whole-or-nothing files and its checks on frames (issue 41, the Python module)."""
+whole-or-nothing files and its checks on frames, through the Python module."""
 
 import threading
 

@@ -1,5 +1,5 @@
 """particles.Scenario and particles.Simulation: the same bits as `particles run --trace`, the
-numpy views, bad input, threads and Ctrl-C (issue 41, the Python module)."""
+numpy views, bad input, threads and Ctrl-C, through the Python module."""
 
 import _thread
 import ast

@@ -1,4 +1,4 @@
-"""A property test of the Python surface (issue 41, beside tests/fuzz/'s libFuzzer harnesses): random
+"""A property test of the Python surface (beside tests/fuzz/'s libFuzzer harnesses): random
 call sequences, with values good and bad, on Scenario, Simulation, Renderer, frames and
 VideoWriter. Whatever the sequence, a call either works or raises particles.Error (TypeError for
 an argument of a type the signature does not take, KeyboardInterrupt never); the process never
