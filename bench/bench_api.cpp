@@ -1,5 +1,5 @@
-// The public C++ API (include/particles/), the baseline of the Python module's targets (issue 41;
-// bench/python_api.py runs these and the same calls from Python and prints the ratios):
+// The public C++ API (include/particles/), the baseline of the Python module's targets
+// (bench/python_api.py runs these and the same calls from Python and prints the ratios):
 //   - one step of the 25² cloth demo (RK4, dt 0.01) through Simulation::step(), one thread;
 //   - one frame of the cloth at 320×240 through Renderer::render() (msaa 4, the dark theme), the
 //     state left as it is (the clock counts drawing and the copy into the Image, not stepping);

@@ -114,7 +114,7 @@ void BM_SpringForce_Apply(benchmark::State& state) {
 }
 
 // The same evaluation on T threads (System::setThreads; the second argument): wall time, since the
-// work is spread over threads, and the process's CPU time beside it. Issue 28's target: at 316²,
+// work is spread over threads, and the process's CPU time beside it. The target: at 316²,
 // 2 threads ≥ 1.8× one.
 void BM_DerivEval_ClothThreads(benchmark::State& state) {
   derivEval(state, false, int(state.range(1)));

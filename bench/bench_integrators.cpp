@@ -121,7 +121,7 @@ const Case kCases[] = {
     {"cloth_stiff.yaml", 25, Integrator::midpoint, 0.00016}, {"cloth_stiff.yaml", 25, Integrator::rk4, 0.0012},
     {"cloth_stiff.yaml", 25, Integrator::symplecticEuler, 0.00089},
     {"cloth_stiff.yaml", 25, Integrator::verlet, 0.00088}, {"cloth_stiff.yaml", 25, Integrator::backwardEuler, kFrame},
-    // Issue 29: BDF2, the direct solve beside CG, and the 10⁴× stiff cloth (its limits from
+    // BDF2, the direct solve beside CG, and the 10⁴× stiff cloth (its limits from
     // `particles stability scenarios/cloth_very_stiff.yaml`, docs/stability.md).
     {"cloth.yaml", 25, Integrator::bdf2, kFrame},
     {"cloth.yaml", 25, Integrator::backwardEuler, kFrame, ImplicitSolver::cg},
@@ -203,7 +203,7 @@ void BM_ImplicitCrossover(benchmark::State& state, const char* scene, int n, Imp
       double(factorizations) / double(std::max(state.iterations(), benchmark::IterationCount(1)));
 }
 
-// The CG path's preconditioner (issue 29: block-Jacobi or incomplete Cholesky for the large case).
+// The CG path's preconditioner: is block-Jacobi or incomplete Cholesky worth it in the large case?
 // A and b of one backward Euler step of the n² demo cloth at t = 1 s (its rail's and fixed points'
 // rows the identity, no constraint rows: the preconditioners alone), solved to 1e-6 by Eigen's CG
 // with Jacobi or with Eigen's IncompleteCholesky (AMD ordering; its factorisation inside the
@@ -298,7 +298,7 @@ const bool kRegistered = [] {
       }
     }
   }
-  // Issue 28's step targets: the 316² cloth on 1 and 2 threads (System::setThreads), wall time.
+  // The step targets: the 316² cloth on 1 and 2 threads (System::setThreads), wall time.
   for (Integrator integrator : {Integrator::rk4, Integrator::symplecticEuler, Integrator::backwardEuler}) {
     for (const Case& c : kCases) {
       if (c.n != 316 || c.integrator != integrator || c.solve != ImplicitSolver::automatic) continue;

@@ -1,4 +1,4 @@
-// What the worker pool itself costs (src/core/worker_pool.hpp), apart from any physics: issue 42's
+// What the worker pool itself costs (src/core/worker_pool.hpp), apart from any physics: the
 // question of what holds the 316² cloth's step on many threads. A step of that cloth is a handful
 // of passes over its state (25 chunks of kVectorChunk entries, or of kPointChunk points), each one
 // pool.run on T threads (the second argument; the first is the chunk count):

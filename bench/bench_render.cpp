@@ -54,7 +54,7 @@ void BM_Render(benchmark::State& state, const std::string& file, double at) {
 
 // The cloth demo at n × n particles (its springs, 2n(n − 1), grow with it) over the same 1.92 m
 // square, so larger grids are denser in the same frame: 25 (625 particles, the demo), 100 (10,000)
-// and 316 (99,856, issue 14's large scene), drawn at 1 s, 4 samples, 1280×720, through each raster
+// and 316 (99,856, the large scene), drawn at 1 s, 4 samples, 1280×720, through each raster
 // path (render/render_options.hpp), each frame's shapes built (and on the cpu path composited) on a
 // pool of one thread per CPU, as `particles render` does. The counters give the cost per primitive
 // the renderer draws (particles, springs, guides and the cursor).
@@ -135,7 +135,7 @@ void buildMillionTiles(MillionFrame& m, Drawing& frame, render::TileBins& bins) 
 
 // Building one frame of the 1000² cloth for the tile path, without GL: System::draw, the shapes'
 // records (render/frame_mesh.hpp's buildFrameTiles) and their sort into tiles (TileBins::bin), on a
-// pool of the argument's threads (issue 42: 2 threads ≥ 1.8× one).
+// pool of the argument's threads (the target: 2 threads ≥ 1.8× one).
 void BM_BuildFrameMillion(benchmark::State& state) {
   const auto m = millionFrame(int(state.range(0)));
   render::TileBins bins;

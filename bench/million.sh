@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# A million particles (issue 28; bench/README.md, "A million particles"): times
+# A million particles (bench/README.md, "A million particles"): times
 #   particles run    scenarios/cloth_million.yaml                     (1 s: 6000 steps)
 #   particles render scenarios/cloth_million.yaml -o cloth_million.mp4 --particle-radius 0.1px
 #                                                                     (1 s: 60 frames, MP4)
 # with /usr/bin/time, and prints for each its wall time, CPU time (user, system), peak memory
 # (maximum resident set size) and the steps and frames it reports, after the machine's load
-# (`uptime`) and the thread count. Peak memory must stay under 2 GB (issue 28).
+# (`uptime`) and the thread count. Peak memory must stay under 2 GB (the target).
 # Usage: bench/million.sh [BUILD_DIR] [THREADS]     (default build, the default --threads)
 #        OUT=dir bench/million.sh ...               keep the video in dir (default: a temporary one)
 # Each command takes minutes on the 2-core machine; run it with `nice` if others share it.

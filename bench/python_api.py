@@ -1,4 +1,4 @@
-"""The Python module's targets (issue 41), each against the C++ API's own benchmark (bench/bench_api.cpp),
+"""The Python module's targets, each against the C++ API's own benchmark (bench/bench_api.cpp),
 measured on this machine, printed as ratios:
 
   - sim.step() on the 25² cloth: per-step µs in Python ÷ in C++ (target ≤ 1.15), and what the

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# End-to-end `particles render` against the encoder alone (issue: render + encode should approach
-# the encoder's own throughput). Renders scenarios/cloth.yaml (1280×720, 60 fps, 10 s = 600 frames)
+# End-to-end `particles render` against the encoder alone (the target: render + encode should
+# approach the encoder's own throughput). Renders scenarios/cloth.yaml (1280×720, 60 fps, 10 s = 600 frames)
 # once to raw RGBA frames (not timed), then times, REPS times each:
 #   encoder alone:  ffmpeg encoding those raw frames with the same settings as ours
 #                   (libx264, preset medium, crf 18, keyframes every 2 s = 120 frames, yuv420p,

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Everything issue 42 asks of a GPU server, in one run, most important first, within a time budget
+# Everything the large-scene targets ask of a GPU server, in one run, most important first, within a time budget
 # (a lent machine is held for minutes): the core's benchmarks on 1–16 threads, the server table's
 # target rows, the GPU path against the golden references (golden check --gpu), the same bytes on
 # every thread count, golden check through OSMesa, then the table's remaining cells while time is
 # left. Prints as it goes; bench/README.md ("Large scenes on large servers") says how to read it.
 #
 # Usage (from the checkout, whose scenarios and golden/ it uses):
-#   PARTICLES=/opt/pb/particles PARTICLES_BENCH=/opt/pb/particles_bench bench/server_session.sh [BUDGET_S]
+#   PARTICLES=bundle/particles PARTICLES_BENCH=bundle/particles_bench bench/server_session.sh [BUDGET_S]
 # with the programs and their libraries carried as ../shared/device/README.md says (bundle both
 # programs, and libOSMesa.so.8 as a third: the program opens it only when used, so ldd does not
 # list it; unpack its .xz into the libraries' folder). BUDGET_S (default 450): sections that would start later than their share of it are

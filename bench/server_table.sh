@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
-# Issue 42's table of large-scene work on a many-core server (bench/README.md, "Large scenes on
+# The table of large-scene work on a many-core server (bench/README.md, "Large scenes on
 # large servers"): each row's command timed (wall seconds, one run) on 1, 2, 4, 8 and 16 threads
 # (those this machine has), on llvmpipe, and with --gpu where a row renders and a hardware EGL
 # device answers. Prints one line per row and count as it goes, then the table in Markdown.
 #
 # Usage: bench/server_table.sh [BUILD_DIR]                 (default build; its `particles`)
-#        PARTICLES=/opt/pb/particles bench/server_table.sh   a program elsewhere (a server bundle,
+#        PARTICLES=bundle/particles bench/server_table.sh    a program elsewhere (a server bundle,
 #                                                           ../shared/device/README.md)
 #        THREADS="1 16" ROWS="sympl rk4" bench/server_table.sh   some counts, some rows
 # Rows: sympl rk4 beuler million stability render316 render316tiles render316tri render316res
 # render1000 frames1000 demo (all by default). The render rows without --raster draw on `auto`'s
 # path: cpu on llvmpipe, resident with --gpu. frames1000 is drawing-bound (12 frames of the 1000² cloth, 10 steps
-# each): its GPU cell against its 16-thread cell is issue 42's "GPU path ≥ 3× llvmpipe per frame".
+# each): its GPU cell against its 16-thread cell is the target "GPU path ≥ 3× llvmpipe per frame".
 # The scenarios are the checkout's: run it from there, or set SCENARIOS=dir.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Planning a sweep of many values (issue 39 item 7; bench/README.md, "Sweeps": planning): times
+# Planning a sweep of many values (bench/README.md, "Planning a sweep"): times
 #   particles sweep SWEEP.yaml -o OUT --emit parallel --quiet
 # for sweeps of one parameter over N values on two scenes of 3,025 particles, each written here:
 #   grid      scenarios/cloth.yaml at 55 × 55 (the grid section makes the particles and springs)

@@ -198,7 +198,7 @@ class OwnedContext {
   // Binds the context, without a surface, to this thread. OSMesa switches Mesa's GL dispatch to
   // its own context without EGL knowing, and EGL does not bind again a context it believes
   // current (seen with GLVND and Mesa 22.3: the frame was drawn in the OSMesa context): release
-  // it first. A release and a bind cost little beside a frame (bench/README.md, "Measurements behind choices in the source").
+  // it first. A release and a bind cost little beside a frame (bench/README.md, "EGL context per frame").
   void makeCurrent() {
     release();
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) {

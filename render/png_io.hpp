@@ -18,7 +18,7 @@ namespace particles::render {
 
 struct PngOptions {
   // zlib level 0 (store) to 9 (smallest). 6 is zlib's own default: on a cloth frame as fast as
-  // level 1 with smaller files, and 9 is three times slower for a few per cent (bench/README.md, "Measurements behind choices in the source").
+  // level 1 with smaller files, and 9 is three times slower for a few per cent (bench/README.md, "PNG level").
   int compressionLevel = 6;
   // Keep the image's alpha (straight, as PNG defines it): RGBA instead of RGB.
   bool alpha = false;

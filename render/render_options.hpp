@@ -52,7 +52,7 @@ using Raster = particles::Raster;  // include/particles/choices.hpp
 // The shape count from which the GL paths' automatic choice (where the cpu path is not taken: a
 // GPU's resident path that cannot hold the frame) draws with tiles: about where the two cost the
 // same for the cloth at 1280×720 on llvmpipe, between the 80 × 80 and the 100 × 100 cloth
-// (bench/README.md, "Measurements behind choices in the source").
+// (bench/README.md, "Tiles from 20,000 shapes").
 inline constexpr size_t kTilesFromShapes = 20000;
 
 struct RenderOptions {

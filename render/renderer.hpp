@@ -9,7 +9,7 @@
 // what is already drawn as the fragment's alpha. For one edge over a background this gives the
 // same pixel as a multisampled framebuffer's resolve. We do not use llvmpipe's multisampled
 // framebuffer: its resolve alone (glBlitFramebuffer or a texelFetch shader alike, on Mesa 22.3)
-// slowed end-to-end video well below the encoder's speed (bench/README.md, "Measurements behind choices in the source");
+// slowed end-to-end video well below the encoder's speed (bench/README.md, "Coverage in the shader");
 // the shader's cost grows only with the pixels shapes touch. msaa = 1 tests the
 // pixel centre only: hard edges.
 //

@@ -2,7 +2,7 @@
 // threads, each loop two chunks of 8,192 multiply-adds (the grain of the core's loops), and the same
 // work on one thread. docs/architecture.md ("Threads") cites it for the choice of the pool. Not part of
 // the build (it needs -fopenmp); run it with
-//   g++ -O2 -std=c++20 -fopenmp -Isrc bench/standalone/pool_vs_openmp.cpp src/core/worker_pool.cpp -o /tmp/pool_vs_openmp && /tmp/pool_vs_openmp
+//   g++ -O2 -std=c++20 -fopenmp -Isrc bench/standalone/pool_vs_openmp.cpp src/core/worker_pool.cpp -o pool_vs_openmp && ./pool_vs_openmp
 #include "core/worker_pool.hpp"
 #include <chrono>
 #include <cstdio>

@@ -36,7 +36,7 @@ std::vector<size_t> longestFirst(const std::vector<JobEstimate>& estimates);
 // outlast the others left even if they kept every other worker busy: cost > Σ others /
 // (parallel − 1). Started beside them on its share of the cores it alone would set the end of
 // the sweep; alone on all of them it ends sooner, and the others follow. The example sweep's
-// stiffest study is 58 % of its work (bench/README.md, "Sweeps").
+// stiffest study is over half of its work (bench/README.md, "Sweeps").
 bool runsAlone(const JobEstimate& job, double othersCost, int parallel, size_t running);
 
 // The threads of a job started with `running` others under way and `toStart` − 1 still to start

@@ -15,7 +15,7 @@
 // the elimination tree and L's column counts depend only on the pattern (analyze), the numbers
 // are refactored (factorize) as often as the owner wants.
 // The blocks against Eigen's SimplicialLDLT with the same ordering and fill, measured on the 25²
-// and 100² cloths' A: bench/README.md, "Implicit integration" (timings go stale in comments).
+// and 100² cloths' A: bench/README.md, "Block LDLᵀ" (timings go stale in comments).
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>

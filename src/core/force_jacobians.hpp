@@ -23,7 +23,7 @@ namespace particles {
 // One entry of K or D: ∂f_row/∂(x or v)_col. Eigen::Triplet's shape (row(), col(), value(), so
 // setFromTriplets takes it), with a trivial default constructor: the springs size their range of
 // entries and then fill it on the threads, and a vector of Eigen::Triplet would first write zeros
-// over all of them (its share of a backward Euler step: bench/README.md, "Implicit integration").
+// over all of them (its share of a backward Euler step: bench/README.md, "Spring Jacobians by pairs").
 struct JacobianEntry {
   int rowIndex, colIndex;
   double entryValue;

@@ -42,7 +42,7 @@ long Solver::factorizations() const {
 void Solver::doStep(System& system, double dt) {
   // The guard's copy and checks are whole-state passes like the integrators' own updates, so they
   // run on the same threads (their share of the thinnest step, symplectic Euler's: bench/README.md,
-  // "The core on threads").
+  // "The core past two threads").
   WorkerPool* pool = system.pool();
   const Eigen::VectorXd& y = system.state();
   previous_.resize(y.size());

@@ -117,7 +117,7 @@ void DampedSpringForce::buildIncidence(int points) const {
   }
   // Values that fit in a core's cache (its L2: 1–2 MiB on today's servers) come back from it
   // anyway: chunk-local lost on the 100² cloth's 0.6 MiB and won on the 316² cloth's 6.4 MiB
-  // (bench/README.md, "The core on threads").
+  // (bench/README.md, "Chunk-local springs").
   constexpr size_t kCacheBytes = size_t(1) << 20;
   chunkLocal_ = 4 * sizeof(double) * n > kCacheBytes && 4 * computed <= 5 * n && mostRuns <= kMaxRuns;
   if (!chunkLocal_) {

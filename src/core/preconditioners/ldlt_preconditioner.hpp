@@ -18,7 +18,7 @@
 // Why our own factorisation rather than Eigen's SimplicialLDLT or CHOLMOD's (simplicial LDLᵀ,
 // supernodal LLᵀ): supernodes are small on a cloth's grid, so CHOLMOD does not pay; the 2 × 2
 // blocks do (core/block_ldlt.hpp says why). The timings of all four on the 25² and 100² cloths'
-// A: bench/README.md, "Implicit integration".
+// A: bench/README.md, "Block LDLᵀ".
 
 #include <Eigen/Core>
 #include <Eigen/Dense>
