@@ -1,5 +1,5 @@
-// The table of output formats (render/output_formats.hpp): one row per OutputKind, rows that agree
-// with themselves, the option checks and help texts read from them, and README's table of formats
+// The table of output formats (render/video/output_formats.hpp): one row per OutputKind, rows that agree
+// with themselves, the option checks and help texts read from them, and docs/cli.md's table of formats
 // printed from them.
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -11,7 +11,7 @@
 #include <string>
 
 #include "cli_support.hpp"
-#include "render/output_formats.hpp"
+#include "render/video/output_formats.hpp"
 
 using namespace particles::render;
 using particles::test::Result;
@@ -141,12 +141,12 @@ TEST_CASE("render's help texts list every format with its numbers, from the tabl
   }
 }
 
-TEST_CASE("README.md holds the table of output formats as the rows print it") {
-  std::ifstream in(std::filesystem::path(PARTICLES_SOURCE_DIR) / "README.md", std::ios::binary);
+TEST_CASE("docs/cli.md holds the table of output formats as the rows print it") {
+  std::ifstream in(std::filesystem::path(PARTICLES_SOURCE_DIR) / "docs/cli.md", std::ios::binary);
   REQUIRE(in);
-  const std::string readme{std::istreambuf_iterator<char>(in), {}};
-  // On failure: paste this table into README.md's "Videos for the web".
-  CHECK_MESSAGE(readme.find(outputFormatsMarkdown()) != std::string::npos, "\n" << outputFormatsMarkdown());
+  const std::string page{std::istreambuf_iterator<char>(in), {}};
+  // On failure: paste this table into docs/cli.md's "Videos for the web".
+  CHECK_MESSAGE(page.find(outputFormatsMarkdown()) != std::string::npos, "\n" << outputFormatsMarkdown());
 }
 
 TEST_CASE("a format whose chroma is halved refuses odd sides, naming the next even size, and the others take any") {

@@ -1,11 +1,12 @@
 #pragma once
-// What libparticles.so shows its users: the classes and functions marked PARTICLES_API. The rest of
-// the library is compiled with hidden visibility (CMakeLists.txt), so that nothing private can be
-// linked against by accident and the library's own symbols cannot be interposed.
+/// @file
+/// What libparticles.so shows its users: the classes and functions marked PARTICLES_API. The rest of
+/// the library is compiled with hidden visibility (CMakeLists.txt), so that nothing private can be
+/// linked against by accident and the library's own symbols cannot be interposed.
 
-// Every public header includes this one: a compiler in an older mode says what it needs here, once,
-// instead of failing on std::span a few lines later. (MSVC reports __cplusplus as 199711L unless
-// /Zc:__cplusplus; _MSVC_LANG is its real value.)
+/// Every public header includes this one: a compiler in an older mode says what it needs here, once,
+/// instead of failing on std::span a few lines later. (MSVC reports __cplusplus as 199711L unless
+/// /Zc:__cplusplus; _MSVC_LANG is its real value.)
 #if defined(_MSVC_LANG)
 #define PARTICLES_CPLUSPLUS _MSVC_LANG
 #else

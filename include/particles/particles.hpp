@@ -1,5 +1,6 @@
 #pragma once
-// Everything particles offers a C++ program (docs/api.md): include this, link particles::particles.
+/// @file
+/// Everything particles offers a C++ program (docs/api.md): include this, link particles::particles.
 #include <particles/choices.hpp>
 #include <particles/errors.hpp>
 #include <particles/golden.hpp>

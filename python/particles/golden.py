@@ -1,5 +1,5 @@
 """Golden regression checks from Python: a manifest's frames and states against their references,
-into a report folder, as `particles golden check` does (the same C++ function runs both).
+into a report folder, as `particles golden check` does (the same C++ function runs both)::
 
     report = particles.golden.check("golden/golden.yaml", output="golden-report")
     if not report:
