@@ -3,7 +3,7 @@
 // large for the machine (or for an address-space cap, `ulimit -v`, `prlimit --as`) ends in
 // OutOfMemory (render/errors.hpp: exit 3, "out of memory: …") and never in a crash. Mesa does not
 // say when it cannot allocate a frame's colour buffer: OSMesa's failed silently and glFinish then
-// copied from nothing (SIGSEGV, issue 26), EGL's renderbuffer showed as an "incomplete" framebuffer,
+// copied from nothing (SIGSEGV), EGL's renderbuffer showed as an "incomplete" framebuffer,
 // and glReadPixels took a whole frame of scratch. So our own images are allocated up front,
 // and the memory Mesa will take is reserved with them, before the GL context is made, and given
 // back right before Mesa allocates.

@@ -58,7 +58,7 @@ class GlContext {
   // error since beginFrame.
   const Image& finishFrame();
   // The read-back in two steps, so that a frame loop draws frame k + 1 while frame k's pixels
-  // travel (issue 42). startRead, after the frame is drawn, asks GL to copy it into one of two
+  // travel. startRead, after the frame is drawn, asks GL to copy it into one of two
   // pixel-buffer objects and returns without waiting; collectFrame waits for the oldest copy
   // started and not yet collected and returns it as the image. At most two may be started and not
   // collected. Only where readsAhead (EGL); elsewhere startRead reads the frame at once

@@ -1,5 +1,5 @@
 #pragma once
-// Internal to render/: the resident path (Raster::resident, issue 42). A scene's springs and
+// Internal to render/: the resident path (Raster::resident). A scene's springs and
 // particles stay in GL's buffers: the springs' topology (each spring's two particle indices and
 // rest length) is uploaded once, when a drawing brings a topology the program does not hold yet
 // (Drawing::springTopology, the same object from frame to frame), and each frame sends only the

@@ -141,7 +141,7 @@ void TileProgram::draw(const TileBins& bins, Rgb background, bool transparent) c
     // refilled in place: the previous frame was read back, so GL no longer reads it, and a new
     // store each frame would cost its page faults again (a 300,000-shape frame's are 19 MB). The
     // first store is the first frame's size: most scenes keep their shape count, and a half
-    // spare was 96 MB of the million-particle cloth's shapes alone (issue 28).
+    // spare was 96 MB of the million-particle cloth's shapes alone.
     const size_t size = bytes[i] ? bytes[i] : sizeof kZero;
     if (size > capacity_[i]) {
       capacity_[i] = capacity_[i] == 0 ? size : size + size / 2;

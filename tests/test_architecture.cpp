@@ -1,7 +1,8 @@
 // The rooms of docs/architecture.md, checked on the sources: every `#include "room/…"` points
-// along an allowed arrow (program → scenario, render, plot → core; render, plot, program →
-// output; the tests' support → render, core, output, and no room → the tests' support), and the
-// core includes no library for files, YAML, GL, images or video.
+// along an allowed arrow (program → scenario, video, render, plot → core; video → render, never
+// back; render, video, plot, program → output; the tests' support → video, render, core, output,
+// and no room → the tests' support), and the core includes no library for files, YAML, GL, images
+// or video.
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -19,12 +20,16 @@ namespace {
 
 const fs::path kCheckout = PARTICLES_SOURCE_DIR;
 
-// Each room, its folder, and the rooms it may include besides itself.
+// Each room, its folder, and the rooms it may include besides itself. A room's files are those
+// under its folder but not under a room nested in it (render/video inside render/).
 struct Room {
   std::string name;
   fs::path folder;
   std::set<std::string> mayInclude;
 };
+
+// The rooms in a folder of another room, and the prefix their includes are written with.
+const std::vector<std::pair<std::string, std::string>> kNestedRooms = {{"video", "render/video/"}};
 
 const std::vector<Room>& rooms() {
   static const std::vector<Room> all = {
@@ -33,12 +38,14 @@ const std::vector<Room>& rooms() {
       {"input", kCheckout / "src/input", {}},
       {"scenario", kCheckout / "src/scenario", {"core", "input"}},
       {"render", kCheckout / "render", {"core", "output"}},
+      // The writers and encoders: frames from the renderer to files. The renderer never includes them.
+      {"video", kCheckout / "render/video", {"render", "core", "output"}},
       {"plot", kCheckout / "plot", {"output", "input"}},
       {"golden", kCheckout / "src/golden", {"core", "scenario", "render", "output", "input"}},
-      {"api", kCheckout / "src/api", {"core", "scenario", "render", "input", "output", "golden"}},
-      {"app", kCheckout / "src/app", {"core", "scenario", "render", "plot", "output", "input", "golden"}},
+      {"api", kCheckout / "src/api", {"core", "scenario", "render", "video", "input", "output", "golden"}},
+      {"app", kCheckout / "src/app", {"core", "scenario", "render", "video", "plot", "output", "input", "golden"}},
       // What only the tests use (particles_test_support): no room above may include it.
-      {"support", kCheckout / "tests/support", {"core", "render", "output"}},
+      {"support", kCheckout / "tests/support", {"core", "render", "video", "output"}},
   };
   return all;
 }
@@ -50,10 +57,24 @@ struct Include {
   bool angled;
 };
 
+// True for a folder holding a room of its own, below the folder searched.
+bool isNestedRoom(const fs::path& folder, const fs::path& searched) {
+  if (folder == searched) return false;
+  for (const auto& [name, prefix] : kNestedRooms) {
+    if (folder == kCheckout / prefix.substr(0, prefix.size() - 1)) return true;
+  }
+  return false;
+}
+
 std::vector<Include> includesUnder(const fs::path& folder) {
   static const std::regex include(R"(^\s*#\s*include\s*([<"])([^>"]+)[>"])");
   std::vector<Include> out;
-  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+  for (auto it = fs::recursive_directory_iterator(folder); it != fs::recursive_directory_iterator(); ++it) {
+    const fs::directory_entry& entry = *it;
+    if (entry.is_directory() && isNestedRoom(entry.path(), folder)) {
+      it.disable_recursion_pending();
+      continue;
+    }
     const auto ext = entry.path().extension();
     if (ext != ".cpp" && ext != ".hpp") continue;
     std::ifstream in(entry.path());
@@ -66,8 +87,12 @@ std::vector<Include> includesUnder(const fs::path& folder) {
   return out;
 }
 
-// The room a quoted include names by its first folder ("core/system.hpp" → core).
+// The room a quoted include names by its first folder ("core/system.hpp" → core), or by the
+// folder of a nested room ("render/video/frame_writer.hpp" → video).
 std::string roomOf(const std::string& target) {
+  for (const auto& [name, prefix] : kNestedRooms) {
+    if (target.starts_with(prefix)) return name;
+  }
   const auto slash = target.find('/');
   return slash == std::string::npos ? std::string() : target.substr(0, slash);
 }

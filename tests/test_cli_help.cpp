@@ -15,9 +15,9 @@
 #include "core/stability.hpp"
 #include "input/text_file.hpp"
 #include "plot/figure.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 #include "render/image_compare.hpp"
-#include "render/output_formats.hpp"
+#include "render/video/output_formats.hpp"
 #include "render/png_io.hpp"
 #include "render/render_options.hpp"
 
@@ -99,7 +99,7 @@ TEST_CASE("cli help: render states the renderer's and the encoders' numbers") {
   }
   CHECK(listed == counts);
 
-  // The formats' numbers (render/output_formats.hpp): each crf range and default, each fps cap, in
+  // The formats' numbers (render/video/output_formats.hpp): each crf range and default, each fps cap, in
   // the option's help and, for the GIF, the footer.
   for (const OutputFormat& format : outputFormats()) {
     CAPTURE(format.name);

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cli_support.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 #include "render/png_io.hpp"
 #include "render_support.hpp"
 #include "support/video_probe.hpp"

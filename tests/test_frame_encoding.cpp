@@ -1,5 +1,5 @@
-// What happens to a frame between the renderer and the encoder: RGBA → yuv420p (render/yuv420.hpp)
-// against the BT.709 formulas in double precision, and the writer's pipeline (render/frame_pipeline.hpp):
+// What happens to a frame between the renderer and the encoder: RGBA → yuv420p (render/video/yuv420.hpp)
+// against the BT.709 formulas in double precision, and the writer's pipeline (render/video/frame_pipeline.hpp):
 // order, slot reuse, and errors from either side.
 
 #include <doctest/doctest.h>
@@ -12,15 +12,15 @@
 #include <thread>
 #include <vector>
 
-#include "render/frame_pipeline.hpp"
+#include "render/video/frame_pipeline.hpp"
 #include "render/image.hpp"
-#include "render/yuv420.hpp"
+#include "render/video/yuv420.hpp"
 
 using namespace particles::render;
 
 namespace {
 
-// BT.709, full-range RGB in, limited-range YUV out: the formulas of render/yuv420.hpp.
+// BT.709, full-range RGB in, limited-range YUV out: the formulas of render/video/yuv420.hpp.
 struct Yuv {
   double y, u, v;
 };

@@ -167,7 +167,7 @@ TEST_CASE("message literals: no message or help text writes out a named limit") 
   // Numbers that only look like a constant's: what each is instead.
   const std::map<std::string, std::set<long>> allowed = {
       {"render/gl_backend.hpp", {256}},    // llvmpipe's vector width, in an example renderer name
-      {"render/gif_writer.cpp", {256}},    // a GIF palette's colours, an option of libav's filter
+      {"render/video/gif_writer.cpp", {256}},    // a GIF palette's colours, an option of libav's filter
       {"src/golden/references.hpp", {200}},  // a pixel difference, in an example message
   };
   for (const Repetition& r : repeatedLimits(sources, constants, allowed)) {

@@ -24,7 +24,7 @@
 #include "output/output_file.hpp"
 #include "output/partial_names.hpp"
 #include "output/pending_output.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 #include "render/png_io.hpp"
 #include "support/video_probe.hpp"
 

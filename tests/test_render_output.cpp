@@ -1,4 +1,4 @@
-// Outputs (render/png_io.hpp, render/frame_writer.hpp): PNG round trip, H.264 MP4 decoded back
+// Outputs (render/png_io.hpp, render/video/frame_writer.hpp): PNG round trip, H.264 MP4 decoded back
 // through libavformat, PNG sequences, and what is left on disk when things go wrong.
 
 #include <doctest/doctest.h>
@@ -15,9 +15,9 @@
 #include "core/solver.hpp"
 #include "core/system.hpp"
 #include "render/errors.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 #include "render/png_io.hpp"
-#include "render/png_sequence_writer.hpp"
+#include "render/video/png_sequence_writer.hpp"
 #include "render/renderer.hpp"
 #include "render_support.hpp"
 #include "support/video_probe.hpp"

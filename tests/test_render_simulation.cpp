@@ -1,4 +1,4 @@
-// Rendering as a library call (render/render_simulation.hpp), driven in process: what each kind of
+// Rendering as a library call (render/video/render_simulation.hpp), driven in process: what each kind of
 // output holds, when the hooks are called, and that a stop, an explosion or bad options leave no
 // output behind.
 
@@ -18,9 +18,9 @@
 #include "core/forces/damped_spring_force.hpp"
 #include "core/solver.hpp"
 #include "core/system.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 #include "render/png_io.hpp"
-#include "render/render_simulation.hpp"
+#include "render/video/render_simulation.hpp"
 #include "render_support.hpp"
 #include "scenario/scenario.hpp"
 #include "support/video_probe.hpp"
@@ -148,7 +148,7 @@ TEST_CASE("render simulation: one PNG at a time is the frame `particles render -
 
 TEST_CASE("render simulation: the overlapped loop (threads ≠ 1) draws the plain loop's frames, in order") {
   // With threads 1 each frame is drawn as soon as it is reached; otherwise the next frame's state is
-  // stepped to while another thread draws (render/render_simulation.cpp, OverlappedFrames). The
+  // stepped to while another thread draws (render/video/render_simulation.cpp, OverlappedFrames). The
   // falling particles move every frame, so a frame drawn from another frame's state would show.
   // The third run reads frames back ahead (EGL's two pixel-pack buffers, as on a GPU): each frame
   // is handed on when the next one is drawn, the last one at the end.

@@ -1,5 +1,5 @@
 // particles::VideoWriter: see include/particles/video_writer.hpp. The render command's writers
-// (render/frame_writer.hpp), opened at the first frame with its size.
+// (render/video/frame_writer.hpp), opened at the first frame with its size.
 #include <particles/video_writer.hpp>
 
 #include <fmt/format.h>
@@ -14,8 +14,8 @@
 #include "api/guarded_call.hpp"
 #include "core/worker_pool.hpp"
 #include "input/printable_text.hpp"
-#include "render/frame_writer.hpp"
-#include "render/output_formats.hpp"
+#include "render/video/frame_writer.hpp"
+#include "render/video/output_formats.hpp"
 
 namespace particles {
 

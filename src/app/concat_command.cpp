@@ -9,8 +9,8 @@
 
 #include "app/exit_codes.hpp"
 #include "app/job_record.hpp"
-#include "render/frame_writer.hpp"
-#include "render/mp4_concat.hpp"
+#include "render/video/frame_writer.hpp"
+#include "render/video/mp4_concat.hpp"
 
 namespace particles::app {
 

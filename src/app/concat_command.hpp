@@ -1,6 +1,6 @@
 #pragma once
 // `particles concat A.mp4 B.mp4 … -o ALL.mp4`: joins the segments of a split render
-// (`particles render --frames A:B`) by stream copy (render/mp4_concat.hpp).
+// (`particles render --frames A:B`) by stream copy (render/video/mp4_concat.hpp).
 //
 // Exit codes: 0 joined; 2 bad input (a segment that cannot be read or does not decode whole, or
 // segments that differ in size, frame rate, codec or codec header: the message names the file; -o

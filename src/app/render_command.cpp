@@ -1,5 +1,5 @@
 // `particles render`: see render_command.hpp. The work is render::renderSimulation
-// (render/render_simulation.hpp); this file reads the options, adds what only the program has (the
+// (render/video/render_simulation.hpp); this file reads the options, adds what only the program has (the
 // --stats/--trace CSVs, the --hud text, progress, stopping on SIGINT/SIGTERM: stop_signal.hpp) as
 // its hooks and reports the outcome.
 #include "app/render_command.hpp"
@@ -24,11 +24,11 @@
 #include "plot/errors.hpp"
 #include "plot/text_overlay.hpp"
 #include "render/errors.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 #include "render/gl_backend.hpp"
-#include "render/output_formats.hpp"
+#include "render/video/output_formats.hpp"
 #include "render/render_options.hpp"
-#include "render/render_simulation.hpp"
+#include "render/video/render_simulation.hpp"
 #include "scenario/runner.hpp"
 
 namespace particles::app {
@@ -125,7 +125,7 @@ void checkNumbers(const RenderCommandOptions& options) {
   }
 }
 
-// The row of render/output_formats.hpp that -o names.
+// The row of render/video/output_formats.hpp that -o names.
 const render::OutputFormat& outputFormatOf(const RenderCommandOptions& options) {
   try {
     return render::outputFormatOf(options.output);

@@ -1,7 +1,7 @@
 #pragma once
 // `particles render SCENARIO -o OUT` (docs/physics.md §9, §12): simulate and draw frames off-screen,
 // frames i = 0 … round(duration·fps) − 1 at t = i / fps, or the one frame at --at T, in OUT's
-// format (render/output_formats.hpp, which checks the options that depend on it).
+// format (render/video/output_formats.hpp, which checks the options that depend on it).
 //
 // Exit codes: 0 done; 1 the simulation failed; 2 bad input (options, the scenario, a frame larger
 // than the GL draws); 3 an output failed; 128 + signal when stopped by SIGINT or SIGTERM. Outputs
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "app/command.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 #include "render/png_io.hpp"
 #include "render/render_options.hpp"
 
@@ -20,7 +20,7 @@ namespace particles::app {
 
 struct RenderCommandOptions {
   CommonOptions common;
-  std::string output;                // -o: a path of a format of render/output_formats.hpp
+  std::string output;                // -o: a path of a format of render/video/output_formats.hpp
   std::optional<double> at;          // --at T, s
   std::string frames;                // --frames A:B, frames A … B−1 only; empty: all
   std::string size;                  // --size WxH; empty: the scenario's render.size

@@ -20,7 +20,7 @@
 #include "output/csv_writer.hpp"
 #include "output/output_error.hpp"
 #include "output/output_file.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 #include "scenario/override_check.hpp"
 #include "scenario/scaled_value.hpp"
 #include "scenario/scenario.hpp"

@@ -9,7 +9,7 @@
 //   per thread (src/core/stability.cpp), one golden entry per task.
 // - start(task): one task on one of the pool's threads while the caller goes on, until the handle's
 //   wait(). A producer/consumer pair is one started task, the consumer, behind a bounded queue its
-//   user owns (render/frame_pipeline.hpp: encoding frame n while frame n + 1 is drawn).
+//   user owns (render/video/frame_pipeline.hpp: encoding frame n while frame n + 1 is drawn).
 //
 // The determinism contract, stated here once (the rest of the program refers to it): the same
 // bytes on 1 or 64 threads, because

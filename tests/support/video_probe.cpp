@@ -1,7 +1,7 @@
 #include "support/video_probe.hpp"
 
 #include "render/errors.hpp"
-#include "render/libav_util.hpp"
+#include "render/video/libav_util.hpp"
 
 extern "C" {
 #include <libavutil/pixdesc.h>

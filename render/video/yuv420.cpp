@@ -1,4 +1,4 @@
-#include "render/yuv420.hpp"
+#include "render/video/yuv420.hpp"
 
 #include <bit>
 #include <cstring>

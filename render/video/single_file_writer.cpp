@@ -1,4 +1,4 @@
-#include "render/single_file_writer.hpp"
+#include "render/video/single_file_writer.hpp"
 
 namespace particles::render {
 

@@ -54,7 +54,7 @@ struct OutputFormat {
   std::optional<CrfRange> crf = std::nullopt;  // nothing: no quality setting (--crf refused)
   // A range of the frames can be rendered alone (--frames, a split render) and joined again.
   bool splits = false;
-  // Its segments are joined by `particles concat` (render/mp4_concat.hpp), without re-encoding.
+  // Its segments are joined by `particles concat` (render/video/mp4_concat.hpp), without re-encoding.
   bool joinedByConcat = false;
   // Its pixels keep chroma at half the width and height, so a frame's sides must be even: the pixel
   // format, and the one with alpha where alpha is kept, for the refusal. Empty: any size.

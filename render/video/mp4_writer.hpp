@@ -1,11 +1,11 @@
 #pragma once
 // H.264 MP4 output (docs/physics.md §9) through libavcodec (libx264) and libavformat, encoded
 // in-process frame by frame: RGBA → yuv420p (BT.709, limited range, tagged as such), frame i at
-// i / fps, an even size (render/yuv_video_writer.hpp), muxed with "+faststart" (the index moves to
+// i / fps, an even size (render/video/yuv_video_writer.hpp), muxed with "+faststart" (the index moves to
 // the front at the end so players can start before the whole file has arrived).
 
-#include "render/frame_writer.hpp"
-#include "render/yuv_video_writer.hpp"
+#include "render/video/frame_writer.hpp"
+#include "render/video/yuv_video_writer.hpp"
 
 namespace particles::render {
 

@@ -1,11 +1,11 @@
-#include "render/mp4_writer.hpp"
+#include "render/video/mp4_writer.hpp"
 
 #include <fmt/format.h>
 
 #include <string>
 
-#include "render/output_formats.hpp"
-#include "render/video_encoder.hpp"
+#include "render/video/output_formats.hpp"
+#include "render/video/video_encoder.hpp"
 
 namespace particles::render {
 

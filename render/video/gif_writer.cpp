@@ -1,4 +1,4 @@
-#include "render/gif_writer.hpp"
+#include "render/video/gif_writer.hpp"
 
 #include <zlib.h>
 
@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "render/frame_pipeline.hpp"
-#include "render/output_formats.hpp"
-#include "render/video_encoder.hpp"
+#include "render/video/frame_pipeline.hpp"
+#include "render/video/output_formats.hpp"
+#include "render/video/video_encoder.hpp"
 
 extern "C" {
 #include <libavfilter/buffersink.h>
@@ -210,7 +210,7 @@ GifWriter::GifWriter(const std::filesystem::path& path, const FrameWriterOptions
   p->width = options.width;
   p->height = options.height;
   p->fps = options.video.fps;
-  // "file:": a colon in a named temporary is not a protocol (render/yuv_video_writer.cpp).
+  // "file:": a colon in a named temporary is not a protocol (render/video/yuv_video_writer.cpp).
   p->url = "file:" + out_.reopenablePath().string();
   p->name = path.string();
   p->scratch.reset(av_frame_alloc());

@@ -1,4 +1,4 @@
-#include "render/pipelined_frame_writer.hpp"
+#include "render/video/pipelined_frame_writer.hpp"
 
 #include <stdexcept>
 

@@ -1,10 +1,10 @@
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "render/libav_util.hpp"
+#include "render/video/libav_util.hpp"
 
 namespace particles::render {
 

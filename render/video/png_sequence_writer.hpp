@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "render/frame_pipeline.hpp"
-#include "render/frame_writer.hpp"
-#include "render/pipelined_frame_writer.hpp"
+#include "render/video/frame_pipeline.hpp"
+#include "render/video/frame_writer.hpp"
+#include "render/video/pipelined_frame_writer.hpp"
 #include "output/staging_directory.hpp"
 
 namespace particles::render {

@@ -1,9 +1,9 @@
-#include "render/webm_writer.hpp"
+#include "render/video/webm_writer.hpp"
 
 #include <string>
 
-#include "render/output_formats.hpp"
-#include "render/video_encoder.hpp"
+#include "render/video/output_formats.hpp"
+#include "render/video/video_encoder.hpp"
 
 namespace particles::render {
 

@@ -1,4 +1,4 @@
-#include "render/output_formats.hpp"
+#include "render/video/output_formats.hpp"
 
 #include <fmt/format.h>
 
@@ -9,10 +9,10 @@
 #include <system_error>
 #include <vector>
 
-#include "render/gif_writer.hpp"
-#include "render/mp4_writer.hpp"
-#include "render/png_sequence_writer.hpp"
-#include "render/webm_writer.hpp"
+#include "render/video/gif_writer.hpp"
+#include "render/video/mp4_writer.hpp"
+#include "render/video/png_sequence_writer.hpp"
+#include "render/video/webm_writer.hpp"
 
 namespace particles::render {
 
@@ -69,7 +69,7 @@ const std::array<OutputFormat, 5> kOutputFormats{{
      // Its one palette is made for the whole video.
      .splits = false,
      // A 60 fps GIF would play at 10 fps in browsers; without --fps the demos' 60 become 30, every
-     // other frame of the MP4 (render/gif_writer.hpp).
+     // other frame of the MP4 (render/video/gif_writer.hpp).
      .fpsCap = FpsCap{50, 30, "its delays are whole centiseconds, and browsers slow delays under 2 cs down to 10 cs"},
      .maxSide = 65535,
      .open = &openWriter<GifWriter>},

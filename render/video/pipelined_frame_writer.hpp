@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "render/frame_pipeline.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_pipeline.hpp"
+#include "render/video/frame_writer.hpp"
 
 namespace particles::render {
 

@@ -1,4 +1,4 @@
-#include "render/png_sequence_writer.hpp"
+#include "render/video/png_sequence_writer.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

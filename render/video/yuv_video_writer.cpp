@@ -1,14 +1,14 @@
-#include "render/yuv_video_writer.hpp"
+#include "render/video/yuv_video_writer.hpp"
 
 #include <fmt/format.h>
 
 #include <stdexcept>
 #include <string>
 
-#include "render/frame_pipeline.hpp"
-#include "render/output_formats.hpp"
-#include "render/video_encoder.hpp"
-#include "render/yuv420.hpp"
+#include "render/video/frame_pipeline.hpp"
+#include "render/video/output_formats.hpp"
+#include "render/video/video_encoder.hpp"
+#include "render/video/yuv420.hpp"
 
 namespace particles::render {
 

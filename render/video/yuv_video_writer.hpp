@@ -1,6 +1,6 @@
 #pragma once
 // Internal to render/: what the MP4 (H.264) and WebM (VP9) writers share. Their pipeline's slots
-// are yuv420p pictures (yuva420p with alpha), filled by render/yuv420.hpp straight from the
+// are yuv420p pictures (yuva420p with alpha), filled by render/video/yuv420.hpp straight from the
 // renderer's image as each frame is queued (no other copy of it is made) and encoded by a
 // VideoEncoder on the worker; frame i has pts i in a 1/fps time base, so the video has exactly as
 // many frames as were written and lasts frames / fps. A derived writer only configures the encoder.
@@ -12,8 +12,8 @@
 #include <memory>
 #include <vector>
 
-#include "render/frame_writer.hpp"
-#include "render/single_file_writer.hpp"
+#include "render/video/frame_writer.hpp"
+#include "render/video/single_file_writer.hpp"
 
 namespace particles::render {
 

@@ -1,4 +1,4 @@
-#include "render/frame_pipeline.hpp"
+#include "render/video/frame_pipeline.hpp"
 
 #include <algorithm>
 #include <stdexcept>

@@ -14,7 +14,7 @@ extern "C" {
 #include <utility>
 #include <vector>
 
-#include "render/libav_util.hpp"
+#include "render/video/libav_util.hpp"
 
 namespace particles::render {
 

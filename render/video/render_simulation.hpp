@@ -1,7 +1,7 @@
 #pragma once
 // `particles render` as a library call: steps a simulation, draws it at each frame's time and
-// writes them in the output's format (render/output_formats.hpp): a run of frames
-// i = 0 … frameCount(duration, fps) − 1 at t = i / fps through a writer (render/frame_writer.hpp),
+// writes them in the output's format (render/video/output_formats.hpp): a run of frames
+// i = 0 … frameCount(duration, fps) − 1 at t = i / fps through a writer (render/video/frame_writer.hpp),
 // or a range of them (RenderJob::frames, for the formats that split), or the one frame at `at`
 // seconds (render/png_io.hpp).
 // A frame shows the state after the last time step at or before its time (to rounding), so with
@@ -18,7 +18,7 @@
 
 #include "core/integrators.hpp"
 #include "core/system.hpp"
-#include "render/frame_writer.hpp"
+#include "render/video/frame_writer.hpp"
 #include "render/gl_backend.hpp"
 #include "render/image.hpp"
 #include "render/png_io.hpp"
@@ -27,7 +27,7 @@
 namespace particles::render {
 
 struct RenderJob {
-  std::filesystem::path output;  // its format is a row of render/output_formats.hpp (outputFormatOf)
+  std::filesystem::path output;  // its format is a row of render/video/output_formats.hpp (outputFormatOf)
   std::optional<double> at;      // s: the time of the one frame of a one-frame format; only with one.
                                  // A time not after the system's (or NaN) draws its current state
   double duration = 0.0;         // s of simulated time a video or sequence covers, > 0

@@ -1,4 +1,4 @@
-#include "render/mp4_concat.hpp"
+#include "render/video/mp4_concat.hpp"
 
 #include <fmt/format.h>
 
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "output/pending_output.hpp"
-#include "render/libav_util.hpp"
+#include "render/video/libav_util.hpp"
 
 namespace particles::render {
 

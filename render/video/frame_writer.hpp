@@ -1,6 +1,6 @@
 #pragma once
 // Where rendered frames go (`particles render SCENARIO -o OUT`, docs/physics.md §12): a writer for
-// each format of render/output_formats.hpp that is a run of frames, opened by openFrameWriter from
+// each format of render/video/output_formats.hpp that is a run of frames, opened by openFrameWriter from
 // the format's row. The one frame at --at T is not a stream: renderSimulation calls writePng
 // (png_io.hpp) directly.
 //
@@ -38,7 +38,7 @@
 
 #include "core/drawing.hpp"
 #include "render/image.hpp"
-#include "render/output_formats.hpp"
+#include "render/video/output_formats.hpp"
 #include "render/png_io.hpp"
 
 namespace particles::render {
@@ -61,7 +61,7 @@ class FrameWriter {
 struct VideoOptions {
   int fps = 60;
   // Constant rate factor (quality) of the encoder, in the range of its format's row
-  // (render/output_formats.hpp; crfOf). Nothing: the row's default.
+  // (render/video/output_formats.hpp; crfOf). Nothing: the row's default.
   std::optional<int> crf;
   // x264 preset: ultrafast … placebo (kX264Presets). veryfast encodes about twice as fast as
   // medium, for slightly larger files (bench/README.md, "Measurements behind choices in the source").

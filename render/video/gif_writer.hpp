@@ -28,8 +28,8 @@
 
 #include <memory>
 
-#include "render/frame_writer.hpp"
-#include "render/single_file_writer.hpp"
+#include "render/video/frame_writer.hpp"
+#include "render/video/single_file_writer.hpp"
 
 namespace particles::render {
 

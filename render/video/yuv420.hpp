@@ -1,7 +1,7 @@
 #pragma once
 // Internal to render/: the renderer's RGBA frames as H.264 wants them, yuv420p with BT.709
 // coefficients in limited range (ITU-R BT.709-6 §3; Y in 16…235, Cb and Cr in 16…240), the colour
-// tags the MP4 carries (render/mp4_writer.hpp). For full-range R, G, B in 0…255:
+// tags the MP4 carries (render/video/mp4_writer.hpp). For full-range R, G, B in 0…255:
 //   Y  = 16  + 219/255 · (0.2126 R + 0.7152 G + 0.0722 B)
 //   Cb = 128 + 224/255 · (B − Y′) / 1.8556,   Cr = 128 + 224/255 · (R − Y′) / 1.5748
 // with Y′ = 0.2126 R + 0.7152 G + 0.0722 B; each 2 × 2 block of pixels shares one Cb and Cr, taken

@@ -1,6 +1,6 @@
 #pragma once
 // WebM output: VP9 through libavcodec's libvpx-vp9 encoder, muxed by libavformat's webm muxer,
-// encoded in-process frame by frame as the MP4 is (render/yuv_video_writer.hpp: RGBA → yuv420p,
+// encoded in-process frame by frame as the MP4 is (render/video/yuv_video_writer.hpp: RGBA → yuv420p,
 // BT.709 limited range, frame i at i / fps, an even size). With FrameWriterOptions::alpha the
 // frames are yuva420p: libvpx encodes the alpha plane as a second VP9 stream that the muxer stores
 // beside each frame (Matroska BlockAdditions) and flags on the track (AlphaMode 1); browsers show
@@ -11,8 +11,8 @@
 // with cpu-used kVp9CpuUsed. The muxer writes no random track ids (bitexact): the same frames give
 // the same file.
 
-#include "render/frame_writer.hpp"
-#include "render/yuv_video_writer.hpp"
+#include "render/video/frame_writer.hpp"
+#include "render/video/yuv_video_writer.hpp"
 
 namespace particles::render {
 

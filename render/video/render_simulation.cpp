@@ -1,4 +1,4 @@
-#include "render/render_simulation.hpp"
+#include "render/video/render_simulation.hpp"
 
 #include <chrono>
 #include <optional>
@@ -8,7 +8,7 @@
 
 #include "core/solver.hpp"
 #include "render/frame_memory.hpp"
-#include "render/frame_pipeline.hpp"
+#include "render/video/frame_pipeline.hpp"
 #include "render/renderer.hpp"
 
 namespace particles::render {
@@ -56,7 +56,7 @@ class FramePainter {
   Image decorated_;
 };
 
-// The frame loop overlapped (issue 42): while this thread steps the simulation to frame k + 1's
+// The frame loop overlapped: while this thread steps the simulation to frame k + 1's
 // time, another draws frame k (its shapes built on a pool of its own, GL, the read-back) and hands
 // it to the writer, whose own thread encodes frame k − 1. Where the renderer reads ahead (EGL:
 // two pixel-pack buffers), the drawing thread starts frame k's read-back and hands the writer

@@ -44,7 +44,7 @@ class FramePipeline {
 
   void push(const Image& frame);
   // The same with a slot filled by `fill` instead of the pipeline's Fill (a pipeline of other
-  // things than images: render/render_simulation.cpp's drawings).
+  // things than images: render/video/render_simulation.cpp's drawings).
   void pushWith(const std::function<void(std::size_t slot)>& fill);
   // Waits until every queued frame is consumed and stops the worker; rethrows its error.
   void close();

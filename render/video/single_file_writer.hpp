@@ -8,7 +8,7 @@
 #include <string>
 
 #include "output/pending_output.hpp"
-#include "render/pipelined_frame_writer.hpp"
+#include "render/video/pipelined_frame_writer.hpp"
 
 namespace particles::render {
 

@@ -1,4 +1,4 @@
-#include "render/video_encoder.hpp"
+#include "render/video/video_encoder.hpp"
 
 namespace particles::render {
 
