@@ -123,19 +123,18 @@ double drawLegendRow(const Canvas& canvas, const Figure& figure, const DotChart&
   return top + 2 * kDiamondPx + 18;
 }
 
-}  // namespace
-
-void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& chart) {
-  const double top = drawLegendRow(canvas, figure, chart, drawTitle(canvas, figure));
-  const double bottomMargin = xAxisMargin(canvas, figure, chart.xLabel);
-  const double plotHeight = std::max(40.0, std::round(figure.heightPx - top - bottomMargin));
-
-  // The data's range, and the widest value label (room is kept for it right of the largest value).
+// The values' range, and the widest value label (room is kept for it right of the largest value).
+struct DotRange {
   double lo = INFINITY, hi = -INFINITY, widestLabel = 0;
+  bool any() const { return lo <= hi; }
+};
+
+DotRange dotRangeOf(const Canvas& canvas, const DotChart& chart) {
+  DotRange range;
   auto include = [&](double v, const Label& label) {
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-    widestLabel = std::max(widestLabel, canvas.textWidth(label, kTickLabelSizePx));
+    range.lo = std::min(range.lo, v);
+    range.hi = std::max(range.hi, v);
+    range.widestLabel = std::max(range.widestLabel, canvas.textWidth(label, kTickLabelSizePx));
   };
   for (const DotGroup& g : chart.groups) {
     for (std::size_t c = 0; c < g.values.size(); ++c) {
@@ -147,42 +146,34 @@ void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& ch
     include(r->lo, referenceLabel(*r));
     include(r->hi, referenceLabel(*r));
   }
-  const bool anyValue = lo <= hi;
+  return range;
+}
 
-  double widestCategory = 0;
-  for (const std::string& c : chart.categories) {
-    widestCategory = std::max(widestCategory, canvas.textWidth({c, ""}, kAxisLabelSizePx));
-  }
-  const double left = std::round(kOuterPadPx + widestCategory + 14);
-  const Rect plot{left, std::round(top), std::round(std::max(40.0, figure.widthPx - left - kRightMarginPx)),
-                  plotHeight};
-
-  // In decades: at least a factor of 2 shown, 8 % of the span as air on the left, and the right
-  // end pushed out until the largest value's label fits inside the frame.
+// In decades: at least a factor of 2 shown, 8 % of the span as air on the left, and the right
+// end pushed out until the largest value's label fits inside the frame.
+XAxis dotAxis(const DotRange& range, const Rect& plot) {
   XAxis axis{logTicks(1, 10, 2), AxisScale::Log};
-  if (anyValue) {
-    double l0 = std::log10(lo), l1 = std::log10(hi);
-    const double minSpan = std::log10(2.0);
-    if (l1 - l0 < minSpan) {
-      const double mid = (l0 + l1) / 2;
-      l0 = mid - minSpan / 2;
-      l1 = mid + minSpan / 2;
-    }
-    const double axisLo = l0 - 0.08 * (l1 - l0);
-    const double usable = std::clamp((plot.w - widestLabel - kValueGapPx - kDotRadiusPx - 8) / plot.w, 0.5, 1.0);
-    const double axisHi = axisLo + (l1 - axisLo) / usable;
-    // Within the doubles: past them pow gives 0 or infinity, and the axis non-finite pixels.
-    const double from = std::max(std::pow(10.0, axisLo), std::numeric_limits<double>::denorm_min());
-    const double to = std::min(std::pow(10.0, axisHi), std::numeric_limits<double>::max());
-    axis.ticks = logTicksWithin(from, to, std::max(2, int(plot.w / 70)));
+  if (!range.any()) return axis;
+  double l0 = std::log10(range.lo), l1 = std::log10(range.hi);
+  const double minSpan = std::log10(2.0);
+  if (l1 - l0 < minSpan) {
+    const double mid = (l0 + l1) / 2;
+    l0 = mid - minSpan / 2;
+    l1 = mid + minSpan / 2;
   }
+  const double axisLo = l0 - 0.08 * (l1 - l0);
+  const double usable = std::clamp((plot.w - range.widestLabel - kValueGapPx - kDotRadiusPx - 8) / plot.w, 0.5, 1.0);
+  const double axisHi = axisLo + (l1 - axisLo) / usable;
+  // Within the doubles: past them pow gives 0 or infinity, and the axis non-finite pixels.
+  const double from = std::max(std::pow(10.0, axisLo), std::numeric_limits<double>::denorm_min());
+  const double to = std::min(std::pow(10.0, axisHi), std::numeric_limits<double>::max());
+  axis.ticks = logTicksWithin(from, to, std::max(2, int(plot.w / 70)));
+  return axis;
+}
+
+// One row per category: a line per group (its dot and value, or n/a) and one for the reference.
+void drawDotRows(const Canvas& canvas, const DotChart& chart, const Rect& plot, const XAxis& axis) {
   auto toPixel = [&](double v) { return axis.toPixel(v, plot); };
-
-  for (const Tick& t : axis.ticks.major) {
-    const double x = pixelCentre(toPixel(t.value));
-    if (x > plot.x + 0.5 && x < plot.right() - 0.5) canvas.hairline(x, plot.y, x, plot.bottom(), kGrid);
-  }
-
   const bool references = hasReferences(chart);
   const std::size_t rows = chart.categories.size();
   const std::size_t lines = chart.groups.size() + (references ? 1 : 0);
@@ -220,7 +211,32 @@ void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& ch
     }
     canvas.text({chart.categories[c], ""}, plot.x - 12, centre, kAxisLabelSizePx, HAlign::Right, VAlign::Middle, kInk);
   }
-  if (!anyValue) {
+}
+
+}  // namespace
+
+void drawDotChart(const Canvas& canvas, const Figure& figure, const DotChart& chart) {
+  const double top = drawLegendRow(canvas, figure, chart, drawTitle(canvas, figure));
+  const double bottomMargin = xAxisMargin(canvas, figure, chart.xLabel);
+  const double plotHeight = std::max(40.0, std::round(figure.heightPx - top - bottomMargin));
+  const DotRange range = dotRangeOf(canvas, chart);
+
+  double widestCategory = 0;
+  for (const std::string& c : chart.categories) {
+    widestCategory = std::max(widestCategory, canvas.textWidth({c, ""}, kAxisLabelSizePx));
+  }
+  const double left = std::round(kOuterPadPx + widestCategory + 14);
+  const Rect plot{left, std::round(top), std::round(std::max(40.0, figure.widthPx - left - kRightMarginPx)),
+                  plotHeight};
+  const XAxis axis = dotAxis(range, plot);
+  auto toPixel = [&](double v) { return axis.toPixel(v, plot); };
+
+  for (const Tick& t : axis.ticks.major) {
+    const double x = pixelCentre(toPixel(t.value));
+    if (x > plot.x + 0.5 && x < plot.right() - 0.5) canvas.hairline(x, plot.y, x, plot.bottom(), kGrid);
+  }
+  drawDotRows(canvas, chart, plot, axis);
+  if (!range.any()) {
     canvas.text({"no data", ""}, plot.x + plot.w / 2, plot.y + plot.h / 2, kAxisLabelSizePx, HAlign::Center,
                 VAlign::Middle, kMutedInk);
   }

@@ -291,12 +291,17 @@ void TileBins::bin(WorkerPool* pool) {
   // places them: two passes over the shapes' tiles, the second repeating only the tile tests of
   // shapes reaching more than kTestedReach tiles, which are few. (One pass that kept (tile, shape)
   // pairs to sort took 8 bytes a pair, a vector of 134 to 268 MB for a million-particle cloth's
-  // frames, issue 28.) Every band and chunk writes only its own counts, lists and tiles: the
+  // frames.) Every band and chunk writes only its own counts, lists and tiles: the
   // result is the same for every thread count, and the same as one serial counting sort.
-  const size_t shapeCount = reach_.size();
-  if (shapeCount > size_t(UINT32_MAX)) throw std::length_error("TileBins: more shapes than a tile list can number");
-  const size_t tileCount = size_t(tilesX_) * size_t(tilesY_);
+  if (reach_.size() > size_t(UINT32_MAX)) throw std::length_error("TileBins: more shapes than a tile list can number");
   const size_t bands = size_t((tilesY_ + kBandTileRows - 1) / kBandTileRows);
+  sortIntoBands(pool, bands);
+  fillTiles(pool, bands);
+  collectRuns();
+}
+
+void TileBins::sortIntoBands(WorkerPool* pool, size_t bands) {
+  const size_t shapeCount = reach_.size();
   const size_t chunks = chunkCount(shapeCount, kBinChunk);
   auto eachBandOf = [&](const Reach& q, auto&& visit) {
     if (q.tx1 < q.tx0 || q.ty1 < q.ty0) return;
@@ -327,7 +332,10 @@ void TileBins::bin(WorkerPool* pool) {
       eachBandOf(reach_[s], [&](size_t b) { bandShapes_[bandFirst_[b] + next[b]++] = std::uint32_t(s); });
     }
   });
+}
 
+void TileBins::fillTiles(WorkerPool* pool, size_t bands) {
+  const size_t tileCount = size_t(tilesX_) * size_t(tilesY_);
   auto bandRows = [&](size_t b) {
     const int first = int(b) * kBandTileRows;
     return std::pair<int, int>{first, std::min(first + kBandTileRows, tilesY_)};
@@ -381,7 +389,9 @@ void TileBins::bin(WorkerPool* pool) {
       range[0] = coverFrom_[t];
     }
   });
+}
 
+void TileBins::collectRuns() {
   runs_.clear();
   for (int ty = 0; ty < tilesY_; ++ty) {
     for (int tx = 0; tx < tilesX_;) {

@@ -81,7 +81,7 @@ class TileBins final : public ShapeSink {
   // frame's bins are the same whatever the thread count. Slots must all be written before bin().
   // The records are made at once, frameShapeCount of them: grown by push_back, the records of a
   // million-particle cloth's 3 million shapes (192 MB) took a 268 MB store, and their tile ranges
-  // another 19 MB more than they need (issue 28).
+  // another 19 MB more than they need.
   class SlotWriter;
   void slots(size_t shapes);
   SlotWriter writer(size_t firstSlot);
@@ -123,6 +123,11 @@ class TileBins final : public ShapeSink {
   void forEachReachedTile(std::uint32_t shape, int rowBegin, int rowEnd, Visit&& visit) const;
   bool coversTile(size_t shape, int tx, int ty) const;
   float thickness(size_t shape) const;
+  // bin()'s stages: the shapes sorted by band of tile rows (bandShapes_, bandFirst_); each band's
+  // tiles counted, then given their shapes (tiles_, items_, coverFrom_); the runs of tiles with shapes.
+  void sortIntoBands(WorkerPool* pool, size_t bands);
+  void fillTiles(WorkerPool* pool, size_t bands);
+  void collectRuns();
 
   int width_ = 0, height_ = 0, tilesX_ = 0, tilesY_ = 0;
   UninitialisedVector<ShapeRecord> shapes_;

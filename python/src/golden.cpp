@@ -71,9 +71,7 @@ std::optional<golden::Shard> shardOf(const py::object& shard) {
   throw ArgumentError(std::string(takes) + ", not a " + typeName(shard));
 }
 
-}  // namespace
-
-void bindGolden(py::module_& module) {
+void bindFrameCheck(py::module_& module) {
   py::class_<Object<golden::FrameCheck>>(module, "FrameCheck",
                                          "One frame's result of a golden check (particles.golden.check).")
       .def_property_readonly("name", textOf(&golden::FrameCheck::name, "FrameCheck"),
@@ -106,6 +104,9 @@ void bindGolden(py::module_& module) {
         const golden::FrameCheck& f = valueOf(o, "FrameCheck");
         return text("<FrameCheck " + f.name + ": " + std::string(name(f.outcome)) + ">");
       });
+}
+
+void bindStateCheck(py::module_& module) {
   py::class_<Object<golden::StateCheck>>(module, "StateCheck",
                                          "One state's result of a golden check (particles.golden.check).")
       .def_property_readonly("name", textOf(&golden::StateCheck::name, "StateCheck"),
@@ -136,6 +137,9 @@ void bindGolden(py::module_& module) {
         const golden::StateCheck& s = valueOf(o, "StateCheck");
         return text("<StateCheck " + s.name + ": " + std::string(name(s.outcome)) + ">");
       });
+}
+
+void bindGoldenReport(py::module_& module) {
   py::class_<Object<golden::Report>>(module, "GoldenReport", "What a golden check found (particles.golden.check).")
       .def_property_readonly(
           "frames", [](const Object<golden::Report>& o) { return objectsOf(valueOf(o, "GoldenReport").frames); },
@@ -163,7 +167,14 @@ void bindGolden(py::module_& module) {
         const golden::Report& r = valueOf(o, "GoldenReport");
         return text("<GoldenReport " + r.summary + ">");
       });
+}
 
+}  // namespace
+
+void bindGolden(py::module_& module) {
+  bindFrameCheck(module);
+  bindStateCheck(module);
+  bindGoldenReport(module);
   module.def(
       "_golden_check",
       [](const std::string& manifest, const std::string& output, std::vector<std::string> only, const py::object& shard,

@@ -110,7 +110,10 @@ Image imageOf(const py::handle& frame, const char* call) {
   return image;
 }
 
-void bindRendering(py::module_& module) {
+namespace {
+
+// The module's functions on frames: the type they are viewed as, and PNG bytes and files of them.
+void bindFrameFunctions(py::module_& module) {
   module.def(
       "_set_frame_type", [](const py::handle& type) { frameType = type.inc_ref(); }, "type"_a,
       "Sets the ndarray subclass frames are returned as (the package sets particles.Frame).");
@@ -129,7 +132,9 @@ void bindRendering(py::module_& module) {
         withoutGil([&] { image.savePng(path.string(), alpha); });
       },
       "frame"_a, "path"_a, "alpha"_a = false, "Writes the frame as a PNG, whole or not at all.");
+}
 
+void bindRenderer(py::module_& module) {
   py::class_<Object<Renderer>>(module, "Renderer",
                                R"doc(Draws simulations off screen, as `particles render` does, into frames: (h, w, 4)
 uint8 RGBA numpy arrays (particles.Frame). Simulation.render() keeps one for its last settings;
@@ -160,8 +165,10 @@ gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)
           "gl_description", [](Object<Renderer>& renderer) { return text(rendererOf(renderer).glDescription()); },
           "The GL backend, device and renderer that drew the last frame ('' before the first; "
           "'none (the cpu raster)' where no GL drew it).");
+}
 
-  // Simulation.render: defined here, beside the Renderer it keeps.
+// Simulation.render: defined here, beside the Renderer it keeps.
+void bindSimulationRender(py::module_& module) {
   const py::object simulation = module.attr("Simulation");
   simulation.attr("render") = py::cpp_function(
       [](SimulationHandle& handle, const py::object& size, const py::object& theme, const py::object& msaa,
@@ -185,7 +192,32 @@ gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)
       R"doc(The state now, drawn as `particles render --at` draws it: a Frame, an (h, w, 4)
 uint8 RGBA numpy array that a notebook shows. The options are Renderer's; the renderer is kept for
 the next call with the same ones.)doc");
+}
 
+// VideoWriter(path, fps=…, crf=…, …): the keyword arguments checked, then the C++ writer opened.
+VideoHandle openVideoWriter(const std::filesystem::path& path, const py::object& fps, const py::object& crf,
+                            std::string preset, double keyintSeconds, bool alpha, bool verbose) {
+  VideoSettings settings;
+  if (!fps.is_none()) {
+    settings.fps = wholeInt(fps, "VideoWriter", "fps (or None for the format's default)");
+    if (settings.fps < 1) {
+      throw ArgumentError("VideoWriter: fps must be 1 or more, or None for the format's default; got " +
+                          std::to_string(settings.fps));
+    }
+  }
+  if (!crf.is_none()) {
+    const int quality = wholeInt(crf, "VideoWriter", "crf (or None for the format's default)");
+    if (quality < 0) throw ArgumentError("VideoWriter: crf must be 0 or more, or None for the format's default");
+    settings.crf = quality;  // the C++ constructor checks the format's range
+  }
+  settings.preset = std::move(preset);
+  settings.keyintSeconds = keyintSeconds;
+  settings.alpha = alpha;
+  settings.verbose = verbose;
+  return VideoHandle(std::make_unique<VideoWriter>(path.string(), settings), path.string());
+}
+
+void bindVideoWriter(py::module_& module) {
   py::class_<VideoHandle>(module, "VideoWriter",
                           R"doc(Writes frames to an MP4, WebM or GIF file (by its extension), as `particles
 render` does. The file appears whole when the writer finishes; a writer that stops early (an
@@ -196,30 +228,8 @@ exception, Ctrl-C, abort()) leaves nothing, and an existing file stays as it was
             video.write(sim.render(size=(640, 360)))
             sim.advance(1 / 30)
 )doc")
-      .def(py::init([](const std::filesystem::path& path, const py::object& fps, const py::object& crf,
-                       std::string preset, double keyintSeconds, bool alpha, bool verbose) {
-             VideoSettings settings;
-             if (!fps.is_none()) {
-               settings.fps = wholeInt(fps, "VideoWriter", "fps (or None for the format's default)");
-               if (settings.fps < 1) {
-                 throw ArgumentError("VideoWriter: fps must be 1 or more, or None for the format's default; got " +
-                                     std::to_string(settings.fps));
-               }
-             }
-             if (!crf.is_none()) {
-               const int quality = wholeInt(crf, "VideoWriter", "crf (or None for the format's default)");
-               if (quality < 0)
-                 throw ArgumentError("VideoWriter: crf must be 0 or more, or None for the format's default");
-               settings.crf = quality;  // the C++ constructor checks the format's range
-             }
-             settings.preset = std::move(preset);
-             settings.keyintSeconds = keyintSeconds;
-             settings.alpha = alpha;
-             settings.verbose = verbose;
-             return VideoHandle(std::make_unique<VideoWriter>(path.string(), settings), path.string());
-           }),
-           "path"_a, py::kw_only(), "fps"_a = py::none(), "crf"_a = py::none(), "preset"_a = "medium",
-           "keyint_seconds"_a = 2.0, "alpha"_a = false, "verbose"_a = false,
+      .def(py::init(&openVideoWriter), "path"_a, py::kw_only(), "fps"_a = py::none(), "crf"_a = py::none(),
+           "preset"_a = "medium", "keyint_seconds"_a = 2.0, "alpha"_a = false, "verbose"_a = false,
            R"doc(path: a .mp4, .webm or .gif file; fps: frames per second, 1 to 1000 (GIF: 1 to 50),
 or None for the format's default (60; GIF 30, as `particles render`); crf: quality (the encoder's
 constant rate factor), None for the format's default; preset: MP4's x264 preset; keyint_seconds:
@@ -273,6 +283,15 @@ libav's own messages on stderr.)doc")
         return "<particles.VideoWriter " + py::repr(pathText(handle.path)).cast<std::string>() + ", " +
                std::to_string(handle.writer ? handle.writer->frames() : 0) + " frames>";
       });
+}
+
+}  // namespace
+
+void bindRendering(py::module_& module) {
+  bindFrameFunctions(module);
+  bindRenderer(module);
+  bindSimulationRender(module);
+  bindVideoWriter(module);
 }
 
 }  // namespace particles::python

@@ -88,20 +88,7 @@ std::string describeSimulation(const SimulationHandle& handle) {
          " particles, " + std::to_string(s.bodyCount()) + " bodies, " + std::to_string(s.threads()) + " threads>";
 }
 
-}  // namespace
-
-const std::shared_ptr<Simulation>& SimulationHandle::get(const char* call) const {
-  Registered::require(this, "Simulation");
-  if (!simulation) throw ArgumentError(std::string("Simulation.") + call + ": the simulation was closed");
-  return simulation;
-}
-
-void bindSimulation(py::module_& module) {
-  // sim.bodies' fields, as a numpy dtype made from Python (PYBIND11_NUMPY_DTYPE reaches into pybind11's detail).
-  static_assert(sizeof(BodyState) == 4 * sizeof(double) && std::is_standard_layout_v<BodyState>);
-  py::list fields;
-  for (const char* field : {"x", "y", "angle", "omega"}) fields.append(py::make_tuple(field, "f8"));
-  bodyDtype = py::module_::import("numpy").attr("dtype")(fields).release();
+void bindEnergy(py::module_& module) {
   py::class_<Object<Energy>>(module, "Energy",
                              "The energy now, J: kinetic, potential (gravity, springs, the mouse's spring, the "
                              "colliders' penalty) and their total.")
@@ -119,30 +106,11 @@ void bindSimulation(py::module_& module) {
                ", potential=" + py::repr(py::float_(e.potential)).cast<std::string>() +
                ", total=" + py::repr(py::float_(e.total)).cast<std::string>() + ")";
       });
+}
 
-  module.def("default_threads", &defaultThreads,
-             "The thread count a Simulation takes with threads=None, as `particles run` without --threads: "
-             "PARTICLES_THREADS when set, else the CPUs this process may use.");
-
-  py::class_<SimulationHandle>(module, "Simulation",
-                               R"doc(A simulation made from a Scenario, at t = 0: steps it with the scenario's
-integrator and time step, reads and changes its state, and draws it. The steps give the same bits
-as `particles run` for the same scenario, on any number of threads.
-
-    sim = particles.Simulation(particles.Scenario.load("scenarios/cloth.yaml"), threads=2)
-    sim.advance(1.0)
-    sim.positions[0]          # x, y of the first particle, m
-
-Stepping and rendering release the GIL: Python threads can drive simulations of their own at
-once. One Simulation is driven by one thread at a time; a second thread's call while one is under
-way raises particles.Error. Ctrl-C stops a long step() or advance() at a whole step.
-A Simulation is a context manager: `with particles.Simulation(s) as sim:` closes it at the end.)doc")
-      .def(py::init([](const ScenarioObject& scenario, const py::object& threads) {
-             const Scenario& s = valueOf(scenario, "Scenario");
-             return SimulationHandle(std::make_shared<Simulation>(s, threadsOf(threads, "Simulation")));
-           }),
-           "scenario"_a, "threads"_a = py::none(),
-           "A simulation of `scenario` at t = 0 on `threads` threads (1 to 1024; None: default_threads()).")
+// Stepping and the clock: step(), advance(), advance_to(), time, dt, the integrator and the threads.
+void addSimulationClock(py::class_<SimulationHandle>& simulationClass) {
+  simulationClass
       .def(
           "step",
           [](SimulationHandle& handle, const py::handle& count) {
@@ -189,6 +157,17 @@ once per frame gives the frames of `particles render` at that fps, whatever dt i
             h.get("threads")->setThreads(threadsOf(threads, "Simulation.threads"));
           },
           "The threads a step runs on (1 to 1024; the bits do not depend on it).")
+      .def(
+          "set_threads",
+          [](SimulationHandle& h, const py::object& threads) {
+            h.get("set_threads")->setThreads(threadsOf(threads, "Simulation.set_threads"));
+          },
+          "threads"_a, "The threads the next steps run on (1 to 1024; None: default_threads()), as .threads = n.");
+}
+
+// The particles' and bodies' state: numpy views, copies, one point at a time, and names.
+void addSimulationState(py::class_<SimulationHandle>& simulationClass) {
+  simulationClass
       .def_property_readonly(
           "particle_count", [](const SimulationHandle& h) { return h.get("particle_count")->particleCount(); },
           "How many particles it has.")
@@ -228,12 +207,6 @@ view keeps the state's memory alive: after close() it still reads the last state
           },
           "body"_a, "A rigid body's (x, y, angle, omega): m, m, rad, rad/s.")
       .def(
-          "set_threads",
-          [](SimulationHandle& h, const py::object& threads) {
-            h.get("set_threads")->setThreads(threadsOf(threads, "Simulation.set_threads"));
-          },
-          "threads"_a, "The threads the next steps run on (1 to 1024; None: default_threads()), as .threads = n.")
-      .def(
           "position",
           [](const SimulationHandle& h, const py::handle& p) {
             const Simulation& s = *h.get("position");
@@ -263,6 +236,28 @@ view keeps the state's memory alive: after close() it still reads the last state
           },
           "particle"_a, "velocity"_a, "Sets a particle's velocity (vx, vy), m/s.")
       .def_property_readonly(
+          "particle_names",
+          [](const SimulationHandle& h) { return textList(h.get("particle_names")->particleNames()); },
+          "The particles' names, in index order: the names `particles run --trace` writes.")
+      .def_property_readonly(
+          "body_names", [](const SimulationHandle& h) { return textList(h.get("body_names")->bodyNames()); },
+          "The rigid bodies' names, in index order.")
+      .def(
+          "particle_index",
+          [](const SimulationHandle& h, const std::string& name) {
+            return h.get("particle_index")->particleIndex(name);
+          },
+          "name"_a, "The index of the particle of that name; ArgumentError (with the closest name) otherwise.")
+      .def(
+          "body_index",
+          [](const SimulationHandle& h, const std::string& name) { return h.get("body_index")->bodyIndex(name); },
+          "name"_a, "The index of the rigid body of that name.");
+}
+
+// The scenario's mice, taken over from Python.
+void addSimulationMice(py::class_<SimulationHandle>& simulationClass) {
+  simulationClass
+      .def_property_readonly(
           "mouse_count", [](const SimulationHandle& h) { return h.get("mouse_count")->mouseCount(); },
           "How many mice the scenario has (its `mouse` section).")
       .def(
@@ -290,7 +285,12 @@ mouse can be given one: Scenario.set("mouse", "[{grab: 'cloth[24][12]', from: 0,
             if (!at) return py::none();
             return tupleOf(*at);
           },
-          "mouse"_a = 0, "Where the mouse pulls now, (x, y); None while it holds no point.")
+          "mouse"_a = 0, "Where the mouse pulls now, (x, y); None while it holds no point.");
+}
+
+// What `particles run --stats` reports: the energy, the constraint error, the penetration.
+void addSimulationMeasures(py::class_<SimulationHandle>& simulationClass) {
+  simulationClass
       .def(
           "energy", [](const SimulationHandle& h) { return Object<Energy>(h.get("energy")->energy()); },
           "The energy now (Energy).")
@@ -299,24 +299,12 @@ mouse can be given one: Scenario.set("mouse", "[{grab: 'cloth[24][12]', from: 0,
           "The largest violation of a constraint now, m.")
       .def(
           "penetration", [](const SimulationHandle& h) { return h.get("penetration")->penetration(); },
-          "How deep the deepest point is inside a collider now, m.")
-      .def_property_readonly(
-          "particle_names",
-          [](const SimulationHandle& h) { return textList(h.get("particle_names")->particleNames()); },
-          "The particles' names, in index order: the names `particles run --trace` writes.")
-      .def_property_readonly(
-          "body_names", [](const SimulationHandle& h) { return textList(h.get("body_names")->bodyNames()); },
-          "The rigid bodies' names, in index order.")
-      .def(
-          "particle_index",
-          [](const SimulationHandle& h, const std::string& name) {
-            return h.get("particle_index")->particleIndex(name);
-          },
-          "name"_a, "The index of the particle of that name; ArgumentError (with the closest name) otherwise.")
-      .def(
-          "body_index",
-          [](const SimulationHandle& h, const std::string& name) { return h.get("body_index")->bodyIndex(name); },
-          "name"_a, "The index of the rigid body of that name.")
+          "How deep the deepest point is inside a collider now, m.");
+}
+
+// close(), the context manager, repr().
+void addSimulationLifetime(py::class_<SimulationHandle>& simulationClass) {
+  simulationClass
       .def(
           "close",
           [](SimulationHandle& h) {
@@ -343,6 +331,53 @@ mouse can be given one: Scenario.set("mouse", "[{grab: 'cloth[24][12]', from: 0,
           },
           "exc_type"_a, "exc"_a, "traceback"_a)
       .def("__repr__", &describeSimulation);
+}
+
+}  // namespace
+
+const std::shared_ptr<Simulation>& SimulationHandle::get(const char* call) const {
+  Registered::require(this, "Simulation");
+  if (!simulation) throw ArgumentError(std::string("Simulation.") + call + ": the simulation was closed");
+  return simulation;
+}
+
+void bindSimulation(py::module_& module) {
+  // sim.bodies' fields, as a numpy dtype made from Python (PYBIND11_NUMPY_DTYPE reaches into pybind11's detail).
+  static_assert(sizeof(BodyState) == 4 * sizeof(double) && std::is_standard_layout_v<BodyState>);
+  py::list fields;
+  for (const char* field : {"x", "y", "angle", "omega"}) fields.append(py::make_tuple(field, "f8"));
+  bodyDtype = py::module_::import("numpy").attr("dtype")(fields).release();
+  bindEnergy(module);
+
+  module.def("default_threads", &defaultThreads,
+             "The thread count a Simulation takes with threads=None, as `particles run` without --threads: "
+             "PARTICLES_THREADS when set, else the CPUs this process may use.");
+
+  py::class_<SimulationHandle> simulation(
+      module, "Simulation",
+      R"doc(A simulation made from a Scenario, at t = 0: steps it with the scenario's
+integrator and time step, reads and changes its state, and draws it. The steps give the same bits
+as `particles run` for the same scenario, on any number of threads.
+
+    sim = particles.Simulation(particles.Scenario.load("scenarios/cloth.yaml"), threads=2)
+    sim.advance(1.0)
+    sim.positions[0]          # x, y of the first particle, m
+
+Stepping and rendering release the GIL: Python threads can drive simulations of their own at
+once. One Simulation is driven by one thread at a time; a second thread's call while one is under
+way raises particles.Error. Ctrl-C stops a long step() or advance() at a whole step.
+A Simulation is a context manager: `with particles.Simulation(s) as sim:` closes it at the end.)doc");
+  simulation.def(py::init([](const ScenarioObject& scenario, const py::object& threads) {
+                   const Scenario& s = valueOf(scenario, "Scenario");
+                   return SimulationHandle(std::make_shared<Simulation>(s, threadsOf(threads, "Simulation")));
+                 }),
+                 "scenario"_a, "threads"_a = py::none(),
+                 "A simulation of `scenario` at t = 0 on `threads` threads (1 to 1024; None: default_threads()).");
+  addSimulationClock(simulation);
+  addSimulationState(simulation);
+  addSimulationMice(simulation);
+  addSimulationMeasures(simulation);
+  addSimulationLifetime(simulation);
 }
 
 }  // namespace particles::python

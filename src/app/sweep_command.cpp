@@ -24,6 +24,7 @@
 #include "app/gather_command.hpp"
 #include "app/job_record.hpp"
 #include "app/stop_signal.hpp"
+#include "app/sweep_job_lists.hpp"
 #include "app/sweep_plan.hpp"
 #include "app/sweep_schedule.hpp"
 #include "app/thread_count.hpp"

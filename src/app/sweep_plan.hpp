@@ -53,18 +53,4 @@ SweepPlan planSweep(const scenario::SweepSpec& spec, const std::filesystem::path
 // the parameters, segment, dir, command. Throws output::OutputError.
 void writeJobTable(const SweepPlan& plan);
 
-// Throws InputError when the program's or the output folder's path holds a control character,
-// which a job list (lines of shell text) cannot hold; checked before anything is written.
-void checkListPaths(const SweepPlan& plan);
-
-// --emit parallel: jobs.txt (and concat.txt for split renders), one line `PROGRAM job OUT INDEX`
-// per job, for `parallel < jobs.txt`. Returns what to run, for the user (with PARTICLES_THREADS=1:
-// parallel runs one job per CPU). Throws InputError when the program's or the output folder's path
-// holds a control character.
-std::string emitParallel(const SweepPlan& plan);
-// --emit slurm: sweep.sbatch (an array job whose task i runs `PROGRAM job OUT i`, with `--threads
-// $SLURM_CPUS_PER_TASK` when the task has that many CPUs; concat.sbatch and submit.sh for split
-// renders). Returns what to run.
-std::string emitSlurm(const SweepPlan& plan);
-
 }  // namespace particles::app

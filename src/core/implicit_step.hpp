@@ -86,7 +86,7 @@ struct ImplicitTarget {
 // The common step with what it keeps between steps: A's pattern, the last Δv (CG's first guess),
 // the direct path's factors and its reuse account, and auto's choice. Each implicit integrator
 // owns one (integrators/backward_euler.hpp, integrators/bdf2.hpp); the scratch the stages fill is
-// private to implicit_step.cpp.
+// core/implicit_assembly.hpp's, internal to the core.
 class ImplicitStep {
  public:
   ImplicitStep();
@@ -114,7 +114,7 @@ class ImplicitStep {
   };
   LinearSystem lastSystem() const;
 
-  // What the step's stages fill and keep: defined in implicit_step.cpp, for them alone.
+  // What the step's stages fill and keep: defined in core/implicit_assembly.hpp, for them alone.
   struct Scratch;
 
  private:

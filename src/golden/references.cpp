@@ -164,24 +164,29 @@ UpdateOutcome writeRenderedReferences(const GoldenManifest& manifest, const fs::
   return out;
 }
 
-UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector<fs::path>& folders,
-                               const std::vector<std::string>& names, std::uintmax_t maxInputMiB) {
-  const std::map<std::string, Named> named = checksByName(manifest);
-  for (const std::string& name : names) {
-    if (!named.count(name))
-      throw std::invalid_argument(fmt::format("{}: the manifest has no frame or state of that name", name));
-  }
-  // Per check: what each folder says of it.
-  struct Seen {
-    fs::path folder;
-    bool passed = false;
-    std::string actual;  // the kept file, when it failed or was missing
-    std::string how;
-  };
-  std::map<std::string, std::vector<Seen>> seen;
+namespace {
+
+// What one report folder says of a check.
+struct Sighting {
+  fs::path folder;
+  bool passed = false;
+  std::string actual;  // the kept file, when it failed or was missing
+  std::string how;
+};
+
+// What the folders say of the checks asked for (`names`, or all): each check's sightings, the
+// checks in the order first seen, the checks refused already and the folders set aside.
+struct Sightings {
+  std::map<std::string, std::vector<Sighting>> seen;
   std::vector<std::string> order;
   std::vector<Refusal> refused;
   std::vector<std::string> notes;
+};
+
+Sightings readSightings(const GoldenManifest& manifest, const std::map<std::string, Named>& named,
+                        const std::vector<fs::path>& folders, const std::vector<std::string>& names,
+                        std::uintmax_t maxInputMiB) {
+  Sightings out;
   for (const fs::path& folder : folders) {
     const GoldenResults results = readResults(folder, maxInputMiB);
     // Folders whose pixels are not the manifest's own (another raster path or tolerance), or that
@@ -189,17 +194,17 @@ UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector
     const auto overridden =
         std::find_if(results.runs.begin(), results.runs.end(), [](const RunFacts& f) { return !f.overrides.empty(); });
     if (overridden != results.runs.end()) {
-      notes.push_back(fmt::format("ignored {}: checked with {}, not the manifest's own settings", folder.string(),
-                                  overridden->overrides));
+      out.notes.push_back(fmt::format("ignored {}: checked with {}, not the manifest's own settings", folder.string(),
+                                      overridden->overrides));
       continue;
     }
     const bool thisManifest = std::any_of(results.runs.begin(), results.runs.end(), [&](const RunFacts& f) {
       return fs::path(f.manifest).lexically_normal() == fs::path(manifest.file).lexically_normal();
     });
     if (!thisManifest) {
-      notes.push_back(fmt::format("ignored {}: a report of {}, not {}", folder.string(),
-                                  results.runs.empty() ? std::string("no manifest") : results.runs.front().manifest,
-                                  manifest.file));
+      out.notes.push_back(fmt::format("ignored {}: a report of {}, not {}", folder.string(),
+                                      results.runs.empty() ? std::string("no manifest") : results.runs.front().manifest,
+                                      manifest.file));
       continue;
     }
     auto note = [&](const std::string& name, Outcome outcome, const KeptFiles& files, const std::string& how,
@@ -207,62 +212,79 @@ UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector
       if (!names.empty() && std::find(names.begin(), names.end(), name) == names.end()) return;
       if (control) return;  // a control's frame is never a reference
       if (!named.count(name)) {
-        refused.push_back({name, fmt::format("{} has it, the manifest no longer does", folder.string())});
+        out.refused.push_back({name, fmt::format("{} has it, the manifest no longer does", folder.string())});
         return;
       }
-      if (!seen.count(name)) order.push_back(name);
-      Seen s{folder, outcome == Outcome::passed, "", how};
+      if (!out.seen.count(name)) out.order.push_back(name);
+      Sighting s{folder, outcome == Outcome::passed, "", how};
       if ((outcome == Outcome::failed || outcome == Outcome::missing) && !files.actual.empty()) {
         s.actual = files.actual;
       } else if (outcome != Outcome::passed) {
         s.how = "error";
       }
-      seen[name].push_back(std::move(s));
+      out.seen[name].push_back(std::move(s));
     };
     for (const FrameResult& r : results.frames) note(r.name, r.outcome, r.files, frameChange(r), r.expectDiffer);
     for (const StateResult& r : results.states) note(r.name, r.outcome, r.files, stateChange(r), false);
   }
+  return out;
+}
+
+// The actual file every folder kept of one check, the same bytes in each: its bytes and the first
+// sighting holding it, or why not (a folder that passed or could not check it, files that differ,
+// a file that is not a reference).
+std::string agreedActual(const std::vector<Sighting>& all, const Named& n, std::uintmax_t maxInputMiB,
+                         const Sighting*& first, std::string& bytes) {
+  for (const Sighting& s : all) {
+    if (s.actual.empty()) {
+      return fmt::format("{} {} where {} failed", s.folder.string(), s.passed ? "passed" : "could not check it",
+                         all.front().folder.string());
+    }
+    try {
+      std::string these = readKept(s.folder, s.actual, maxInputMiB);
+      if (!first) {
+        checkContent(these, n.frame, (s.folder / s.actual).string());
+        first = &s;
+        bytes = std::move(these);
+      } else if (these != bytes) {
+        return fmt::format("{} and {} hold different actual {}s", (first->folder / first->actual).string(),
+                           (s.folder / s.actual).string(), n.frame ? "frame" : "state");
+      }
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    } catch (const std::runtime_error& e) {  // a PNG that does not decode
+      return e.what();
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+UpdateOutcome acceptReferences(const GoldenManifest& manifest, const std::vector<fs::path>& folders,
+                               const std::vector<std::string>& names, std::uintmax_t maxInputMiB) {
+  const std::map<std::string, Named> named = checksByName(manifest);
+  for (const std::string& name : names) {
+    if (!named.count(name))
+      throw std::invalid_argument(fmt::format("{}: the manifest has no frame or state of that name", name));
+  }
+  Sightings sightings = readSightings(manifest, named, folders, names, maxInputMiB);
   UpdateOutcome out;
-  out.refused = std::move(refused);
-  out.notes = std::move(notes);
+  out.refused = std::move(sightings.refused);
+  out.notes = std::move(sightings.notes);
   std::optional<output::ConfinedFolder> references;  // made at the first reference written
-  for (const std::string& name : order) {
+  for (const std::string& name : sightings.order) {
     const bool refusedAlready =
         std::any_of(out.refused.begin(), out.refused.end(), [&](const Refusal& r) { return r.name == name; });
     if (refusedAlready) continue;
-    const std::vector<Seen>& all = seen.at(name);
+    const std::vector<Sighting>& all = sightings.seen.at(name);
     const Named& n = named.at(name);
     if (!n.writable) continue;
-    const bool anyActual = std::any_of(all.begin(), all.end(), [](const Seen& s) { return !s.actual.empty(); });
+    const bool anyActual = std::any_of(all.begin(), all.end(), [](const Sighting& s) { return !s.actual.empty(); });
     if (!anyActual) continue;  // passed everywhere: nothing to accept
-    const Seen* first = nullptr;
+    const Sighting* first = nullptr;
     std::string bytes;
-    std::string why;
-    for (const Seen& s : all) {
-      if (s.actual.empty()) {
-        why = fmt::format("{} {} where {} failed", s.folder.string(), s.passed ? "passed" : "could not check it",
-                          all.front().folder.string());
-        break;
-      }
-      try {
-        std::string these = readKept(s.folder, s.actual, maxInputMiB);
-        if (!first) {
-          checkContent(these, n.frame, (s.folder / s.actual).string());
-          first = &s;
-          bytes = std::move(these);
-        } else if (these != bytes) {
-          why = fmt::format("{} and {} hold different actual {}s", (first->folder / first->actual).string(),
-                            (s.folder / s.actual).string(), n.frame ? "frame" : "state");
-          break;
-        }
-      } catch (const std::invalid_argument& e) {
-        why = e.what();
-        break;
-      } catch (const std::runtime_error& e) {  // a PNG that does not decode
-        why = e.what();
-        break;
-      }
-    }
+    const std::string why = agreedActual(all, n, maxInputMiB, first, bytes);
     if (!why.empty()) {
       out.refused.push_back({name, why});
       continue;

@@ -33,7 +33,7 @@ struct UpdateOutcome {
   std::vector<std::string> notes;   // --from: folders set aside (another manifest, other settings), and why
 };
 
-// Where a manifest's references may be read and written (issue 39): every reference lies beneath
+// Where a manifest's references may be read and written: every reference lies beneath
 // the references folder once resolved, or OutsideFolderError names it (a link that leads out); and
 // for `update` (`written`), none is the same file as the manifest or one of its scenarios
 // (output::SameFileError: update would overwrite its own input). Check, update and update --from

@@ -195,4 +195,8 @@ std::string secondsText(double seconds) {
   return fmt::format("{:.3f} s", seconds);
 }
 
+std::string countText(long count, std::string_view one, std::string_view many) {
+  return fmt::format("{} {}", count, count == 1 ? one : many);
+}
+
 }  // namespace particles::golden::report

@@ -58,5 +58,7 @@ std::string deviationText(const StateDeviation& deviation);
 std::string numberText(double value);
 // "0.123 s"
 std::string secondsText(double seconds);
+// "1 frame", "3 frames": the count and the word for it.
+std::string countText(long count, std::string_view one, std::string_view many);
 
 }  // namespace particles::golden::report

@@ -18,10 +18,10 @@ inline constexpr std::string_view kResultsFormat = "particles-golden-results";
 inline constexpr int kResultsVersion = 1;
 
 // The deepest nesting of arrays and objects the reader takes, checked before the text is parsed
-// (results_json.cpp: checkNesting), so that nothing that walks a parsed value recursively can run
+// (json_reader.hpp: parseJsonText), so that nothing that walks a parsed value recursively can run
 // out of stack. A results file nests 5 deep (the file, "frames", a frame, its "numbers", the
 // "box"); 64 leaves room for later versions and is orders of magnitude below the 200,000 levels
-// that overflowed an 8 MiB stack in dump() (issue 39).
+// that overflowed an 8 MiB stack in dump().
 inline constexpr int kMaxResultsDepth = 64;
 
 // The text of results.json, ending in a line break.
