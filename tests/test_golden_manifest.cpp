@@ -55,32 +55,34 @@ void expectManifestError(const std::string& yaml, int line, int column, const st
 // One frame entry, so that the cases below can add what they test after it (line 2).
 const std::string kOneFrame = "frames:\n  - {scenario: a.yaml, times: [1]}\n";
 
+// A manifest with every key, each line numbered for the checks of the case that reads them all.
+const std::string kEveryKeyManifest =
+    "references: refs\n"                                                                    // 1
+    "defaults:\n"                                                                           // 2
+    "  render: {size: 320x240, msaa: 4, theme: dark, background: theme, raster: auto}\n"    // 3
+    "  tolerance: {threshold: 16, max_share: 0.0002}\n"                                     // 4
+    "  state_tolerance: {position: 1e-9, velocity: 2e-9, angle: 3e-9, omega: 4e-9}\n"       // 5
+    "frames:\n"                                                                             // 6
+    "  - scenario: ../scenarios/cloth.yaml\n"                                               // 7
+    "    times: [10, 0.5, 2.5]\n"                                                           // 8
+    "    set: {\"grids[0].springs.structural.ks\": [26.25, 1.05], simulation.dt: 0.001}\n"  // 9
+    "    render: {raster: tiles, size: 640X360}\n"                                          // 10
+    "    tolerance: {max_share: 0.0005}\n"                                                  // 11
+    "  - scenario: /abs/soft_body.yaml\n"                                                   // 12
+    "    times: [4.434]\n"                                                                  // 13
+    "    name: \"{scenario}_control\"\n"                                                    // 14
+    "    set: [\"simulation.dt=0.002\", \"forces[1].ks=[5, 6]\"]\n"                         // 15
+    "    expect: differ\n"                                                                  // 16
+    "states:\n"                                                                             // 17
+    "  - scenario: ../scenarios/soft_body.yaml\n"                                           // 18
+    "    times: [37.5, 9]\n"                                                                // 19
+    "    state_tolerance: {position: 1e-6}\n"                                               // 20
+    "  - {scenario: rigid_chain.yaml, times: [1], name: \"chain+{scenario}\"}\n";           // 21
+
 }  // namespace
 
 TEST_CASE("golden manifest: every key read into its structs, paths resolved, times sorted, names expanded") {
-  const std::string yaml =
-      "references: refs\n"                                                                    // 1
-      "defaults:\n"                                                                           // 2
-      "  render: {size: 320x240, msaa: 4, theme: dark, background: theme, raster: auto}\n"    // 3
-      "  tolerance: {threshold: 16, max_share: 0.0002}\n"                                     // 4
-      "  state_tolerance: {position: 1e-9, velocity: 2e-9, angle: 3e-9, omega: 4e-9}\n"       // 5
-      "frames:\n"                                                                             // 6
-      "  - scenario: ../scenarios/cloth.yaml\n"                                               // 7
-      "    times: [10, 0.5, 2.5]\n"                                                           // 8
-      "    set: {\"grids[0].springs.structural.ks\": [26.25, 1.05], simulation.dt: 0.001}\n"  // 9
-      "    render: {raster: tiles, size: 640X360}\n"                                          // 10
-      "    tolerance: {max_share: 0.0005}\n"                                                  // 11
-      "  - scenario: /abs/soft_body.yaml\n"                                                   // 12
-      "    times: [4.434]\n"                                                                  // 13
-      "    name: \"{scenario}_control\"\n"                                                    // 14
-      "    set: [\"simulation.dt=0.002\", \"forces[1].ks=[5, 6]\"]\n"                         // 15
-      "    expect: differ\n"                                                                  // 16
-      "states:\n"                                                                             // 17
-      "  - scenario: ../scenarios/soft_body.yaml\n"                                           // 18
-      "    times: [37.5, 9]\n"                                                                // 19
-      "    state_tolerance: {position: 1e-6}\n"                                               // 20
-      "  - {scenario: rigid_chain.yaml, times: [1], name: \"chain+{scenario}\"}\n";           // 21
-  const GoldenManifest m = loadManifest(yaml);
+  const GoldenManifest m = loadManifest(kEveryKeyManifest);
   CHECK(m.file == "golden.yaml");
   CHECK(m.references == fs::path("dir/refs"));
 

@@ -252,6 +252,33 @@ Image discFrame(int cx, int cy) {
   return image;
 }
 
+// writeSampleFolder's states: one failed, one passed.
+std::vector<StateResult> sampleStates() {
+  StateResult stateFailed;
+  stateFailed.name = "pendulum_state";
+  stateFailed.scenario = "scenarios/pendulum.yaml";
+  stateFailed.times = {"0.5", "1"};
+  stateFailed.outcome = Outcome::failed;
+  stateFailed.message = "bob x at t 0.5: difference 2e-06 beyond tolerance 1e-06";
+  stateFailed.firstBeyond = StateDeviation{"0.5", "bob", "x", 0.3333333333, 0.3333353333, 2e-6, 1e-6};
+  stateFailed.largest = stateFailed.firstBeyond;
+  stateFailed.values = 12;
+  stateFailed.files = {"states/pendulum.actual.csv", "states/pendulum.expected.csv", ""};
+  stateFailed.reference = "golden/states/pendulum.csv";
+  stateFailed.reproduce = {"particles run scenarios/pendulum.yaml --trace pendulum.csv"};
+  stateFailed.seconds = 0.05;
+  StateResult statePassed;
+  statePassed.name = "cloth_state";
+  statePassed.scenario = "scenarios/cloth.yaml";
+  statePassed.times = {"1", "2.5"};
+  statePassed.outcome = Outcome::passed;
+  statePassed.largest = StateDeviation{"2.5", "cloth[3][4]", "vy", -0.25, -0.2500000001, -1e-10, 1e-6};
+  statePassed.values = 2400;
+  statePassed.reference = "golden/states/cloth.csv";
+  statePassed.seconds = 0.2;
+  return {stateFailed, statePassed};
+}
+
 // What tests/golden/browser_test.py and junit_test.py check (golden/CMakeLists.txt gives the counts
 // of its junit.xml): frames failed, missing (with only its actual frame, in a file whose name needs
 // escaping in a URL), passed, a control that passed and an error; states failed and passed.
@@ -331,29 +358,7 @@ GoldenResults writeSampleFolder(const fs::path& folder) {
   error.seconds = 0.01;
   r.frames = {failed, missing, passed, control, error};
 
-  StateResult stateFailed;
-  stateFailed.name = "pendulum_state";
-  stateFailed.scenario = "scenarios/pendulum.yaml";
-  stateFailed.times = {"0.5", "1"};
-  stateFailed.outcome = Outcome::failed;
-  stateFailed.message = "bob x at t 0.5: difference 2e-06 beyond tolerance 1e-06";
-  stateFailed.firstBeyond = StateDeviation{"0.5", "bob", "x", 0.3333333333, 0.3333353333, 2e-6, 1e-6};
-  stateFailed.largest = stateFailed.firstBeyond;
-  stateFailed.values = 12;
-  stateFailed.files = {"states/pendulum.actual.csv", "states/pendulum.expected.csv", ""};
-  stateFailed.reference = "golden/states/pendulum.csv";
-  stateFailed.reproduce = {"particles run scenarios/pendulum.yaml --trace pendulum.csv"};
-  stateFailed.seconds = 0.05;
-  StateResult statePassed;
-  statePassed.name = "cloth_state";
-  statePassed.scenario = "scenarios/cloth.yaml";
-  statePassed.times = {"1", "2.5"};
-  statePassed.outcome = Outcome::passed;
-  statePassed.largest = StateDeviation{"2.5", "cloth[3][4]", "vy", -0.25, -0.2500000001, -1e-10, 1e-6};
-  statePassed.values = 2400;
-  statePassed.reference = "golden/states/cloth.csv";
-  statePassed.seconds = 0.2;
-  r.states = {stateFailed, statePassed};
+  r.states = sampleStates();
   writeReport(folder, r);
   return r;
 }

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <optional>
 #include <regex>
 #include <string>
@@ -19,6 +20,7 @@
 #include "scenario/scenario.hpp"
 #include "skip.hpp"
 
+namespace fs = std::filesystem;
 using namespace particles;
 using namespace particles::render;
 using particles::test::DemoFrame;
