@@ -7,14 +7,13 @@
 //   2. in finish(): palettegen gives the palette; each kept frame is inflated again, mapped to the
 //      palette by paletteuse, encoded and muxed.
 // Kept frames cost little: a cloth frame deflates to a fiftieth of its size, in a fraction of the
-// time the frame took to draw (bench/README.md, "Measurements behind choices in the source").
+// time the frame took to draw (bench/README.md, "GIF frames deflated").
 //
 // Palette: palettegen's stats_mode=full counts every pixel of every frame, so the flat colours
 // that cover most of a frame (background, particles, bodies) get exact entries and the rest
 // (anti-aliased edges, strain colours) share what is left; no entry is reserved for transparency.
-// Dithering: none. Measured on 4 s of the cloth at 1280×720 and 30 fps: PSNR 64.1 dB against the
-// frames with no dithering (3.75 MB), 63.3 dB with 8×8 Bayer at scale 5 (3.96 MB), 63.5 dB with
-// sierra2_4a (3.80 MB); the soft body in the light theme has under 256 colours and is exact. Flat
+// Dithering: none, which came out closest to the frames and smallest (bench/README.md, "GIF
+// dithering"); the soft body in the light theme has under 256 colours and is exact. Flat
 // colours stay flat, with no dither pattern crawling from frame to frame. paletteuse's
 // diff_mode=rectangle maps only the part of a frame that changed.
 //

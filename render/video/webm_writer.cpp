@@ -9,9 +9,8 @@ namespace particles::render {
 
 namespace {
 
-// libvpx's speed for deadline "good", 0 (slowest) … 5 (libvpx 1.12 treats more as 5). Measured on
-// 4 s of the cloth at 1280×720 and 60 fps, crf 31, 2 cores (ffmpeg's libvpx-vp9, row-mt): 4 encodes
-// 33 frames/s (4.8 MB, PSNR 42.7 dB against the frames), 2 and 5 about 25 frames/s.
+// libvpx's speed for deadline "good", 0 (slowest) … 5 (libvpx 1.12 treats more as 5). 4 encoded
+// fastest of those measured (bench/README.md, "VP9 speed").
 constexpr int kVp9Threads = 4;
 constexpr int kVp9CpuUsed = 4;
 

@@ -44,12 +44,9 @@ class System;
 // solve's with the size (its factor's fill), so auto starts with CG and moves to the direct solve,
 // for the rest of the run, once CG's last kAutoWindow steps needed more iterations on average than
 // the direct solve costs in CG iterations at that size: 14 · (free coordinates / 1250)^0.3.
-// Measured over the first 3 s of backward Euler at 1/60 s on the demo cloth scaled to n²
-// (bench/README.md, "Implicit integration"; BM_ImplicitCrossover): CG and direct break even at 14
-// iterations on the 25² cloth (1,250 coordinates), 20 on the 50², 30 on the 100², 39 on the 141²;
-// the demo cloth needs 18–20 at every size (direct wins at 25², they tie at 50², CG wins above),
-// the 100× stiff one 107–165 and the 10⁴× stiff one about 400 (direct wins). Only when the other
-// constraint rows are few enough for the Schur complement (kMaxSchurRows).
+// The rule fits the break-even counts measured on the demo cloth scaled to n², where the stiff
+// cloths' counts fall on the direct side (bench/README.md, "The crossover"; BM_ImplicitCrossover).
+// Only when the other constraint rows are few enough for the Schur complement (kMaxSchurRows).
 double autoDirectIterations(long freeCoordinates);
 constexpr int kAutoWindow = 10;
 // The direct path's iterations on an earlier step's factors stop at this relative error in the
