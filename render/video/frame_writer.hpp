@@ -64,10 +64,10 @@ struct VideoOptions {
   // (render/video/output_formats.hpp; crfOf). Nothing: the row's default.
   std::optional<int> crf;
   // x264 preset: ultrafast … placebo (kX264Presets). veryfast encodes about twice as fast as
-  // medium, for slightly larger files (bench/README.md, "Measurements behind choices in the source").
+  // medium, for slightly larger files (bench/README.md, "x264 preset").
   std::string preset = "medium";
   // x264 tune, "" for none. "animation" sounds right for line art but measured worse on the cloth:
-  // larger files and no faster than none (bench/README.md, "Measurements behind choices in the source").
+  // larger files and no faster than none (bench/README.md, "x264 tune").
   std::string tune;
   // Longest time between keyframes, s: a web player seeks to the keyframe before the time asked
   // for and decodes on from there, so 2 s keeps scrubbing quick. x264's default, 250 frames, is

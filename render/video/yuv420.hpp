@@ -13,7 +13,7 @@
 //
 // Written here rather than through libswscale: with the flags that keep chroma exact
 // (ACCURATE_RND | FULL_CHR_H_INP) swscale takes its unvectorised path, about four times slower than
-// this loop with AVX2 (bench/README.md, "End to end").
+// this loop with AVX2 (bench/README.md, "Our own yuv420p").
 // Results equal the formulas above rounded to nearest within 1/64 of a level (Q16 fixed point).
 
 #include <cstdint>
