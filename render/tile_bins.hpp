@@ -1,6 +1,6 @@
 #pragma once
 // Internal to render/: a frame's shapes for the tile path (render/tile_program.hpp). Drawing a
-// primitive costs llvmpipe a fixed time in its front end whatever it covers (bench/README.md, "Measurements behind choices in the source"), so a frame
+// primitive costs llvmpipe a fixed time in its front end whatever it covers (bench/README.md, "Tile path"), so a frame
 // of 100,000 particles and 200,000 springs (1.2 million triangles) cannot be drawn shape by shape at
 // video rates. Instead each shape becomes one record of its true boundary (the same edges and radii the
 // triangle path's vertices carry, render/shape_mesh.hpp), the records are sorted into screen
