@@ -28,7 +28,7 @@ enum class Theme { dark, light };
 /// What is behind the scene: the theme's colour, or nothing (alpha = coverage).
 enum class Background { theme, transparent };
 
-/// How a frame is drawn (README, "Using it"): automatic (the cpu raster without a GPU, resident
+/// How a frame is drawn (docs/cli.md, "What every command shares"): automatic (the cpu raster without a GPU, resident
 /// with one), GL triangles, GL tiles, the resident GPU path, or the cpu raster with no GL at all.
 enum class Raster { automatic, triangles, tiles, resident, cpu };
 
