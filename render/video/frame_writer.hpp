@@ -80,8 +80,8 @@ struct VideoOptions {
   // given count, and the settings note it leaves in the first frame (an SEI message, "threads=N")
   // says how many ran. Its pictures are the same for 1 to 3 threads; beyond, each frame thread's
   // vertical motion search is held to the rows the threads before it have encoded (x264's
-  // mv-range-thread, shorter with more threads), so pictures may differ (README.md, "Threads and
-  // determinism"). VP9 keeps a fixed count (webm_writer.cpp): libvpx's pictures depend on it.
+  // mv-range-thread, shorter with more threads), so pictures may differ (docs/cli.md,
+  // "Threads"). VP9 keeps a fixed count (webm_writer.cpp): libvpx's pictures depend on it.
   int encoderThreads = 0;
 };
 // The largest --keyint, s: an hour.

@@ -50,7 +50,7 @@ const std::array<OutputFormat, 5> kOutputFormats{{
      .keepsAlpha = true,
      .alphaNote = "VP9 with an alpha channel",
      // libvpx-vp9's constant quality (crf with a bit rate of 0). 31 gives about x264's 18 in PSNR on
-     // the cloth (42.7 against 42.0 dB; README, "Videos for the web").
+     // the cloth (42.7 against 42.0 dB; docs/cli.md, "Videos for the web").
      .crf = CrfRange{0, 63, 31},
      // Its keyframes and alpha stream would not join.
      .splits = false,

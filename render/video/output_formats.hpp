@@ -3,7 +3,7 @@
 // gives, what the format can hold (alpha, a quality setting, a frame rate) and how its writer
 // opens. Every rule about formats reads the rows: the command line's checks and renderSimulation
 // (checkFormatOptions), openFrameWriter (frame_writer.hpp), the writers (crfOf, checkFps), and the
-// help texts and README's table of formats, which are made from them.
+// help texts and docs/cli.md's table of formats, which are made from them.
 //
 // A new format: its writer's file pair, a value of OutputKind, and one row in output_formats.cpp
 // (docs/architecture.md, "Adding an output format").

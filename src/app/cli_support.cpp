@@ -65,7 +65,7 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
                   fmt::format("Threads the command may keep busy: the simulation's and, in render, llvmpipe's and "
                               "the encoder's (default: {}, else one per CPU this process may use); the results "
                               "are the same bits for every count, but for an MP4 above 3 (x264's pictures depend "
-                              "on its thread count there: README, Threads and determinism)",
+                              "on its thread count there: docs/cli.md, Threads)",
                               kThreadsEnvironmentVariable))
       ->check(CLI::Range(1, kMaxThreads));
   addMaxInputOption(command, o.maxInputMiB, "a scenario file");

@@ -25,7 +25,7 @@ import time
 
 # Commands the pages show that this test does not run, and the test or stage that does.
 ELSEWHERE = {
-    "scripts/demo": "CI's fresh-machine run of the README's commands (bench/fresh-machine.sh)",
+    "scripts/demo": "scripts/test, stage \"scripts/demo (the README's first command)\"",
     "scripts/test": "CI (.ci/run)",
     "scripts/deps python && python3 -m venv --system-site-packages .venv && .venv/bin/pip install --no-build-isolation .":
         "scripts/test, stage \"the Python module installed by pip into a venv\"",

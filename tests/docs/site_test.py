@@ -86,7 +86,7 @@ def check_page(driver, site, page):
 def public_cpp_names(xml_folder):
     """Qualified names of the public headers' public declarations, from Doxygen's XML: classes,
     structs, their public members (destructors and the opaque Impl aside), the namespaces'
-    functions and enums, and the macros."""
+    functions (a template's specialisations under its own name) and enums, and the macros."""
     names = set()
     for path in pathlib.Path(xml_folder).glob("*.xml"):
         root = ElementTree.parse(path).getroot()
@@ -101,7 +101,8 @@ def public_cpp_names(xml_folder):
                 if member.get("kind") == "define":
                     names.add(member_name)
                 elif kind in ("class", "struct", "namespace") and member.get("kind") != "friend":
-                    names.add(f"{name}::{member_name}")
+                    # A template's specialisations share its entry: fromName<Theme> is fromName.
+                    names.add(f"{name}::{re.sub(r'<.*>$', '', member_name).strip()}")
     return {n for n in names if not n.endswith("::Impl")}
 
 

@@ -1,6 +1,6 @@
 // libFuzzer harness for the PNG reader (`particles compare`, the golden-frame tests): bytes in, an
 // RGBA8 image or an OutputError naming libpng's message out. Any other exception escapes and any
-// crash aborts: both are findings. How to run it: README.md, "Fuzzing".
+// crash aborts: both are findings. How to run it: tests/fuzz/README.md.
 #include <cstddef>
 #include <cstdint>
 #include <span>

@@ -1,7 +1,7 @@
 // libFuzzer harness for the scenario loader: text in, a System or a ScenarioError out. A small
 // system is also stepped a few times with its own integrator and dt, where the core's explosion
 // guard (SimulationError) is a normal outcome too. Any other exception escapes and any crash
-// aborts: both are findings. How to run it: README.md, "Fuzzing".
+// aborts: both are findings. How to run it: tests/fuzz/README.md.
 //
 // Lines at the top of the form `#set PATH=VALUE` (YAML comments, so the rest reads the same) are
 // applied as `--set PATH=VALUE` overrides, so the fuzzer also reaches key paths and override values.

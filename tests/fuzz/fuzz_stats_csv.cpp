@@ -1,7 +1,7 @@
 // libFuzzer harness for the stats CSV that `particles plot` reads: text in, a table or a CsvError
 // out, and from a table the figure as SVG bytes in memory, as `particles plot -o x.svg` draws it
 // (FigureError is a normal outcome too). Any other exception escapes and any crash aborts: both
-// are findings. How to run it: README.md, "Fuzzing".
+// are findings. How to run it: tests/fuzz/README.md.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
