@@ -21,14 +21,14 @@ namespace particles::golden {
 /// What `particles golden check` takes besides the manifest; the names are its options'.
 struct Options {
   std::string output = "golden-report";  ///< the report folder (-o): replaced whole when the check is done
-  std::vector<std::string> only{};       ///< --only: these frames and states; empty: all
-  std::optional<Shard> shard{};          ///< --shard K/N: the K-th of N near-equal parts; nothing: all
-  GlBackend gl = GlBackend::automatic;   ///< --gl
-  bool gpu = false;                      ///< --gpu: draw on a GPU through EGL (golden/README.md, "On a GPU")
-  std::optional<Raster> raster{};        ///< --raster for entries without their own; nothing: the manifest's
-  std::optional<int> threshold{};        ///< --threshold for entries without their own (0 … 255)
-  std::optional<double> maxShare{};      ///< --max-share for entries without their own (0 … 1)
-  int jobs = 0;                          ///< --jobs: entries checked at once; 0: half the CPUs, at least 1
+  std::vector<std::string> only{};       ///< `--only`: these frames and states; empty: all
+  std::optional<Shard> shard{};          ///< `--shard K/N`: the K-th of N near-equal parts; nothing: all
+  GlBackend gl = GlBackend::automatic;   ///< `--gl`
+  bool gpu = false;                      ///< `--gpu`: draw on a GPU through EGL (golden/README.md, "On a GPU")
+  std::optional<Raster> raster{};        ///< `--raster` for entries without their own; nothing: the manifest's
+  std::optional<int> threshold{};        ///< `--threshold` for entries without their own (0 … 255)
+  std::optional<double> maxShare{};      ///< `--max-share` for entries without their own (0 … 1)
+  int jobs = 0;                          ///< `--jobs`: entries checked at once; 0: half the CPUs, at least 1
   /// After each check (on the checking threads): how many are done of how many, and its name.
   std::function<void(long done, long total, const std::string& name)> progress{};
 };

@@ -46,7 +46,7 @@ class PARTICLES_API Scenario {
   /// Replaces (or creates) the value at `path` before validation, as `--set path=value` does: the
   /// path is `simulation.dt`, `forces[1].ks` or `forces.1.ks`, the value is parsed as YAML. The
   /// shorthands `integrator`, `dt`, `duration` and `implicit_solver` are the simulation's keys, as
-  /// the options --integrator, --dt, --duration and --implicit-solver. The scenario is checked at
+  /// the options `--integrator`, `--dt`, `--duration` and `--implicit-solver`. The scenario is checked at
   /// once with every value set so far: a bad path, type or value throws ScenarioError, and the
   /// scenario stays as it was. Returns *this, so that calls chain.
   Scenario& set(std::string_view path, std::string_view value);

@@ -50,7 +50,7 @@ struct Energy {
   double total = 0.0;      ///< J
 };
 
-/// The thread count `particles run` takes without --threads: the environment variable
+/// The thread count `particles run` takes without `--threads`: the environment variable
 /// PARTICLES_THREADS when set, else the CPUs this process may use (its affinity mask and cgroup
 /// quota). Throws ArgumentError for a PARTICLES_THREADS that is not a whole number from 1 to 1024.
 PARTICLES_API int defaultThreads();

@@ -9,8 +9,8 @@ gallery:
     the link's #fragment; no link leads to a markdown source (`.md`) left unconverted;
 and, on the pages' HTML files:
   - the C++ reference names every class, struct, enum, function and member that Doxygen found in
-    include/particles/ (its XML index), and the Python reference every public name of
-    `import particles` and `particles.golden`.
+    include/particles/ (its XML), and shows no HTML entity as text; the Python reference has a
+    section for every public name of `import particles` and `particles.golden`.
 
 usage: site_test.py SITE_FOLDER DOXYGEN_XML_FOLDER PYTHON_PATH
 Debian's chromium, chromium-driver and python3-selenium (scripts/deps test). Exit 0 when every
@@ -110,6 +110,9 @@ def check_references(site, xml_folder, python_path):
     cpp = html.unescape((site / "docs/reference/cpp.html").read_text(encoding="utf-8"))
     text = re.sub(r"\s+", "", re.sub(r"<[^>]+>", "", cpp))
     names = public_cpp_names(xml_folder)
+    # An entity shown as text (`&#8212;` where Doxygen read `--` as a dash): escaped twice.
+    check("&#" not in text, "C++ reference: no HTML entity shown as text"
+          + (f" (first: {text[text.find('&#') - 40:text.find('&#') + 20]!r})" if "&#" in text else ""))
     # Each name's last part as the page shows it (templates without spaces), and its scope.
     missing = sorted(n for n in names if re.sub(r"\s+", "", n.split("::")[-1]) not in text or
                      ("::" in n and n.split("::")[-2] not in text))
