@@ -12,6 +12,18 @@ struct Rgb {
   bool operator==(const Rgb&) const = default;
 };
 
+// A colour with straight alpha (255 opaque), as a style gives shapes theirs (render/frame_look.hpp):
+// the shape's covered share of a pixel is multiplied by a / 255. An Rgb is opaque.
+struct Rgba {
+  unsigned char r = 0, g = 0, b = 0, a = 255;
+  Rgba() = default;
+  Rgba(unsigned char red, unsigned char green, unsigned char blue, unsigned char alpha = 255)
+      : r(red), g(green), b(blue), a(alpha) {}
+  Rgba(Rgb c) : r(c.r), g(c.g), b(c.b), a(255) {}  // NOLINT: an opaque colour is a colour
+  Rgb rgb() const { return {r, g, b}; }
+  bool operator==(const Rgba&) const = default;
+};
+
 struct Palette {
   Rgb background;
   Rgb particle, fixedParticle;

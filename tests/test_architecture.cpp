@@ -36,16 +36,17 @@ const std::vector<Room>& rooms() {
       {"core", kCheckout / "src/core", {}},
       {"output", kCheckout / "src/output", {}},
       {"input", kCheckout / "src/input", {}},
-      {"scenario", kCheckout / "src/scenario", {"core", "input"}},
-      {"render", kCheckout / "render", {"core", "output"}},
+      {"style", kCheckout / "src/style", {"core"}},
+      {"scenario", kCheckout / "src/scenario", {"core", "style", "input"}},
+      {"render", kCheckout / "render", {"core", "style", "plot", "output"}},
       // The writers and encoders: frames from the renderer to files. The renderer never includes them.
-      {"video", kCheckout / "render/video", {"render", "core", "output"}},
+      {"video", kCheckout / "render/video", {"render", "style", "core", "output"}},
       {"plot", kCheckout / "plot", {"output", "input"}},
-      {"golden", kCheckout / "src/golden", {"core", "scenario", "render", "output", "input"}},
-      {"api", kCheckout / "src/api", {"core", "scenario", "render", "video", "input", "output", "golden"}},
-      {"app", kCheckout / "src/app", {"core", "scenario", "render", "video", "plot", "output", "input", "golden"}},
+      {"golden", kCheckout / "src/golden", {"core", "style", "scenario", "render", "output", "input"}},
+      {"api", kCheckout / "src/api", {"core", "style", "scenario", "render", "video", "input", "output", "golden"}},
+      {"app", kCheckout / "src/app", {"core", "style", "scenario", "render", "video", "plot", "output", "input", "golden"}},
       // What only the tests use (particles_test_support): no room above may include it.
-      {"support", kCheckout / "tests/support", {"core", "render", "video", "output"}},
+      {"support", kCheckout / "tests/support", {"core", "style", "render", "video", "output"}},
   };
   return all;
 }
