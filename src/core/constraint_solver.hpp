@@ -69,6 +69,10 @@ class ConstraintSolver {
   ConstraintSolveStats solve(const Model& model, const StateView& s, const ConstraintList& constraints,
                              ForceAccumulator& acc);
   const Eigen::VectorXd& lambda() const { return lambda_; }
+  // The multipliers the next solve starts from, and putting them back: an evaluation made only to
+  // look at the state (System::draw's accelerations) must leave the next step's start as it was.
+  Eigen::VectorXd warmStart() const { return lambda_; }
+  void restoreWarmStart(Eigen::VectorXd lambda) { lambda_ = std::move(lambda); }
 
   // For integrators that keep constraints by projection rather than by the multipliers' forces
   // (symplectic Euler, Verlet, backward Euler: docs/physics.md §3). Each moves y along W Jᵀ (the

@@ -17,6 +17,13 @@ void Drawing::clear() {
   halfPlanes.clear();
   disks.clear();
   cursors.clear();
+  particleVelocities.clear();
+  particleAccelerations.clear();
+  particleMasses.clear();
+  bodyMasses.clear();
+  bodyVelocities.clear();
+  bodyAngularVelocities.clear();
+  bodyAccelerations.clear();
 }
 
 void Drawing::addGuideCircle(const Circle& c) {

@@ -23,15 +23,27 @@ inline constexpr int kMaxImageSide = 16384;
 // The most frames a second of simulated time is drawn in: a scenario's render.fps, render's --fps.
 inline constexpr int kMaxFps = 1000;
 
+// What a style colours by or draws arrows of (style/quantity.hpp), beyond the geometry: filled by
+// System::draw only when asked (DrawDetail), since a plain frame needs none of it and the
+// accelerations cost one evaluation of the forces.
+struct DrawDetail {
+  bool velocities = false;     // Drawing::particleVelocities, bodyVelocities, bodyAngularVelocities
+  bool accelerations = false;  // Drawing::particleAccelerations, bodyAccelerations (System::addAccelerations)
+  bool masses = false;         // Drawing::particleMasses, bodyMasses
+  bool any() const { return velocities || accelerations || masses; }
+};
+
 // How System::draw gives the springs: each with its ends' positions and strain (Drawing::springs),
 // or, where every spring joins two particles, by index (Drawing::springTopology), for a renderer
 // that keeps them on the GPU (render/resident_program.hpp).
 enum class SpringDetail { positions, topology };
 
 struct Drawing {
-  struct Spring {   // a spring, coloured by strain
+  struct Spring {   // a spring, coloured by strain (or, with a style, by tension or energy)
     Vec2 a, b;      // world positions of the ends (anchors on bodies included)
     double strain;  // |l| / rest − 1: negative compressed, 0 at rest, positive stretched
+    double rest = 0.0;       // rest length, m
+    double stiffness = 0.0;  // ks, N/m
   };
   struct Segment {  // a rigid link (rods)
     Vec2 a, b;
@@ -65,6 +77,7 @@ struct Drawing {
   struct SpringTopology {
     std::vector<std::uint32_t> ends;  // two particle indices per spring: a, b
     std::vector<double> rest;         // rest lengths; strain |l| / rest − 1, 0 where rest is 0
+    std::vector<double> stiffness;    // ks, N/m, per spring
   };
   struct Cursor {  // a scripted mouse while it holds its point
     Vec2 target;   // where the cursor is
@@ -83,6 +96,14 @@ struct Drawing {
   std::vector<HalfPlane> halfPlanes;
   std::vector<Disk> disks;
   std::vector<Cursor> cursors;
+  // Filled only as DrawDetail asks, else empty; one entry per particle or body.
+  std::vector<Vec2> particleVelocities;     // m/s
+  std::vector<Vec2> particleAccelerations;  // m/s²: every force and constraint force over the mass
+  std::vector<double> particleMasses;       // kg
+  std::vector<double> bodyMasses;           // kg
+  std::vector<Vec2> bodyVelocities;         // of the centre of mass, m/s
+  std::vector<double> bodyAngularVelocities;  // rad/s, counter-clockwise
+  std::vector<Vec2> bodyAccelerations;      // of the centre of mass, m/s²
 
   // Empties every list, keeping its storage.
   void clear();

@@ -195,7 +195,7 @@ Drawing System::draw() const {
   return d;
 }
 
-void System::draw(Drawing& d, SpringDetail springs) const {
+void System::draw(Drawing& d, SpringDetail springs, const DrawDetail& detail) const {
   const StateView s = view();
   const StateLayout& layout = model_.layout;
   d.clear();
@@ -228,6 +228,56 @@ void System::draw(Drawing& d, SpringDetail springs) const {
   }
   for (const auto& constraint : constraints_) constraint->draw(s, d);
   for (const auto& collider : colliders_) collider->draw(d);
+  if (detail.velocities || detail.masses) drawDetail(d, detail);
+}
+
+void System::drawDetail(Drawing& d, const DrawDetail& detail) const {
+  const StateView s = view();
+  const StateLayout& layout = model_.layout;
+  const size_t n = size_t(layout.numParticles);
+  if (detail.velocities) {
+    d.particleVelocities.resize(n);
+    forChunks(pool_.get(), n, kPointChunk, [&](size_t begin, size_t end) {
+      for (size_t i = begin; i < end; ++i) d.particleVelocities[i] = s.vel(int(i));
+    });
+    for (int j = 0; j < layout.numBodies; ++j) {
+      d.bodyVelocities.push_back(s.vel(layout.bodyPoint(j)));
+      d.bodyAngularVelocities.push_back(s.omega(j));
+    }
+  }
+  if (detail.masses) {
+    d.particleMasses.assign(model_.mass.data(), model_.mass.data() + n);
+    d.bodyMasses.assign(model_.mass.data() + n, model_.mass.data() + n + size_t(layout.numBodies));
+  }
+}
+
+void System::restore(const Checkpoint& c) {
+  if (c.y.size() != y_.size()) throw std::invalid_argument("a checkpoint of another system");
+  y_ = c.y;
+  t_ = c.t;
+  constraintSolver_.restoreWarmStart(c.warmStart);
+  lastSolve_ = c.lastSolve;
+}
+
+void System::addAccelerations(Drawing& d) {
+  const StateLayout& layout = model_.layout;
+  Eigen::VectorXd warmStart = constraintSolver_.warmStart();
+  const ConstraintSolveStats lastSolve = lastSolve_;
+  Eigen::VectorXd dydt;
+  derivEval(y_, t_, dydt);
+  constraintSolver_.restoreWarmStart(std::move(warmStart));
+  lastSolve_ = lastSolve;
+  const Eigen::Index accelerations = layout.velocityOffset();  // dydt = [v, a, ω, α]: a after v
+  const size_t n = size_t(layout.numParticles);
+  d.particleAccelerations.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    d.particleAccelerations[i] = {dydt[accelerations + 2 * Eigen::Index(i)], dydt[accelerations + 2 * Eigen::Index(i) + 1]};
+  }
+  d.bodyAccelerations.clear();
+  for (int j = 0; j < layout.numBodies; ++j) {
+    const Eigen::Index at = accelerations + 2 * Eigen::Index(layout.bodyPoint(j));
+    d.bodyAccelerations.push_back({dydt[at], dydt[at + 1]});
+  }
 }
 
 double System::constraintError(const Eigen::VectorXd& y) const {

@@ -116,7 +116,27 @@ class System {
   // that a large scene's lists are not allocated (and their pages not faulted in) every frame.
   // With SpringDetail::topology, springs that all join particles come as Drawing::springTopology
   // (built on the first such call, then shared by every drawing) instead of in Drawing::springs.
-  void draw(Drawing& out, SpringDetail springs = SpringDetail::positions) const;
+  // With `detail`, also what a style colours by: velocities and masses. Accelerations are
+  // addAccelerations' (they need an evaluation of the forces, which is not const).
+  void draw(Drawing& out, SpringDetail springs = SpringDetail::positions, const DrawDetail& detail = {}) const;
+  // Fills out.particleAccelerations and out.bodyAccelerations with dv/dt at the current state: every
+  // force, collision and constraint force over the mass (docs/physics.md §2). One evaluation of the
+  // derivative, after which the constraint solver's warm start and the last solve's statistics are
+  // put back, so that a styled render steps the same bits as a plain one.
+  void addAccelerations(Drawing& out);
+
+  // Everything that carries from one step to the next inside the System (the state, the time and
+  // the constraint solver's warm start; the rest is scratch): a render that looks at every frame
+  // once before drawing any (style/quantity.hpp's auto ranges, a camera that fits the whole run)
+  // steps from a checkpoint, then restores it and steps again, the same bits as the first time.
+  struct Checkpoint {
+    Eigen::VectorXd y;
+    double t = 0.0;
+    Eigen::VectorXd warmStart;
+    ConstraintSolveStats lastSolve;
+  };
+  Checkpoint checkpoint() const { return {y_, t_, constraintSolver_.warmStart(), lastSolve_}; }
+  void restore(const Checkpoint& c);
 
   double constraintError(const Eigen::VectorXd& y) const;  // largest violation, m
   double penetration(const Eigen::VectorXd& y) const;      // largest collider depth, m
@@ -133,6 +153,7 @@ class System {
 
  private:
   friend class SystemBuilder;
+  void drawDetail(Drawing& out, const DrawDetail& detail) const;  // draw's velocities and masses
   System() = default;
 
   double bodiesKineticEnergy(const Eigen::VectorXd& y) const;

@@ -259,7 +259,7 @@ void DampedSpringForce::draw(const StateView& s, double, Drawing& out, WorkerPoo
   out.springs.resize(first + size());
   forChunks(pool, size(), kSpringChunk, [&](size_t begin, size_t end) {
     for (size_t i = begin; i < end; ++i) {
-      out.springs[first + i] = {endpointPosition(s, a_[i]), endpointPosition(s, b_[i]), strain(s, i)};
+      out.springs[first + i] = {endpointPosition(s, a_[i]), endpointPosition(s, b_[i]), strain(s, i), rest_[i], ks_[i]};
     }
   });
 }
@@ -269,6 +269,7 @@ bool DampedSpringForce::addSpringTopology(Drawing::SpringTopology& out) const {
   out.ends.reserve(out.ends.size() + 2 * size());
   for (size_t i = 0; i < size(); ++i) out.ends.insert(out.ends.end(), {std::uint32_t(a_[i].particle), std::uint32_t(b_[i].particle)});
   out.rest.insert(out.rest.end(), rest_.begin(), rest_.end());
+  out.stiffness.insert(out.stiffness.end(), ks_.begin(), ks_.end());
   return true;
 }
 
