@@ -132,6 +132,24 @@ void checkSceneBudget(const Value& root, const SceneLimits& limits) {
       if (kindSection.key == "constraints") tally.add(entryAt, &SceneLimits::constraints, "constraints", objects);
     }
   }
+
+  // The style's selections and the camera's fit hold the points they name (style_reader.cpp).
+  auto countReference = [&](const Value& parent, const YAML::Node& holder, const char* key, const std::string& path) {
+    const YAML::Node value = holder[key];
+    if (!value.IsDefined() || (isScalar(value) && value.Scalar() == "all")) return;
+    tally.add(childOf(parent, value, path + "." + key), &SceneLimits::endpoints, "points named by references",
+              countPoints(value, grids));
+  };
+  if (const YAML::Node render = doc["render"]; isMap(render) && isMap(render["view"])) {
+    countReference(root, render["view"], "fit", "render.view");
+  }
+  const YAML::Node style = doc["style"];
+  const YAML::Node select = isMap(style) ? style["select"] : YAML::Node();
+  for (size_t i = 0; isSequence(select) && i < select.size(); ++i) {
+    if (!isMap(select[i])) continue;
+    const std::string path = indexPath("style.select", i);
+    for (const char* key : {"particles", "bodies"}) countReference(root, select[i], key, path);
+  }
 }
 
 }  // namespace particles::scenario::detail

@@ -422,7 +422,7 @@ GoldenManifest loadGoldenManifestText(std::string_view text, const std::string& 
   if (!root.IsDefined() || root.IsNull()) {
     throw ScenarioError(file, 1, 1, "", "the file is empty; expected a golden manifest (frames: and/or states:)");
   }
-  const detail::Source source{file, {}};
+  const detail::Source source{file, {}, {}};
   const Value top(source, root, "", root.Mark());
   const MapReader m(top, {"references", "defaults", "frames", "states"});
 

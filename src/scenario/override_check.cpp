@@ -50,7 +50,13 @@ std::optional<FilePart> partChanged(const YAML::Node& root, const std::vector<Pa
   if (!detail::parentInPlace(root, s) || !keyAt(s, 0)) return std::nullopt;
   const std::string& section = s[0].key;
   if (section == "simulation") return FilePart{Kind::simulation};
-  if (section == "render") return FilePart{Kind::render};
+  if (section == "render") {
+    // Except render.view.fit: the points it names count toward the scene's budget.
+    const bool mayChangeFit =
+        s.size() < 2 || (keyAt(s, 1) && s[1].key == "view" && (s.size() < 3 || (keyAt(s, 2) && s[2].key == "fit")));
+    if (mayChangeFit) return std::nullopt;
+    return FilePart{Kind::render};
+  }
   // Below, a key of entry i of a list: SECTION[i].KEY…
   if (s.size() < 3 || !s[1].isIndex || !keyAt(s, 2)) return std::nullopt;
   const size_t i = s[1].index;

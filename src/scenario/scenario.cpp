@@ -21,6 +21,7 @@
 #include "scenario/key_paths.hpp"
 #include "scenario/part_reader.hpp"
 #include "scenario/references.hpp"
+#include "scenario/style_reader.hpp"
 #include "scenario/yaml_reader.hpp"
 
 namespace particles::scenario {
@@ -71,7 +72,7 @@ class detail::Loader {
     std::string name = top.required("name").string();
     std::string description = top.optional("description") ? top.optional("description")->string() : "";
     const SimulationSettings simulation = readSimulation(top.optional("simulation"));
-    const RenderSettings render = readRender(top.optional("render"));
+    RenderSettings render = readRender(top.optional("render"));
 
     if (auto v = top.optional("particles")) readParticles(*v);
     if (auto v = top.optional("grids")) readGrids(*v);
@@ -79,10 +80,17 @@ class detail::Loader {
     for (const KindSection& section : kindSections()) {
       if (auto v = top.optional(section.key)) readKinds(section, *v, builder_);
     }
+    render.view = readCamera(top.optional("render"), render);
 
     try {
-      Scenario scenario{std::move(name), std::move(description), source_.file, simulation, render, builder_.build()};
+      Scenario scenario{
+          std::move(name), std::move(description), source_.file, simulation, render, builder_.build(), {}};
       scenario.system.setImplicitSolver(simulation.implicitSolver);
+      // After the build: a colour bar explains a class of shapes the scene has (springs included).
+      const StateLayout& layout = scenario.system.layout();
+      scenario.style = detail::readStyle(
+          top.optional("style"), names_,
+          {layout.numParticles, static_cast<long long>(springCount(scenario.system)), layout.numBodies});
       return scenario;
     } catch (const std::invalid_argument& e) {
       // The checks above should have caught everything the builder checks; say so if not.
@@ -98,7 +106,12 @@ class detail::Loader {
   SimulationSettings readSimulationAgain(const YAML::Node& document) {
     return readSimulation(topOf(document).optional("simulation"));
   }
-  RenderSettings readRenderAgain(const YAML::Node& document) { return readRender(topOf(document).optional("render")); }
+  RenderSettings readRenderAgain(const YAML::Node& document) {
+    const std::optional<Value> section = topOf(document).optional("render");
+    RenderSettings r = readRender(section);
+    r.view = readCamera(section, r);
+    return r;
+  }
   void readEntryAgain(const YAML::Node& document, const detail::FilePart& part) {
     using Kind = detail::FilePart::Kind;
     const MapReader top = topOf(document);
@@ -129,6 +142,7 @@ class detail::Loader {
     std::vector<std::string_view> keys = {"name",      "description", "simulation",  "render",
                                           "particles", "grids",       "rigid_bodies"};
     for (const KindSection& section : kindSections()) keys.push_back(section.key);
+    keys.push_back("style");
     return keys;
   }
   MapReader topOf(const YAML::Node& document) const {
@@ -177,7 +191,7 @@ class detail::Loader {
   RenderSettings readRender(const std::optional<Value>& v) {
     RenderSettings r;
     if (!v) return r;
-    const MapReader m(*v, {"size", "fps", "view"});
+    const MapReader m(*v, renderKeys());
     if (auto size = m.optional("size")) {
       if (!size->isSequence() || size->node().size() != 2) {
         size->fail(fmt::format("expected [width, height] in pixels, {}", size->found()));
@@ -187,11 +201,17 @@ class detail::Loader {
     }
     if (auto fps = m.optional("fps")) r.fps = fps->inRange(kMinFps, kMaxFps);
     if (auto view = m.optional("view")) {
-      const MapReader vm(*view, {"center", "height"});
+      const MapReader vm(*view, detail::viewKeys());
       if (auto c = vm.optional("center")) r.viewCenter = c->vec2();
       if (auto h = vm.optional("height")) r.viewHeight = h->positive();
     }
     return r;
+  }
+  static std::vector<std::string_view> renderKeys() { return {"size", "fps", "view"}; }
+  // render.view's camera modes name points: read once every name is declared.
+  style::ViewStyle readCamera(const std::optional<Value>& section, const RenderSettings& start) const {
+    if (!section) return {};
+    return detail::readViewStyle(MapReader(*section, renderKeys()).optional("view"), names_, start);
   }
 
   // --- things with names -------------------------------------------------------------------------
@@ -360,14 +380,16 @@ auto readingYaml(const std::string& file, const Read& read) {
 }
 
 Scenario loadDocument(const std::string& text, const std::string& file, std::span<const Override> overrides,
-                      const SceneLimits& limits) {
-  YAML::Node root =
-      detail::loadOneDocument(text, file, nullptr, detail::NodeLimit::scenario(std::uintmax_t(limits.nodes)));
+                      const SceneLimits& limits, const StyleFile* styleFile) {
+  const detail::NodeLimit nodeLimit = detail::NodeLimit::scenario(std::uintmax_t(limits.nodes));
+  YAML::Node root = detail::loadOneDocument(text, file, nullptr, nodeLimit);
   if (!root.IsMap()) {
     const YAML::Mark m = root.Mark();
     throw ScenarioError(file, m.line + 1, m.column + 1, "", "expected a scenario (a map of keys such as 'name')");
   }
-  detail::Source source{file, {}};
+  detail::Source source{file, {}, {}};
+  // The style file first: --set may change what it gave, as it may change the scenario.
+  if (styleFile) source.fromFiles = detail::mergeStyleFile(root, *styleFile, nodeLimit);
   for (const Override& o : overrides) source.overridden.emplace_back(detail::applyOverride(root, o, file), o.origin);
   return readingYaml(file, [&] { return detail::Loader(std::move(source), limits).load(root); });
 }
@@ -379,7 +401,7 @@ namespace detail {
 PartReader::PartReader(std::string file, const SceneLimits& limits)
     : file_(std::move(file)),
       limits_(std::make_unique<SceneLimits>(limits)),
-      loader_(std::make_unique<Loader>(Source{file_, {}}, *limits_)) {}
+      loader_(std::make_unique<Loader>(Source{file_, {}, {}}, *limits_)) {}
 PartReader::~PartReader() = default;
 PartReader::PartReader(PartReader&&) noexcept = default;
 PartReader& PartReader::operator=(PartReader&&) noexcept = default;
@@ -415,8 +437,8 @@ long SimulationSettings::steps() const {
 }
 
 Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides,
-                          const SceneLimits& limits) {
-  return loadDocument(std::string(text), file, overrides, limits);
+                          const SceneLimits& limits, const StyleFile* styleFile) {
+  return loadDocument(std::string(text), file, overrides, limits, styleFile);
 }
 
 std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t maxInputMiB) {
@@ -428,8 +450,12 @@ std::string readScenarioText(const std::filesystem::path& file, std::uintmax_t m
 }
 
 Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides,
-                          std::uintmax_t maxInputMiB, const SceneLimits& limits) {
-  return loadDocument(readScenarioText(file, maxInputMiB), file.string(), overrides, limits);
+                          std::uintmax_t maxInputMiB, const SceneLimits& limits, const StyleFile* styleFile) {
+  return loadDocument(readScenarioText(file, maxInputMiB), file.string(), overrides, limits, styleFile);
+}
+
+StyleFile readStyleFile(const std::filesystem::path& file, std::uintmax_t maxInputMiB) {
+  return {readScenarioText(file, maxInputMiB), file.string()};
 }
 
 size_t springCount(const System& system) {

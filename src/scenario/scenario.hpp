@@ -17,6 +17,8 @@
 #include "core/system.hpp"
 #include "input/text_file.hpp"
 #include "scenario/scenario_error.hpp"
+#include "style/style.hpp"
+#include "style/view.hpp"
 
 namespace particles::scenario {
 
@@ -74,6 +76,9 @@ struct RenderSettings {
   double fps = 60.0;               // frames per simulated second; also the --stats/--trace tick of `run`
   Vec2 viewCenter = Vec2::Zero();  // world point at the centre of the frame, m
   double viewHeight = 3.0;         // world units shown vertically, m
+  // How the camera moves (render.view's fit, follow or keys), its points resolved to indices. The
+  // fixed mode shows viewCenter and viewHeight; follow keeps viewHeight; the first key defaults to both.
+  style::ViewStyle view;
 };
 
 // `--set path.to.key=value`: replaces (or creates) the node at `path` with `value` parsed as YAML,
@@ -94,17 +99,32 @@ struct Scenario {
   SimulationSettings simulation;
   RenderSettings render;
   System system;
+  // What a frame shows beyond its geometry (the `style` section, with a style file and --set
+  // merged over it), its selections resolved to particle and body indices.
+  style::Style style;
 };
 
-// Reads and validates a scenario file; overrides are applied first, in order.
+// `render --style FILE` (docs/scenarios.md, "Style files"): a file whose top level is a `style`
+// section's map, merged over the scenario's section key by key (maps merged, anything else
+// replaced) before --set and before validation. Errors in what it gave name it, with its lines.
+struct StyleFile {
+  std::string text;
+  std::string file;  // its path, for messages
+};
+// Reads a style file, at most maxInputMiB; throws ScenarioError naming it.
+StyleFile readStyleFile(const std::filesystem::path& file, std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB);
+
+// Reads and validates a scenario file; the style file (when given) is merged first, then the
+// overrides are applied, in order.
 Scenario loadScenarioFile(const std::filesystem::path& file, std::span<const Override> overrides = {},
-                          std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB, const SceneLimits& limits = {});
+                          std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB, const SceneLimits& limits = {},
+                          const StyleFile* styleFile = nullptr);
 // The text of a scenario file, at most maxInputMiB; throws ScenarioError naming the file.
 std::string readScenarioText(const std::filesystem::path& file,
                              std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB);
 // The same from text in memory; `file` only labels messages.
 Scenario loadScenarioText(std::string_view text, const std::string& file, std::span<const Override> overrides = {},
-                          const SceneLimits& limits = {});
+                          const SceneLimits& limits = {}, const StyleFile* styleFile = nullptr);
 
 // How a reference spells point `point` of the system (docs/physics.md §12 --trace): the particle's or
 // body's name, `cloth[3][4]` for a grid particle, `#index` for an unnamed particle and `body#j`

@@ -12,70 +12,14 @@
 #include "core/system.hpp"
 #include "scenario/golden_manifest.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/schema_parts.hpp"
 #include "scenario/yaml_reader.hpp"
 
 namespace particles::scenario {
 
 namespace {
 
-// Keys keep the order they are written in, so the schema reads like docs/scenarios.md.
-using Json = nlohmann::ordered_json;
-
-constexpr const char* kReferenceForms = "a reference: a name, grid[row][col], body@[x, y] or #index";
-constexpr const char* kNamePattern = "^[A-Za-z_][A-Za-z0-9_-]*$";  // references.cpp's isNameStart/isNameChar
-
-Json number(std::optional<Bound> min = {}, std::optional<Bound> max = {}) {
-  Json j = {{"type", "number"}};
-  if (min) j[min->inclusive ? "minimum" : "exclusiveMinimum"] = min->value;
-  if (max) j[max->inclusive ? "maximum" : "exclusiveMaximum"] = max->value;
-  return j;
-}
-
-Json pairOf(const Json& item) { return {{"type", "array"}, {"items", item}, {"minItems", 2}, {"maxItems", 2}}; }
-Json vec2() { return pairOf(number()); }
-Json vec2Value(const Vec2& v) { return Json::array({v.x(), v.y()}); }
-Json wholeNumber(long long lo, long long hi) { return {{"type", "integer"}, {"minimum", lo}, {"maximum", hi}}; }
-Json text() { return {{"type", "string"}, {"minLength", 1}}; }
-Json name() { return {{"type", "string"}, {"pattern", kNamePattern}, {"description", "a unique name"}}; }
-Json reference() { return {{"type", "string"}, {"minLength", 1}, {"description", kReferenceForms}}; }
-Json referenceOrList() {
-  return {{"oneOf", Json::array({reference(), {{"type", "array"}, {"items", reference()}, {"minItems", 1}}})}};
-}
-Json withDescription(Json j, const std::string& description) {
-  if (!description.empty()) j["description"] = description;
-  return j;
-}
-Json withDefault(Json j, Json value) {
-  j["default"] = std::move(value);
-  return j;
-}
-
-// A map with exactly these keys; `required` among them. An optional key written without a value
-// counts as absent in the loader, so optional keys also accept null.
-Json object(const std::vector<std::pair<std::string, Json>>& properties, const std::vector<std::string>& required) {
-  Json props = Json::object();
-  for (const auto& [key, schema] : properties) {
-    const bool isRequired = std::find(required.begin(), required.end(), key) != required.end();
-    if (isRequired) {
-      props[key] = schema;
-    } else {
-      // The description and default belong to the key, said once beside the anyOf.
-      Json value = schema;
-      Json nullable = Json::object();
-      for (const char* k : {"description", "default"}) {
-        if (value.contains(k)) {
-          nullable[k] = value[k];
-          value.erase(k);
-        }
-      }
-      nullable["anyOf"] = Json::array({value, {{"type", "null"}}});
-      props[key] = nullable;
-    }
-  }
-  Json j = {{"type", "object"}, {"properties", props}, {"additionalProperties", false}};
-  if (!required.empty()) j["required"] = required;
-  return j;
-}
+using namespace schema_parts;
 
 std::string typeText(ParamType type) {
   switch (type) {
@@ -186,12 +130,7 @@ Json simulationSchema() {
 
 Json renderSchema() {
   const RenderSettings d;
-  const Json view = object({{"center", withDefault(withDescription(vec2(), "world point at the frame's centre, m"),
-                                                   vec2Value(d.viewCenter))},
-                            {"height", withDefault(withDescription(number(Bound{0, false}),
-                                                                   "world height shown vertically, m"),
-                                                   d.viewHeight)}},
-                           {});
+  const Json view = viewSchema(d);
   return object({{"size", withDefault(withDescription(pairOf(wholeNumber(1, kMaxImageSide)), "[width, height] in px"),
                                       Json::array({d.width, d.height}))},
                  {"fps", withDefault(withDescription(number(Bound{kMinFps, true}, Bound{kMaxFps, true}),
@@ -238,8 +177,6 @@ Json bodySchema() {
                  {"omega", withDefault(withDescription(number(), "rad/s"), d.omega)}},
                 {"pos", "size"});
 }
-
-Json listOf(const Json& item) { return {{"type", "array"}, {"items", item}}; }
 
 // A golden manifest's parts (golden_manifest.cpp reads them).
 // A frame side from 1 to 16384 px, leading zeros allowed, as the loader reads `WxH`.
@@ -330,10 +267,12 @@ std::string scenarioJsonSchema() {
       {"rigid_bodies", listOf(bodySchema())},
   };
   for (const KindSection& section : kindSections()) sections.emplace_back(section.key, kindSectionSchema(section));
+  sections.emplace_back("style", styleSchema());
   Json schema = {{"$schema", "http://json-schema.org/draft-07/schema#"},
                  {"title", "particles scenario"},
                  {"description", "A particles scenario file (docs/scenarios.md)"}};
   schema.update(object(sections, {"name"}));
+  schema["definitions"] = styleDefinitions();
   return schema.dump(2) + "\n";
 }
 

@@ -286,7 +286,7 @@ SweepSpec loadSweepText(std::string_view text, const std::string& file) {
   if (!root.IsDefined() || root.IsNull()) {
     throw ScenarioError(file, 1, 1, "", "the file is empty; expected a sweep (a map with scenarios and command)");
   }
-  const detail::Source source{file, {}};
+  const detail::Source source{file, {}, {}};
   const Value top(source, root, "", root.Mark());
   const MapReader m(top, {"name", "scenarios", "command", "options", "parameters", "split", "slurm"});
 

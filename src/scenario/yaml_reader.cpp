@@ -230,7 +230,8 @@ void checkNodeCount(const std::string& text, const std::string& file, const Node
   }
 }
 
-YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases, const NodeLimit& limit) {
+YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases, const NodeLimit& limit,
+                           std::string_view expected) {
   try {
     const DocumentMarks marks = markedDocuments(text, file, limit);
     if (marks.starts.size() > 1) {
@@ -243,7 +244,7 @@ YAML::Node loadOneDocument(const std::string& text, const std::string& file, boo
     if (aliases) *aliases = marks.aliases;
     YAML::Node root = YAML::Load(text);
     if (marks.starts.empty() || root.IsNull()) {
-      throw ScenarioError(file, 1, 1, "", "the file is empty; expected a scenario (a map with at least 'name')");
+      throw ScenarioError(file, 1, 1, "", fmt::format("the file is empty; expected {}", expected));
     }
     return root;
   } catch (const YAML::ParserException& e) {
@@ -290,10 +291,14 @@ void Value::fail(const std::string& message) const {
   for (const auto& [overridden, origin] : source_->overridden) {
     if (startsWithPath(path_, overridden)) throw ScenarioError(source_->file, 0, 0, path_, message, origin);
   }
+  std::string file = source_->file;
+  for (const auto& [given, otherFile] : source_->fromFiles) {
+    if (startsWithPath(path_, given)) file = otherFile;
+  }
   YAML::Mark mark = fallback_;
   if (!isNull() && !node_.Mark().is_null()) mark = node_.Mark();
-  if (mark.is_null()) throw ScenarioError(source_->file, 0, 0, path_, message);
-  throw ScenarioError(source_->file, mark.line + 1, mark.column + 1, path_, message);
+  if (mark.is_null()) throw ScenarioError(file, 0, 0, path_, message);
+  throw ScenarioError(file, mark.line + 1, mark.column + 1, path_, message);
 }
 
 std::string Value::found() const {

@@ -32,7 +32,9 @@ struct NodeLimit {
   // A scenario's, with --limit nodes=N's words (SceneLimits::nodes).
   static NodeLimit scenario(std::uintmax_t maxNodes);
 };
-YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases, const NodeLimit& limit);
+// An empty document is refused as "the file is empty; expected " + `expected`.
+YAML::Node loadOneDocument(const std::string& text, const std::string& file, bool* aliases, const NodeLimit& limit,
+                           std::string_view expected = "a scenario (a map with at least 'name')");
 // The same count alone, for text that is parsed otherwise (a --set value): ScenarioError past it.
 void checkNodeCount(const std::string& text, const std::string& file, const NodeLimit& limit);
 
@@ -57,11 +59,13 @@ YAML::Node loadBoundedDocument(std::string_view text, const std::string& file, c
 // anything else in flow form.
 std::string commandLineText(const YAML::Node& node);
 
-// Where the tree came from: the file, and the key paths that --set replaced (errors in those name
-// the option instead of a line of the file).
+// Where the tree came from: the file, the key paths that --set replaced (errors in those name
+// the option instead of a line of the file), and those a style file gave (`render --style`): their
+// nodes keep that file's marks, so errors there name it with its own line and column.
 struct Source {
   std::string file;
   std::vector<std::pair<std::string, std::string>> overridden;  // canonical key path, origin
+  std::vector<std::pair<std::string, std::string>> fromFiles;   // canonical key path, that file
 };
 
 class Value {
