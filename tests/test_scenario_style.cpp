@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -519,4 +520,25 @@ TEST_CASE("style: the program's check reports a bad --set style.… with exit 2,
   CHECK_MESSAGE(
       r.err.find("style.particles.color_by (from --set style.particles.color_by=speeed)") != std::string::npos, r.err);
   CHECK_MESSAGE(r.err.find("did you mean 'speed'?") != std::string::npos, r.err);
+}
+
+TEST_CASE("style: check and render take --style FILE, whose errors name it, with exit 2") {
+  particles::test::Scratch s;
+  const std::string cloth = (particles::test::kScenarios / "cloth.yaml").string();
+  s.write("look.yaml", "particles: {color_by: speed}\ncolorbar: {for: particles}\n");
+  particles::test::Result r = s.run("check '" + cloth + "' --style look.yaml");
+  CHECK_MESSAGE(r.code == 0, r.err);
+  s.write("bad.yaml", "particles:\n  color_by: sped\n");
+  for (const std::string& command : {"check '" + cloth + "'", "render '" + cloth + "' -o frame.png --at 0"}) {
+    r = s.run(command + " --style bad.yaml");
+    CAPTURE(command);
+    CHECK(r.code == 2);
+    CHECK_MESSAGE(r.err.find("bad.yaml:2:13: error: style.particles.color_by: unknown particle quantity 'sped'") !=
+                      std::string::npos,
+                  r.err);
+  }
+  CHECK_FALSE(std::filesystem::exists(s.dir / "frame.png"));
+  r = s.run("check '" + cloth + "' --style missing.yaml");
+  CHECK(r.code == 2);
+  CHECK_MESSAGE(r.err.find("missing.yaml") != std::string::npos, r.err);
 }

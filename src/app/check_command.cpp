@@ -12,6 +12,7 @@ namespace {
 
 void addCheckOptions(CLI::App& command, CheckOptions& o) {
   addCommonOptions(command, o.common);
+  addStyleOption(command, o.common);
   command.footer(
       "Examples:\n"
       "  particles check scenarios/cloth.yaml\n"

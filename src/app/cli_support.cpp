@@ -42,7 +42,10 @@ scenario::SceneLimits sceneLimitsOf(const CommonOptions& o) {
 scenario::Scenario loadScenario(const CommonOptions& o) {
   const int threads = threadCountOf(o.threads);  // a bad PARTICLES_THREADS before any work
   const auto overrides = overridesOf(o);
-  scenario::Scenario s = scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB, sceneLimitsOf(o));
+  std::optional<scenario::StyleFile> style;
+  if (!o.style.empty()) style = scenario::readStyleFile(o.style, o.maxInputMiB);
+  scenario::Scenario s =
+      scenario::loadScenarioFile(o.scenario, overrides, o.maxInputMiB, sceneLimitsOf(o), style ? &*style : nullptr);
   s.system.setThreads(threads);
   return s;
 }
@@ -75,6 +78,14 @@ void addCommonOptions(CLI::App& command, CommonOptions& o) {
                   "constraints, endpoints or entries (repeatable; defaults in docs/scenarios.md, Limits)")
       ->type_name("NAME=N")
       ->allow_extra_args(false);
+}
+
+void addStyleOption(CLI::App& command, CommonOptions& o) {
+  command
+      .add_option("--style", o.style,
+                  "A style file (YAML: the keys of a scenario's style section), merged over the scenario's style "
+                  "key by key before --set and validation (docs/scenarios.md, Style files)")
+      ->type_name("FILE");
 }
 
 void addMaxInputOption(CLI::App& command, std::uintmax_t& mebibytes, const std::string& what) {

@@ -32,21 +32,24 @@ struct CommonOptions {
   std::vector<std::string> sets;                               // --set path=value, in order
   std::uintmax_t maxInputMiB = input::kDefaultMaxInputMiB;     // --max-input
   std::vector<std::string> limits;                             // --limit NAME=N, in order
+  std::string style;  // --style FILE (render, check): a style merged over the scenario's; empty: none
   int threads = 0;                                             // --threads N; 0: app/thread_count.hpp's default
   bool quiet = false;
 };
 
 // Adds the options of CommonOptions to a command that reads a scenario.
 void addCommonOptions(CLI::App& command, CommonOptions& options);
+// Adds --style FILE (CommonOptions::style), for the commands that draw a scenario or check it.
+void addStyleOption(CLI::App& command, CommonOptions& options);
 
 // The overrides of the command line: --set first, in order, then the shorthands, which win.
 std::vector<scenario::Override> overridesOf(const CommonOptions& o);
 // The scene limits: the defaults with each --limit NAME=N applied, in order.
 scenario::SceneLimits sceneLimitsOf(const CommonOptions& o);
 
-// Loads the scenario with the overrides, its System set to run on --threads' threads (or
-// PARTICLES_THREADS', or one per CPU this process may use). Throws scenario::ScenarioError for bad
-// input, InputError for a bad PARTICLES_THREADS.
+// Loads the scenario with --style's file and the overrides, its System set to run on --threads'
+// threads (or PARTICLES_THREADS', or one per CPU this process may use). Throws
+// scenario::ScenarioError for bad input, InputError for a bad PARTICLES_THREADS.
 scenario::Scenario loadScenario(const CommonOptions& o);
 
 // Refuses (InputError, exit 2) a figure path that plot/ cannot write (.svg, .png or .pdf), so that

@@ -301,6 +301,7 @@ int renderCommand(const RenderCommandOptions& options) {
 void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
   CLI::App* renderCmd = &command;
   addCommonOptions(*renderCmd, render.common);
+  addStyleOption(*renderCmd, render.common);
   renderCmd->add_option("-o,--output", render.output, render::outputHelp())->required();
   renderCmd->add_option("--at", render.at, render::atHelp());
   renderCmd->add_option("--frames", render.frames, render::framesHelp());
@@ -380,7 +381,7 @@ void addRenderOptions(CLI::App& command, RenderCommandOptions& render) {
 
 CommandFiles renderFiles(const RenderCommandOptions& render) {
   return {{{"-o", render.output}, {"--stats", render.stats}, {"--trace", render.trace}},
-          {{"the scenario", render.common.scenario}}};
+          {{"the scenario", render.common.scenario}, {"--style", render.common.style}}};
 }
 
 }  // namespace
