@@ -9,8 +9,8 @@ namespace particles::render {
 
 namespace {
 
-ShapeVertex vertex(P2 p, Rgb col, float kind) {
-  return {p[0], p[1], {0, 0, 0, 0}, kind, {col.r, col.g, col.b, 255}};
+ShapeVertex vertex(P2 p, Rgba col, float kind) {
+  return {p[0], p[1], {0, 0, 0, 0}, kind, {col.r, col.g, col.b, col.a}};
 }
 
 }  // namespace
@@ -47,7 +47,7 @@ ConvexEdges convexEdges(std::span<const P2> corners, unsigned smoothEdges) {
   return e;
 }
 
-void ShapeMesh::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges) {
+void ShapeMesh::convex(std::span<const P2> corners, Rgba col, unsigned smoothEdges) {
   const ConvexEdges e = convexEdges(corners, smoothEdges);
   if (!e.valid) return;
   const size_t n = e.count;
@@ -68,7 +68,7 @@ void ShapeMesh::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdge
   }
 }
 
-void ShapeSink::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
+void ShapeSink::line(P2 a, P2 b, float width, Rgba col, bool squareCaps) {
   float dx = b[0] - a[0], dy = b[1] - a[1];
   const float len = std::hypot(dx, dy);
   if (!(len > 1e-4f)) return;
@@ -83,11 +83,11 @@ void ShapeSink::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
   convex({{a[0] + nx, a[1] + ny}, {b[0] + nx, b[1] + ny}, {b[0] - nx, b[1] - ny}, {a[0] - nx, a[1] - ny}}, col);
 }
 
-void ShapeSink::closedOutline(std::span<const P2> pts, float width, Rgb col) {
+void ShapeSink::closedOutline(std::span<const P2> pts, float width, Rgba col) {
   for (size_t i = 0; i < pts.size(); ++i) line(pts[i], pts[(i + 1) % pts.size()], width, col, true);
 }
 
-void ShapeSink::ring(P2 c, float r, float width, Rgb col) {
+void ShapeSink::ring(P2 c, float r, float width, Rgba col) {
   annulus(c, std::max(0.0f, r - 0.5f * width), r + 0.5f * width, col);
 }
 
@@ -96,7 +96,7 @@ void ShapeSink::ring(P2 c, float r, float width, Rgb col) {
 // disc is one square instead, two triangles rather than a fan of eight: llvmpipe's cost is per
 // triangle more than per pixel at that size (a particle of the cloth is ~6 px across), and the
 // shader decides coverage from the distance to the centre whatever the triangles.
-void ShapeMesh::annulus(P2 c, float inner, float outer, Rgb col) {
+void ShapeMesh::annulus(P2 c, float inner, float outer, Rgba col) {
   const float fringeOuter = outer + kFringePx;
   const float fringeInner = std::max(0.0f, inner - kFringePx);
   const int n = std::clamp(int(std::ceil(2.0f * std::numbers::pi_v<float> * fringeOuter / 16.0f)), 8, 256);

@@ -35,11 +35,12 @@ struct ShapeVertex {
   float x, y;
   float shape[4];
   float kind;
-  std::uint8_t rgba[4];
+  std::uint8_t rgba[4];  // straight alpha: the shader multiplies the covered share by rgba[3] / 255
 };
 
 // The shapes of a frame in painter's order, as the frame's builder (render/frame_mesh.hpp) adds
-// them. Every shape is a convex polygon or an annulus; two sinks take them: ShapeMesh (triangles for
+// them. Every shape is a convex polygon or an annulus of one colour with straight alpha (Rgba): the
+// share of a pixel it covers is multiplied by a / 255 on every path. Two sinks take them: ShapeMesh (triangles for
 // the per-primitive path) and TileBins (records binned into screen tiles for the tile path,
 // render/tile_bins.hpp).
 class ShapeSink {
@@ -52,17 +53,17 @@ class ShapeSink {
   // A convex polygon of 3 or 4 corners (either winding). Edge i runs from corner i to corner
   // i + 1; bit i of `smoothEdges` anti-aliases it. An edge left out is shared with a neighbouring
   // piece of the same shape: not pushed out and not tested, so the pieces tile without a seam.
-  virtual void convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges = 0xF) = 0;
-  void convex(std::initializer_list<P2> corners, Rgb col, unsigned smoothEdges = 0xF) {
+  virtual void convex(std::span<const P2> corners, Rgba col, unsigned smoothEdges = 0xF) = 0;
+  void convex(std::initializer_list<P2> corners, Rgba col, unsigned smoothEdges = 0xF) {
     convex(std::span<const P2>(corners.begin(), corners.size()), col, smoothEdges);
   }
   // A segment of the given pixel width; squareCaps extends it by half the width at both ends.
-  virtual void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false);
-  void closedOutline(std::span<const P2> pts, float width, Rgb col);
-  void disc(P2 c, float r, Rgb col) { annulus(c, 0.0f, r, col); }
-  void ring(P2 c, float r, float width, Rgb col);
+  virtual void line(P2 a, P2 b, float width, Rgba col, bool squareCaps = false);
+  void closedOutline(std::span<const P2> pts, float width, Rgba col);
+  void disc(P2 c, float r, Rgba col) { annulus(c, 0.0f, r, col); }
+  void ring(P2 c, float r, float width, Rgba col);
   // The points between radii `inner` and `outer` (inner 0: a disc).
-  virtual void annulus(P2 c, float inner, float outer, Rgb col) = 0;
+  virtual void annulus(P2 c, float inner, float outer, Rgba col) = 0;
 };
 
 // A convex polygon's edges, as both sinks need them: unit normals pointing inside, how far each
@@ -86,8 +87,8 @@ class ShapeMesh final : public ShapeSink {
   void clear() override { vertices_.clear(); }
   const std::vector<ShapeVertex>& vertices() const { return vertices_; }
 
-  void convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges = 0xF) override;
-  void annulus(P2 c, float inner, float outer, Rgb col) override;
+  void convex(std::span<const P2> corners, Rgba col, unsigned smoothEdges = 0xF) override;
+  void annulus(P2 c, float inner, float outer, Rgba col) override;
 
  private:
   std::vector<ShapeVertex> vertices_;

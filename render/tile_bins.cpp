@@ -11,7 +11,7 @@ namespace particles::render {
 
 namespace {
 
-float colorCode(Rgb col) {
+float colorCode(Rgba col) {
   return float(col.r) + 256.0f * float(col.g) + 65536.0f * float(col.b);
 }
 
@@ -57,7 +57,7 @@ TileBins::Reach TileBins::reachOf(float x0, float y0, float x1, float y1) const 
   return {clampTile(x0, tilesX_), clampTile(y0, tilesY_), clampTile(x1, tilesX_), clampTile(y1, tilesY_)};
 }
 
-bool TileBins::convexShape(std::span<const P2> corners, Rgb col, unsigned smoothEdges, ShapeRecord& r,
+bool TileBins::convexShape(std::span<const P2> corners, Rgba col, unsigned smoothEdges, ShapeRecord& r,
                            Reach& q) const {
   const ConvexEdges e = convexEdges(corners, smoothEdges);
   if (!e.valid) return false;
@@ -73,6 +73,7 @@ bool TileBins::convexShape(std::span<const P2> corners, Rgb col, unsigned smooth
     }
   }
   r.texel[3][0] = colorCode(col);
+  r.texel[3][2] = float(col.a);
   r.texel[3][1] = float(smoothEdges & ((1u << e.count) - 1u));
   float x0 = e.grown[0][0], x1 = x0, y0 = e.grown[0][1], y1 = y0;
   for (size_t i = 1; i < e.count; ++i) {
@@ -84,7 +85,7 @@ bool TileBins::convexShape(std::span<const P2> corners, Rgb col, unsigned smooth
 }
 
 // The rectangle ShapeSink::line makes, corners a + n, b + n, b − n, a − n, every edge smoothed.
-bool TileBins::lineShape(P2 a, P2 b, float width, Rgb col, bool squareCaps, ShapeRecord& r, Reach& q) const {
+bool TileBins::lineShape(P2 a, P2 b, float width, Rgba col, bool squareCaps, ShapeRecord& r, Reach& q) const {
   float dx = b[0] - a[0], dy = b[1] - a[1];
   const float len = std::sqrt(dx * dx + dy * dy);
   if (!(len > 1e-4f)) return false;
@@ -105,6 +106,7 @@ bool TileBins::lineShape(P2 a, P2 b, float width, Rgb col, bool squareCaps, Shap
     r.texel[2][k] = -(inward[k][0] * corner[k][0] + inward[k][1] * corner[k][1]);
   }
   r.texel[3][0] = colorCode(col);
+  r.texel[3][2] = float(col.a);
   r.texel[3][1] = 15.0f;
   // The grown rectangle's corners lie within kFringePx·√2 of the rectangle's.
   const float grow = 1.5f * kFringePx;
@@ -115,19 +117,20 @@ bool TileBins::lineShape(P2 a, P2 b, float width, Rgb col, bool squareCaps, Shap
   return true;
 }
 
-void TileBins::annulusShape(P2 c, float inner, float outer, Rgb col, ShapeRecord& r, Reach& q) const {
+void TileBins::annulusShape(P2 c, float inner, float outer, Rgba col, ShapeRecord& r, Reach& q) const {
   r = ShapeRecord{};
   r.texel[0][0] = c[0];
   r.texel[0][1] = c[1];
   r.texel[0][2] = outer;
   r.texel[0][3] = inner;
   r.texel[3][0] = colorCode(col);
+  r.texel[3][2] = float(col.a);
   r.texel[3][1] = kAnnulusKind;
   const float reach = outer + kFringePx;
   q = reachOf(c[0] - reach, c[1] - reach, c[0] + reach, c[1] + reach);
 }
 
-void TileBins::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges) {
+void TileBins::convex(std::span<const P2> corners, Rgba col, unsigned smoothEdges) {
   ShapeRecord r;
   Reach q;
   if (!convexShape(corners, col, smoothEdges, r, q)) return;
@@ -135,7 +138,7 @@ void TileBins::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges
   reach_.push_back(q);
 }
 
-void TileBins::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
+void TileBins::line(P2 a, P2 b, float width, Rgba col, bool squareCaps) {
   ShapeRecord r;
   Reach q;
   if (!lineShape(a, b, width, col, squareCaps, r, q)) return;
@@ -143,7 +146,7 @@ void TileBins::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
   reach_.push_back(q);
 }
 
-void TileBins::annulus(P2 c, float inner, float outer, Rgb col) {
+void TileBins::annulus(P2 c, float inner, float outer, Rgba col) {
   ShapeRecord r;
   Reach q;
   annulusShape(c, inner, outer, col, r, q);
@@ -164,21 +167,21 @@ void TileBins::SlotWriter::put(bool valid, const ShapeRecord& r, const Reach& q)
   ++next_;
 }
 
-void TileBins::SlotWriter::convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges) {
+void TileBins::SlotWriter::convex(std::span<const P2> corners, Rgba col, unsigned smoothEdges) {
   ShapeRecord r;
   Reach q;
   const bool valid = bins_.convexShape(corners, col, smoothEdges, r, q);
   put(valid, r, q);
 }
 
-void TileBins::SlotWriter::line(P2 a, P2 b, float width, Rgb col, bool squareCaps) {
+void TileBins::SlotWriter::line(P2 a, P2 b, float width, Rgba col, bool squareCaps) {
   ShapeRecord r;
   Reach q;
   const bool valid = bins_.lineShape(a, b, width, col, squareCaps, r, q);
   put(valid, r, q);
 }
 
-void TileBins::SlotWriter::annulus(P2 c, float inner, float outer, Rgb col) {
+void TileBins::SlotWriter::annulus(P2 c, float inner, float outer, Rgba col) {
   ShapeRecord r;
   Reach q;
   bins_.annulusShape(c, inner, outer, col, r, q);
@@ -188,9 +191,11 @@ void TileBins::SlotWriter::annulus(P2 c, float inner, float outer, Rgb col) {
 // Whether the shape covers every sample of every pixel of the tile: samples lie within ±0.5 px of
 // their pixel's centre (samplePattern), so it must contain the tile grown by half a pixel. Corners
 // suffice for a convex shape; an annulus needs the farthest corner inside its outer circle and the
-// nearest point outside its inner one.
+// nearest point outside its inner one. A shape with alpha below 255 hides nothing: what lies
+// behind shows through it.
 bool TileBins::coversTile(size_t shape, int tx, int ty) const {
   const ShapeRecord& r = shapes_[shape];
+  if (r.texel[3][2] != 255.0f) return false;
   constexpr float kSampleReach = 0.5f + 1e-3f;
   const float loX = float(tx * kTileSizePx) + 0.5f - kSampleReach;
   const float hiX = float(std::min((tx + 1) * kTileSizePx, width_)) - 0.5f + kSampleReach;

@@ -11,10 +11,13 @@
 // down). A convex shape's edge e has the signed distance d_e(p) = a_e·x + b_e·y + c_e, positive
 // inside; an absent 4th edge is 0·x + 0·y + kFarPx.
 //   convex:  texel 0 = (a_0 … a_3), texel 1 = (b_0 … b_3), texel 2 = (c_0 … c_3),
-//            texel 3 = (colour, smoothed edges (bit e), 0, 0)
+//            texel 3 = (colour, smoothed edges (bit e), alpha, 0)
 //   annulus: texel 0 = (centre x, centre y, outer radius, inner radius), texels 1 and 2 zero,
-//            texel 3 = (colour, 16, 0, 0)
-// A colour is r + 256 g + 65536 b, a whole number below 2^24: exact in a float.
+//            texel 3 = (colour, 16, alpha, 0)
+// A colour is r + 256 g + 65536 b, a whole number below 2^24: exact in a float. Alpha is the
+// colour's straight alpha, 0 … 255 (255 opaque): the covered share n / S of a pixel's S samples
+// becomes floor(n · alpha / S + 0.5) / 255, which for 255 is the share rounded to 8 bits as before
+// alpha was recorded, in the same float operations (render/tile_composite.cpp, tile_program.cpp).
 inline constexpr float kAnnulusKind = 16.0f;
 
 #include <cstdint>
@@ -68,10 +71,10 @@ class TileBins final : public ShapeSink {
   void reset(int width, int height);
   void clear() override;
 
-  void convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges = 0xF) override;
-  void annulus(P2 c, float inner, float outer, Rgb col) override;
+  void convex(std::span<const P2> corners, Rgba col, unsigned smoothEdges = 0xF) override;
+  void annulus(P2 c, float inner, float outer, Rgba col) override;
   // Records a line directly: its edges are known without convexEdges' square root per edge.
-  void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false) override;
+  void line(P2 a, P2 b, float width, Rgba col, bool squareCaps = false) override;
 
   // Shapes written into numbered places, for building a frame's records on several threads
   // (render/frame_mesh.hpp's buildFrameTiles): slots(n) makes the records 0 … n − 1, to be filled
@@ -91,7 +94,7 @@ class TileBins final : public ShapeSink {
   // with (first, count) = tiles()[2t], tiles()[2t + 1], in the order they were added. Tiles are
   // numbered row by row from the top-left; a tile lists each shape that may cover one of its
   // pixels (a shape's grown box, less tiles wholly outside one of its edges or its ring), from
-  // the last shape that covers all of it, if one does. With a pool, the work is shared out in
+  // the last opaque shape (alpha 255) that covers all of it, if one does. With a pool, the work is shared out in
   // bands of tile rows (and the shapes in fixed chunks): the same lists as without one.
   void bin(WorkerPool* pool = nullptr);
 
@@ -114,9 +117,9 @@ class TileBins final : public ShapeSink {
   };
   static constexpr Reach kNoReach = {0, 0, -1, -1};
   // A shape's record and reach, false for a shape that adds nothing.
-  bool convexShape(std::span<const P2> corners, Rgb col, unsigned smoothEdges, ShapeRecord& r, Reach& q) const;
-  bool lineShape(P2 a, P2 b, float width, Rgb col, bool squareCaps, ShapeRecord& r, Reach& q) const;
-  void annulusShape(P2 c, float inner, float outer, Rgb col, ShapeRecord& r, Reach& q) const;
+  bool convexShape(std::span<const P2> corners, Rgba col, unsigned smoothEdges, ShapeRecord& r, Reach& q) const;
+  bool lineShape(P2 a, P2 b, float width, Rgba col, bool squareCaps, ShapeRecord& r, Reach& q) const;
+  void annulusShape(P2 c, float inner, float outer, Rgba col, ShapeRecord& r, Reach& q) const;
   Reach reachOf(float x0, float y0, float x1, float y1) const;
   bool reachesTile(size_t shape, int tx, int ty) const;
   // Calls visit(tile) for each tile of rows [rowBegin, rowEnd) that `shape` reaches, row by row.
@@ -148,9 +151,9 @@ class TileBins::SlotWriter final : public ShapeSink {
  public:
   using ShapeSink::convex;
   void clear() override { next_ = first_; }
-  void convex(std::span<const P2> corners, Rgb col, unsigned smoothEdges = 0xF) override;
-  void annulus(P2 c, float inner, float outer, Rgb col) override;
-  void line(P2 a, P2 b, float width, Rgb col, bool squareCaps = false) override;
+  void convex(std::span<const P2> corners, Rgba col, unsigned smoothEdges = 0xF) override;
+  void annulus(P2 c, float inner, float outer, Rgba col) override;
+  void line(P2 a, P2 b, float width, Rgba col, bool squareCaps = false) override;
   size_t next() const { return next_; }          // the slot the next shape fills
   size_t recorded() const { return recorded_; }  // shapes written that add something
 

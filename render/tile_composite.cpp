@@ -197,12 +197,14 @@ void compositeRows(const TileBins& bins, const Offsets<S>& o, Rgb background, bo
         if (!anyLane(count[0] | count[1] | count[2] | count[3])) continue;
         const auto code = std::uint32_t(r.texel[3][0]);
         const float shapeColor[3] = {float(code & 0xFFu), float(code >> 8 & 0xFFu), float(code >> 16 & 0xFFu)};
+        const float shapeAlpha = r.texel[3][2];  // 0 … 255
         RowMask showing = RowMask{};
         for (int row = 0; row < kRows; ++row) {
-          // The covered share rounded to 8 bits, as the shader's floor(n · 255 / S + 0.5) / 255.
+          // The covered share times the shape's alpha, rounded to 8 bits, as the shader's
+          // floor(n · alpha / S + 0.5) / 255: n · alpha is a whole number below 2^13, exact.
           const Row n = __builtin_convertvector(count[row], Row);
           const Row alpha =
-              __builtin_convertvector(__builtin_convertvector(n * 255.0f / float(S) + 0.5f, RowMask), Row) / 255.0f;
+              __builtin_convertvector(__builtin_convertvector(n * shapeAlpha / float(S) + 0.5f, RowMask), Row) / 255.0f;
           const Row share = transmitted[row] * alpha;
           for (int c = 0; c < 3; ++c) color[row][c] += share * shapeColor[c];
           transmitted[row] *= 1.0f - alpha;

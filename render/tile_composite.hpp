@@ -15,8 +15,12 @@
 // shader's d + offset ≥ 0, in one comparison). A sample exactly on an edge is inside only for a top
 // or left edge, GL's rasterisation rule, where the GL tile pass counts every such tie in (and its
 // compiler may fuse its multiplications and additions): both paths agree within the goldens'
-// tolerances (tests/test_render_cpu.cpp measures how closely), not bit for bit. The arithmetic does
-// not depend on the thread count or on which thread draws a tile: the same bytes for every count.
+// tolerances (tests/test_render_cpu.cpp measures how closely), not bit for bit. A shape's alpha
+// scales its covered share before that share is rounded to 8 bits, as the triangle path's
+// framebuffer takes its fragments' alpha; the blends after it are in float and rounded once, where
+// the triangle path rounds after each (tests/test_render_frame_look.cpp measures translucent
+// shapes). The arithmetic does not depend on the thread count or on which thread draws a tile: the
+// same bytes for every count.
 
 #include <cstdint>
 #include <vector>

@@ -37,12 +37,13 @@ const vec2 samples[SAMPLE_COUNT] = vec2[SAMPLE_COUNT](SAMPLES);
 // How many of the samples around pixel centre c (image pixels, y down) shape s covers: the test of
 // the triangle path's fragment shader (render/shader_program.cpp), with the edge distances
 // evaluated here instead of interpolated. No branches: llvmpipe runs both sides of one anyway.
-// Also gives the shape's colour (0 … 255).
-int coveredSamples(int s, vec2 c, out vec3 color) {
+// Also gives the shape's colour and alpha (0 … 255).
+int coveredSamples(int s, vec2 c, out vec3 color, out float opacity) {
   vec4 t0 = texelFetch(shapes, 4 * s), t1 = texelFetch(shapes, 4 * s + 1);
   vec4 t2 = texelFetch(shapes, 4 * s + 2), t3 = texelFetch(shapes, 4 * s + 3);
   float b = floor(t3.x / 65536.0), g = floor((t3.x - 65536.0 * b) / 256.0);
   color = vec3(t3.x - 65536.0 * b - 256.0 * g, g, b);
+  opacity = t3.z;
   bool annulus = t3.y == KIND_ANNULUS;
   // Convex: edge distances at the centre. An edge shared with another piece of the same shape
   // (not smoothed) is decided by the centre, as the rasteriser does for the triangle path's
@@ -72,15 +73,18 @@ void main() {
   uvec2 range = texelFetch(tiles, (pixel.y / TILE) * tilesPerRow + pixel.x / TILE).xy;
   int first = int(range.x);
   // Front to back: each shape adds its colour times its covered share of what still shows
-  // (transmittance), until a shape covers every sample. The share is rounded to 8 bits as the
-  // triangle path's alpha is; its framebuffer also rounds after every blend, which this does not,
-  // hence differences of a unit or two where shapes overlap partly (tests/test_render_tiles.cpp).
+  // (transmittance), until an opaque shape covers every sample. The share times the shape's
+  // alpha / 255 is rounded to 8 bits as the triangle path's alpha is (n · alpha is a whole number,
+  // exact, and for alpha 255 the same operations as before alpha was recorded); its framebuffer
+  // also rounds after every blend, which this does not, hence differences of a unit or two where
+  // shapes overlap partly (tests/test_render_tiles.cpp).
   vec3 color = vec3(0.0);
   float transmitted = 1.0;
   for (int i = int(range.y) - 1; i >= 0 && transmitted > 0.0; --i) {
     vec3 shapeColor;
-    int n = coveredSamples(int(texelFetch(items, first + i).x), c, shapeColor);
-    float alpha = floor(float(n) * 255.0 / float(SAMPLE_COUNT) + 0.5) / 255.0;
+    float opacity;
+    int n = coveredSamples(int(texelFetch(items, first + i).x), c, shapeColor, opacity);
+    float alpha = floor(float(n) * opacity / float(SAMPLE_COUNT) + 0.5) / 255.0;
     color += transmitted * alpha * shapeColor;
     transmitted *= 1.0 - alpha;
   }

@@ -321,9 +321,9 @@ TEST_CASE("frame mesh: frameShapeCount is the number of shapes built, for every 
   struct CountingSink final : ShapeSink {
     size_t shapes = 0;
     void clear() override { shapes = 0; }
-    void convex(std::span<const P2>, Rgb, unsigned) override { ++shapes; }
-    void line(P2, P2, float, Rgb, bool) override { ++shapes; }
-    void annulus(P2, float, float, Rgb) override { ++shapes; }
+    void convex(std::span<const P2>, Rgba, unsigned) override { ++shapes; }
+    void line(P2, P2, float, Rgba, bool) override { ++shapes; }
+    void annulus(P2, float, float, Rgba) override { ++shapes; }
   };
   Drawing f;
   CountingSink sink;
