@@ -28,15 +28,62 @@ class PixelMapping {
   double scale_;
 };
 
-// The frame's shapes, section by section in drawing order; the long sections (springs, particles)
-// by ranges of their items, so that they can be built in pieces. Each item gives a fixed number of
-// shapes (counts()), which is what lets the pieces be written into numbered slots.
+// A look's arrow (FrameLook::Arrow) from pixel `from` to `to`: a shaft `width` wide and a head
+// 3 widths wide and long, shortened to the arrow's length (a short arrow is all head). Drawn as
+// convex pieces of one outline, as the cursor is: the shaft, and the head cut into three triangles
+// at the shaft's sides, so that every edge inside the outline is shared and left unsmoothed. A
+// translucent arrow then covers each pixel once, with no seam where shaft and head meet; the head's
+// base beside the shaft is outline, smoothed. Always kLookArrowPieces shapes (some degenerate, for
+// a zero-length arrow or one without a shaft), so that every arrow takes the same slots.
+constexpr size_t kLookArrowPieces = 4;
+constexpr float kArrowHeadWidths = 3.0f;
+void arrowShapes(ShapeSink& mesh, P2 from, P2 to, float width, Rgba color) {
+  const float dx = to[0] - from[0], dy = to[1] - from[1];
+  const float length = std::hypot(dx, dy);
+  const P2 u = length > 0.0f ? P2{dx / length, dy / length} : P2{0.0f, 0.0f};  // zero: every piece degenerate
+  const P2 v = {-u[1], u[0]};
+  const float headLength = std::min(kArrowHeadWidths * width, length);
+  const bool shaft = length - headLength > 1e-4f;
+  const float shaftHalf = 0.5f * width, headHalf = 0.5f * kArrowHeadWidths * width;
+  const auto at = [&](P2 p, float along, float across) -> P2 {
+    return {p[0] + u[0] * along + v[0] * across, p[1] + u[1] * along + v[1] * across};
+  };
+  const P2 base = at(to, -headLength, 0.0f);
+  const P2 shaftLeft = at(base, 0.0f, shaftHalf), shaftRight = at(base, 0.0f, -shaftHalf);
+  // Bit i smooths edge i → i + 1: the shaft's end against the head is shared.
+  mesh.convex({at(from, 0.0f, shaftHalf), shaftLeft, shaftRight, at(from, 0.0f, -shaftHalf)}, color, 0b1101);
+  mesh.convex({to, at(base, 0.0f, headHalf), shaftLeft}, color, 0b011);
+  mesh.convex({to, shaftLeft, shaftRight}, color, shaft ? 0b000 : 0b010);
+  mesh.convex({to, shaftRight, at(base, 0.0f, -headHalf)}, color, 0b110);
+}
+
+// Throws std::invalid_argument unless `list` (the look's member `name`) is empty or has `count`
+// entries, one per `item` of the drawing.
+template <typename T>
+void checkLength(const std::vector<T>& list, size_t count, const char* name, const char* items) {
+  if (list.empty() || list.size() == count) return;
+  throw std::invalid_argument(std::string("FrameLook::") + name + " has " + std::to_string(list.size()) +
+                              " entries, and the drawing has " + std::to_string(count) + " " + items +
+                              " (give one per item, or none)");
+}
+
+// The frame's shapes, section by section in drawing order; the long sections (springs, trails,
+// particles) by ranges of their items, so that they can be built in pieces. Each item gives a fixed
+// number of shapes (counts()), which is what lets the pieces be written into numbered slots.
 class FrameShapes {
  public:
-  FrameShapes(const Drawing& f, const Camera& camera, const RenderOptions& options, const Palette& colors)
-      : f_(f), o_(options), c_(colors), toPixel_(camera, options) {
+  FrameShapes(const Drawing& f, const Camera& camera, const RenderOptions& options, const Palette& colors,
+              const FrameLook* look)
+      : f_(f), o_(options), c_(colors), look_(look && !look->empty() ? look : nullptr), toPixel_(camera, options) {
     if (f.springTopology && f.springTopology->ends.size() != 2 * f.springTopology->rest.size()) {
       throw std::invalid_argument("the drawing's spring topology has other than two ends per spring");
+    }
+    if (look_) {
+      checkLength(look_->particleColors, f.particles.size(), "particleColors", "particles");
+      checkLength(look_->particleRadiiPx, f.particles.size(), "particleRadiiPx", "particles");
+      checkLength(look_->springColors, f.springs.size() + f.springsByIndex(), "springColors", "springs");
+      checkLength(look_->bodyFills, f.bodies.size(), "bodyFills", "bodies");
+      checkLength(look_->bodyOutlines, f.bodies.size(), "bodyOutlines", "bodies");
     }
     w_ = float(options.width);
     h_ = float(options.height);
@@ -46,18 +93,21 @@ class FrameShapes {
 
   // Shapes per section, in drawing order.
   struct Counts {
-    size_t front, springs, rods, bodies, particles, cursors;
-    size_t total() const { return front + springs + rods + bodies + particles + cursors; }
+    size_t front, springs, rods, bodies, trails, particles, arrows, cursors;
+    size_t total() const { return front + springs + rods + bodies + trails + particles + arrows + cursors; }
   };
-  static Counts counts(const Drawing& f) {
+  static Counts counts(const Drawing& f, const FrameLook* look) {
     constexpr size_t kArrowPieces = 4, kArrowOutline = 7;  // the cursor drawn in cursors()
     return {2 * f.halfPlanes.size() + 2 * f.disks.size() + f.guideCircles.size() + f.guideLines.size(),
             f.springs.size() + f.springsByIndex(),
             f.rods.size(),
             5 * f.bodies.size(),
+            look ? look->trails.size() : 0,
             f.particles.size(),
+            look ? kLookArrowPieces * look->arrows.size() : 0,
             f.cursors.size() * (1 + kArrowPieces + kArrowOutline)};
   }
+  Counts counts() const { return counts(f_, look_); }
 
   P2 toPixel(const Vec2& p) const { return toPixel_(p); }
 
@@ -110,12 +160,15 @@ class FrameShapes {
 
   // Springs [begin, end) of the section: those by position (Drawing::springs), then those by index
   // (Drawing::springTopology), their ends and strain found as System::draw finds them.
+  // The look's colour for spring i of the section, else its strain colour.
   void springs(ShapeSink& mesh, size_t begin, size_t end) const {
     const float width = float(o_.springWidthPx);
     const size_t byPosition = f_.springs.size();
+    const bool styled = look_ && !look_->springColors.empty();
     for (size_t i = begin; i < std::min(end, byPosition); ++i) {
       const Drawing::Spring& s = f_.springs[i];
-      mesh.line(toPixel(s.a), toPixel(s.b), width, springColor(c_, s.strain, o_.strainForFullColor));
+      const Rgba color = styled ? look_->springColors[i] : Rgba(springColor(c_, s.strain, o_.strainForFullColor));
+      mesh.line(toPixel(s.a), toPixel(s.b), width, color);
     }
     for (size_t i = std::max(begin, byPosition); i < end; ++i) {
       const Drawing::SpringTopology& topology = *f_.springTopology;
@@ -124,7 +177,8 @@ class FrameShapes {
       const Vec2& b = particleAt(topology.ends[2 * k + 1]);
       const double rest = topology.rest[k];
       const double strain = rest > 0.0 ? (a - b).norm() / rest - 1.0 : 0.0;
-      mesh.line(toPixel(a), toPixel(b), width, springColor(c_, strain, o_.strainForFullColor));
+      const Rgba color = styled ? look_->springColors[i] : Rgba(springColor(c_, strain, o_.strainForFullColor));
+      mesh.line(toPixel(a), toPixel(b), width, color);
     }
   }
 
@@ -133,26 +187,47 @@ class FrameShapes {
   }
 
   void bodies(ShapeSink& mesh) const {
-    for (const Drawing::Box& body : f_.bodies) {
+    const bool fills = look_ && !look_->bodyFills.empty(), outlines = look_ && !look_->bodyOutlines.empty();
+    for (size_t i = 0; i < f_.bodies.size(); ++i) {
+      const Drawing::Box& body = f_.bodies[i];
       const double cs = std::cos(body.angle), sn = std::sin(body.angle);
       const Vec2 hx = 0.5 * body.size.x() * Vec2(cs, sn), hy = 0.5 * body.size.y() * Vec2(-sn, cs);
       const std::array<P2, 4> corners = {toPixel(body.center - hx - hy), toPixel(body.center + hx - hy),
                                          toPixel(body.center + hx + hy), toPixel(body.center - hx + hy)};
-      mesh.convex(corners, c_.bodyFill);
-      mesh.closedOutline(corners, float(o_.outlineWidthPx), c_.bodyOutline);
+      mesh.convex(corners, fills ? look_->bodyFills[i] : Rgba(c_.bodyFill));
+      mesh.closedOutline(corners, float(o_.outlineWidthPx), outlines ? look_->bodyOutlines[i] : Rgba(c_.bodyOutline));
+    }
+  }
+
+  // The look's trail pieces [begin, end), one line each, without caps as springs are.
+  void trails(ShapeSink& mesh, size_t begin, size_t end) const {
+    for (size_t i = begin; i < end; ++i) {
+      const FrameLook::Stroke& piece = look_->trails[i];
+      mesh.line(toPixel(piece.a), toPixel(piece.b), piece.widthPx, piece.color);
     }
   }
 
   void particles(ShapeSink& mesh, size_t begin, size_t end) const {
+    const bool colored = look_ && !look_->particleColors.empty(), sized = look_ && !look_->particleRadiiPx.empty();
     for (size_t i = begin; i < end; ++i) {
       const P2 p = toPixel(f_.particles[i]);
-      if (i < f_.particleFixed.size() && f_.particleFixed[i]) {
-        const float s = 0.9f * radius_;  // a fixed particle is a square, so it reads as pinned
-        mesh.convex({{p[0] - s, p[1] - s}, {p[0] + s, p[1] - s}, {p[0] + s, p[1] + s}, {p[0] - s, p[1] + s}},
-                    c_.fixedParticle);
+      const bool fixed = i < f_.particleFixed.size() && f_.particleFixed[i];
+      const Rgba color = colored ? look_->particleColors[i] : Rgba(fixed ? c_.fixedParticle : c_.particle);
+      const float radius = sized ? look_->particleRadiiPx[i] : radius_;
+      if (fixed) {
+        const float s = 0.9f * radius;  // a fixed particle is a square, so it reads as pinned
+        mesh.convex({{p[0] - s, p[1] - s}, {p[0] + s, p[1] - s}, {p[0] + s, p[1] + s}, {p[0] - s, p[1] + s}}, color);
       } else {
-        mesh.disc(p, radius_, c_.particle);
+        mesh.disc(p, radius, color);
       }
+    }
+  }
+
+  // The look's arrows, kLookArrowPieces shapes each (arrowShapes).
+  void arrows(ShapeSink& mesh) const {
+    if (!look_) return;
+    for (const FrameLook::Arrow& arrow : look_->arrows) {
+      arrowShapes(mesh, toPixel(arrow.from), toPixel(arrow.to), arrow.widthPx, arrow.color);
     }
   }
 
@@ -186,6 +261,7 @@ class FrameShapes {
   const Drawing& f_;
   const RenderOptions& o_;
   const Palette& c_;
+  const FrameLook* look_;  // null: the theme's look
   const PixelMapping toPixel_;
   float w_, h_, radius_;
   double scale_;
@@ -197,21 +273,24 @@ constexpr size_t kShapesPerPiece = 16384;
 }  // namespace
 
 void buildFrameMesh(const Drawing& f, const Camera& camera, const RenderOptions& options, const Palette& c,
-                    ShapeSink& mesh) {
-  const FrameShapes frame(f, camera, options, c);
+                    ShapeSink& mesh, const FrameLook* look) {
+  const FrameShapes frame(f, camera, options, c, look);
+  const FrameShapes::Counts counts = frame.counts();
   mesh.clear();
   frame.front(mesh);
-  frame.springs(mesh, 0, FrameShapes::counts(f).springs);
+  frame.springs(mesh, 0, counts.springs);
   frame.rods(mesh);
   frame.bodies(mesh);
+  frame.trails(mesh, 0, counts.trails);
   frame.particles(mesh, 0, f.particles.size());
+  frame.arrows(mesh);
   frame.cursors(mesh);
 }
 
 size_t buildFrameTiles(const Drawing& f, const Camera& camera, const RenderOptions& options, const Palette& c,
-                       TileBins& bins, WorkerPool* pool) {
-  const FrameShapes frame(f, camera, options, c);
-  const FrameShapes::Counts counts = FrameShapes::counts(f);
+                       TileBins& bins, WorkerPool* pool, const FrameLook* look) {
+  const FrameShapes frame(f, camera, options, c, look);
+  const FrameShapes::Counts counts = frame.counts();
   bins.slots(counts.total());
   size_t recorded = 0;
   size_t slot = 0;
@@ -239,14 +318,16 @@ size_t buildFrameTiles(const Drawing& f, const Camera& camera, const RenderOptio
   pieces([&](ShapeSink& out, size_t begin, size_t end) { frame.springs(out, begin, end); }, counts.springs);
   serial([&](ShapeSink& out) { frame.rods(out); }, counts.rods);
   serial([&](ShapeSink& out) { frame.bodies(out); }, counts.bodies);
+  pieces([&](ShapeSink& out, size_t begin, size_t end) { frame.trails(out, begin, end); }, counts.trails);
   pieces([&](ShapeSink& out, size_t begin, size_t end) { frame.particles(out, begin, end); }, counts.particles);
+  serial([&](ShapeSink& out) { frame.arrows(out); }, counts.arrows);
   serial([&](ShapeSink& out) { frame.cursors(out); }, counts.cursors);
   return recorded;
 }
 
 MeshBreaks buildFrameMeshAround(const Drawing& f, const Camera& camera, const RenderOptions& options, const Palette& c,
-                                ShapeMesh& mesh) {
-  const FrameShapes frame(f, camera, options, c);
+                                ShapeMesh& mesh, const FrameLook* look) {
+  const FrameShapes frame(f, camera, options, c, look);
   mesh.clear();
   frame.front(mesh);
   frame.springs(mesh, 0, f.springs.size());  // by position only: the resident path draws the others
@@ -254,7 +335,9 @@ MeshBreaks buildFrameMeshAround(const Drawing& f, const Camera& camera, const Re
   breaks.springsEnd = mesh.vertices().size();
   frame.rods(mesh);
   frame.bodies(mesh);
+  frame.trails(mesh, 0, frame.counts().trails);
   breaks.particlesAt = mesh.vertices().size();
+  frame.arrows(mesh);
   frame.cursors(mesh);
   return breaks;
 }
@@ -283,8 +366,8 @@ float particleRadiusPx(const Camera& camera, const RenderOptions& options) {
                    : options.particleRadius.value);
 }
 
-size_t frameShapeCount(const Drawing& f) {
-  return FrameShapes::counts(f).total();
+size_t frameShapeCount(const Drawing& f, const FrameLook* look) {
+  return FrameShapes::counts(f, look).total();
 }
 
 }  // namespace particles::render

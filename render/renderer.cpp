@@ -1,6 +1,7 @@
 #include "render/renderer.hpp"
 
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -81,44 +82,53 @@ struct Renderer::Impl {
 
   // The frame on the resident path: the CPU's shapes before the springs, the springs by index
   // from GL's copy, the CPU's shapes between, the particles from GL's copy, the CPU's shapes after.
-  void drawResident(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
-    const MeshBreaks breaks = buildFrameMeshAround(frame, camera, options, colors, mesh);  // checks the topology
+  void drawResident(const Drawing& frame, const Camera& camera, WorkerPool* pool, const FrameLook* look) {
+    // Checks the topology and the look's lengths.
+    const MeshBreaks breaks = buildFrameMeshAround(frame, camera, options, colors, mesh, look);
     particlePixels(frame, camera, options, pixels, pool);
     resident->upload(pixels, frame.particleFixed, frame.springTopology);
-    const ResidentLook look{.particleRadiusPx = particleRadiusPx(camera, options),
-                            .springWidthPx = float(options.springWidthPx),
-                            .pixelsPerUnit = pixelsPerUnit(camera, options),
-                            .strainForFullColor = options.strainForFullColor,
-                            .colors = colors};
+    if (look) {
+      // The springs by position are the mesh's; GL's are those by index, after them.
+      std::span<const Rgba> springColors = look->springColors;
+      if (!springColors.empty()) springColors = springColors.subspan(frame.springs.size());
+      resident->uploadLook(look->particleColors, look->particleRadiiPx, springColors);
+    } else {
+      resident->uploadLook({}, {}, {});
+    }
+    const ResidentLook themed{.particleRadiusPx = particleRadiusPx(camera, options),
+                              .springWidthPx = float(options.springWidthPx),
+                              .pixelsPerUnit = pixelsPerUnit(camera, options),
+                              .strainForFullColor = options.strainForFullColor,
+                              .colors = colors};
     program->draw(mesh, 0, breaks.springsEnd);
-    resident->drawSprings(look);
+    resident->drawSprings(themed);
     program->draw(mesh, breaks.springsEnd, breaks.particlesAt);
-    resident->drawParticles(look);
+    resident->drawParticles(themed);
     program->draw(mesh, breaks.particlesAt, mesh.vertices().size());
   }
 
   bool onCpu() const { return taken == Raster::cpu; }
 
   // The frame on the cpu path: its shapes' records built and binned on the pool, then composited.
-  void drawCpu(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+  void drawCpu(const Drawing& frame, const Camera& camera, WorkerPool* pool, const FrameLook* look) {
     if (composited.image.rgba.empty()) composited.image = allocateImage(options.width, options.height, "the frame");
     bins.reset(options.width, options.height);
-    buildFrameTiles(frame, camera, options, colors, bins, pool);
+    buildFrameTiles(frame, camera, options, colors, bins, pool, look);
     bins.bin(pool);
     compositeTiles(bins, options.msaa, colors.background, options.transparentBackground, composited, pool);
   }
 
   // The frame built on the CPU: as triangles, or as tiles (the automatic choice, RenderOptions).
-  void drawBuilt(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+  void drawBuilt(const Drawing& frame, const Camera& camera, WorkerPool* pool, const FrameLook* look) {
     // automatic (here when the resident path could not take the frame): a frame that cannot reach
     // the threshold goes straight to triangles; one that may is built as tiles first and decided
     // on the shapes it really has (degenerate ones dropped).
-    const size_t shapes = frameShapeCount(frame);
+    const size_t shapes = frameShapeCount(frame, look);
     bool tiled = options.raster == Raster::tiles ||
                  (options.raster != Raster::triangles && shapes >= kTilesFromShapes);
     if (tiled) {
       bins.reset(options.width, options.height);
-      const size_t recorded = buildFrameTiles(frame, camera, options, colors, bins, pool);
+      const size_t recorded = buildFrameTiles(frame, camera, options, colors, bins, pool, look);
       tiled = options.raster == Raster::tiles || recorded >= kTilesFromShapes;
     }
     const bool transparent = options.transparentBackground;
@@ -134,7 +144,7 @@ struct Renderer::Impl {
     if (tiled) {
       tiles->draw(bins, colors.background, transparent);
     } else {
-      buildFrameMesh(frame, camera, options, colors, mesh);
+      buildFrameMesh(frame, camera, options, colors, mesh, look);
       program->draw(mesh);
     }
   }
@@ -161,14 +171,15 @@ const GlInfo& Renderer::gl() const {
   return impl_->context ? impl_->context->info() : kNoGl;
 }
 
-void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
+void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* pool, const FrameLook* look) {
   Impl& m = *impl_;
+  if (look && look->empty()) look = nullptr;  // as without one, to the byte
   if (m.submitted >= (readsAhead() ? 2 : 1)) throw std::logic_error("Renderer::submit: a frame must be collected first");
   // cpu: asked for, or automatic without a GPU, where it costs less than llvmpipe drawing the same
   // frame (bench/README.md, "The cpu raster"); resident: asked for, or automatic with a GPU (what
   // the path is for).
   if (m.onCpu()) {
-    m.drawCpu(frame, camera, pool);
+    m.drawCpu(frame, camera, pool, look);
     ++m.submitted;
     return;
   }
@@ -183,9 +194,9 @@ void Renderer::submit(const Drawing& frame, const Camera& camera, WorkerPool* po
     resident = m.resident->fits(frame.particles.size(), frame.springsByIndex());  // else built on the CPU
   }
   if (resident) {
-    m.drawResident(frame, camera, pool);
+    m.drawResident(frame, camera, pool, look);
   } else {
-    m.drawBuilt(frame, camera, pool);
+    m.drawBuilt(frame, camera, pool, look);
   }
   m.context->startRead();
   ++m.submitted;
@@ -206,8 +217,8 @@ bool Renderer::readsAhead() const {
   return !impl_->onCpu() && impl_->context->readsAhead();
 }
 
-const Image& Renderer::render(const Drawing& frame, const Camera& camera, WorkerPool* pool) {
-  submit(frame, camera, pool);
+const Image& Renderer::render(const Drawing& frame, const Camera& camera, WorkerPool* pool, const FrameLook* look) {
+  submit(frame, camera, pool, look);
   return collect();
 }
 

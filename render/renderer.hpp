@@ -32,6 +32,7 @@
 
 #include "core/drawing.hpp"
 #include "core/worker_pool.hpp"
+#include "render/frame_look.hpp"
 #include "render/gl_backend.hpp"
 #include "render/image.hpp"
 #include "render/render_options.hpp"
@@ -56,14 +57,21 @@ class Renderer {
   // its threads (the tile path, render/tile_bins.hpp): the same pixels for every count. The frame's
   // springs may come by position or by index (System::draw's SpringDetail, the better for a
   // render: the resident path keeps them in GL's buffers, and the others need no list of them).
-  const Image& render(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr);
+  // With a look (render/frame_look.hpp; null or empty: the theme's), its colours, radii, trails
+  // and arrows, on every path: the resident path sends its particle and spring colours and radii
+  // beside the positions and draws its trails and arrows with the CPU's shapes. Translucent
+  // shapes agree between paths within a unit per channel (tests/test_render_frame_look.cpp);
+  // a look list of the wrong length throws std::invalid_argument naming it. The look is read
+  // during the call only (as the frame is), by submit too.
+  const Image& render(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr,
+                      const FrameLook* look = nullptr);
   // render in two steps, for a frame loop that draws frame k + 1 while frame k is read back
   // (GlContext::startRead): submit draws the frame and starts its read-back; collect returns the
   // oldest frame submitted and not collected (valid until the next call). Where readsAhead (EGL
   // asked to, on a GL path: the cpu path's frame is whole when drawn), up to two frames may be
   // submitted before the first is collected; elsewhere each must be collected before the next is
   // submitted. Either misuse throws std::logic_error.
-  void submit(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr);
+  void submit(const Drawing& frame, const Camera& camera, WorkerPool* pool = nullptr, const FrameLook* look = nullptr);
   const Image& collect();
   bool readsAhead() const;
   // Lets another thread draw the next frame (GlContext::releaseFromThread).

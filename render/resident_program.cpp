@@ -47,10 +47,13 @@ void place(vec2 q, bool drawn) {
 )";
 
 // Springs: instance i is spring i; ShapeSink::line's rectangle around the segment between its
-// ends' positions, its width the spring's, no caps.
+// ends' positions, its width the spring's, no caps; its colour the look's (ownColors) or its
+// strain's.
 constexpr const char* kSpringVertexShader = R"(
 uniform usamplerBuffer ends;  // two particle indices per spring
 uniform samplerBuffer rest;   // rest lengths, world units
+uniform usamplerBuffer springColors;  // RGBA 0 … 255, straight alpha, with ownColors
+uniform bool ownColors;
 uniform float halfWidth;      // pixels
 uniform float pixelsPerUnit;
 uniform float strainForFull;
@@ -73,7 +76,8 @@ void main() {
   float strain = r > 0.0 ? len / pixelsPerUnit / r - 1.0 : 0.0;
   float t = clamp(strain / strainForFull, -1.0, 1.0);
   vec3 target = t < 0.0 ? compressedColor : stretchedColor;
-  vColor = vec4(floor(restColor + (target - restColor) * abs(t) + 0.5) / 255.0, 1.0);
+  vColor = ownColors ? vec4(texelFetch(springColors, gl_InstanceID)) / 255.0
+                     : vec4(floor(restColor + (target - restColor) * abs(t) + 0.5) / 255.0, 1.0);
   vShape = shape;
   vKind = 0.0;
 }
@@ -81,13 +85,17 @@ void main() {
 
 // Particles: instance i is particle i, a disc (ShapeMesh::annulus's one square for a small disc,
 // which serves any disc: coverage comes from the distance to the centre) or, fixed, a square of
-// side 1.8 radius (render/frame_mesh.cpp).
+// side 1.8 radius (render/frame_mesh.cpp); its colour and radius the look's where it gives them.
 constexpr const char* kParticleVertexShader = R"(
 uniform usamplerBuffer fixedFlags;  // 1: a fixed particle
-uniform float radius;               // pixels
+uniform usamplerBuffer particleColors;  // RGBA 0 … 255, straight alpha, with ownColors
+uniform samplerBuffer particleRadii;    // pixels, with ownRadii
+uniform bool ownColors, ownRadii;
+uniform float themeRadius;              // pixels
 uniform vec3 particleColor, fixedColor;  // 0 … 255
 void main() {
   vec2 p = texelFetch(positions, gl_InstanceID).xy;
+  float radius = ownRadii ? texelFetch(particleRadii, gl_InstanceID).x : themeRadius;
   int k = int(corner);
   vec2 q;
   vec4 shape;
@@ -101,13 +109,15 @@ void main() {
     shape = vec4(o, radius, 0.0);
   }
   place(q, 0.9 * radius > 1e-4 || !fixedParticle);
-  vColor = vec4((fixedParticle ? fixedColor : particleColor) / 255.0, 1.0);
+  vColor = ownColors ? vec4(texelFetch(particleColors, gl_InstanceID)) / 255.0
+                     : vec4((fixedParticle ? fixedColor : particleColor) / 255.0, 1.0);
   vShape = shape;
   vKind = fixedParticle ? 0.0 : 1.0;
 }
 )";
 
-constexpr GLenum kResidentFormats[] = {GL_RG32F, GL_R8UI, GL_RG32UI, GL_R32F};
+constexpr GLenum kResidentFormats[] = {GL_RG32F, GL_R8UI, GL_RG32UI, GL_R32F, GL_RGBA8UI, GL_R32F, GL_RGBA8UI};
+static_assert(sizeof(Rgba) == 4, "a look's colours go to GL as they are, 4 bytes each");
 // Each instance's four corners, numbered (the vertex shader's `corner`).
 constexpr float kInstanceCorners[4] = {0, 1, 2, 3};
 // Each instance's two triangles, (0, 1, 2) and (0, 2, 3) as ShapeMesh emits a quad's: indexed, so
@@ -142,9 +152,12 @@ ResidentProgram::ResidentProgram(const GlFunctions& gl, int samples, int width, 
   gl.glUseProgram(springs_.name);
   gl.glUniform1i(gl.glGetUniformLocation(springs_.name, "ends"), kEnds);
   gl.glUniform1i(gl.glGetUniformLocation(springs_.name, "rest"), kRest);
+  gl.glUniform1i(gl.glGetUniformLocation(springs_.name, "springColors"), kSpringColors);
   for (unsigned program : {particles_.name, freeParticles_.name}) {
     gl.glUseProgram(program);
     gl.glUniform1i(gl.glGetUniformLocation(program, "fixedFlags"), kFixed);
+    gl.glUniform1i(gl.glGetUniformLocation(program, "particleColors"), kParticleColors);
+    gl.glUniform1i(gl.glGetUniformLocation(program, "particleRadii"), kParticleRadii);
   }
   GLint most = 0;
   gl.glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &most);
@@ -211,6 +224,24 @@ void ResidentProgram::upload(std::span<const float> pixels, std::span<const char
   checkGl(gl_, "sending the resident path's buffers");
 }
 
+void ResidentProgram::uploadLook(std::span<const Rgba> particleColors, std::span<const float> particleRadiiPx,
+                                 std::span<const Rgba> springColors) {
+  const auto check = [](size_t given, size_t wanted, const char* what) {
+    if (given != 0 && given != wanted) {
+      throw std::invalid_argument(std::string("the resident path was given ") + std::to_string(given) + " " + what +
+                                  " for " + std::to_string(wanted));
+    }
+    return given != 0;
+  };
+  ownParticleColors_ = check(particleColors.size(), particleCount_, "particle colours");
+  ownParticleRadii_ = check(particleRadiiPx.size(), particleCount_, "particle radii");
+  ownSpringColors_ = check(springColors.size(), springCount_, "spring colours");
+  if (ownParticleColors_) fill(kParticleColors, particleColors.data(), particleColors.size_bytes());
+  if (ownParticleRadii_) fill(kParticleRadii, particleRadiiPx.data(), particleRadiiPx.size_bytes());
+  if (ownSpringColors_) fill(kSpringColors, springColors.data(), springColors.size_bytes());
+  checkGl(gl_, "sending the resident path's look");
+}
+
 void ResidentProgram::drawInstances(const Program& program, size_t instances) const {
   const int cornerAttr = program.corner;
   if (instances == 0 || cornerAttr < 0) return;
@@ -236,6 +267,7 @@ void ResidentProgram::drawSprings(const ResidentLook& look) const {
   setColor(gl, program, "restColor", look.colors.springRest);
   setColor(gl, program, "compressedColor", look.colors.springCompressed);
   setColor(gl, program, "stretchedColor", look.colors.springStretched);
+  gl.glUniform1i(gl.glGetUniformLocation(program, "ownColors"), ownSpringColors_ ? 1 : 0);
   drawInstances(springs_, springCount_);
 }
 
@@ -243,9 +275,11 @@ void ResidentProgram::drawParticles(const ResidentLook& look) const {
   const GlFunctions& gl = gl_;
   const Program& particles = anyFixed_ ? particles_ : freeParticles_;
   gl.glUseProgram(particles.name);
-  gl.glUniform1f(gl.glGetUniformLocation(particles.name, "radius"), look.particleRadiusPx);
+  gl.glUniform1f(gl.glGetUniformLocation(particles.name, "themeRadius"), look.particleRadiusPx);
   setColor(gl, particles.name, "particleColor", look.colors.particle);
   setColor(gl, particles.name, "fixedColor", look.colors.fixedParticle);
+  gl.glUniform1i(gl.glGetUniformLocation(particles.name, "ownColors"), ownParticleColors_ ? 1 : 0);
+  gl.glUniform1i(gl.glGetUniformLocation(particles.name, "ownRadii"), ownParticleRadii_ ? 1 : 0);
   drawInstances(particles, particleCount_);
 }
 

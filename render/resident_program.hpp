@@ -10,7 +10,9 @@
 // the line's quad grown by its fringe, the disc's centre offsets and radii), compiled for the
 // boundaries each program draws (springs: edges; particles: discs, with edges too only in a frame
 // that has a fixed particle, drawn as a square), and each spring gets
-// its strain colour (render/theme.hpp's springColor) from its length there. GL draws an instanced
+// its strain colour (render/theme.hpp's springColor) from its length there. A frame's look
+// (render/frame_look.hpp) may give each particle its colour and radius and each spring its
+// colour: those go to GL as buffers beside the positions, each frame it has them (uploadLook). GL draws an instanced
 // draw's primitives in instance order, so painter's order and the blending are the triangle
 // path's: the same pixels up to the float rounding of the geometry, now done by the GPU
 // (tests/test_render_resident.cpp measures how close). Positions go to GL as pixels computed on
@@ -58,6 +60,13 @@ class ResidentProgram {
   // from the last frame's; and the springs' topology (null: none) when it is not the one GL holds.
   void upload(std::span<const float> pixels, std::span<const char> fixed,
               const std::shared_ptr<const Drawing::SpringTopology>& springs);
+  // Sends the frame's look for what this program draws: a colour (straight alpha) and a radius in
+  // pixels per particle, a colour per spring by index; an empty list draws with ResidentLook's
+  // theme colours, radius and strain colours instead. Call after upload, every frame: a list given
+  // once is not kept for the next. Throws std::invalid_argument for a list of another length than
+  // the particles or springs uploaded.
+  void uploadLook(std::span<const Rgba> particleColors, std::span<const float> particleRadiiPx,
+                  std::span<const Rgba> springColors);
   // Draws the uploaded springs, or particles, over what the frame holds, in the current context.
   void drawSprings(const ResidentLook& look) const;
   void drawParticles(const ResidentLook& look) const;
@@ -66,7 +75,7 @@ class ResidentProgram {
   long topologyUploads() const { return topologyUploads_; }
 
  private:
-  enum Buffer { kPositions, kFixed, kEnds, kRest, kBufferCount };
+  enum Buffer { kPositions, kFixed, kEnds, kRest, kParticleColors, kParticleRadii, kSpringColors, kBufferCount };
   struct Program {
     unsigned name = 0;
     int corner = -1;  // its `corner` attribute's location
@@ -89,6 +98,8 @@ class ResidentProgram {
   bool anyFixed_ = false;                                     // whether one of them is 1
   std::vector<std::uint8_t> flags_;                           // scratch: this frame's
   long topologyUploads_ = 0;
+  // Whether this frame's look gave the particles' colours, their radii, the springs' colours.
+  bool ownParticleColors_ = false, ownParticleRadii_ = false, ownSpringColors_ = false;
 };
 
 }  // namespace particles::render
