@@ -40,11 +40,13 @@ const std::vector<Room>& rooms() {
       {"scenario", kCheckout / "src/scenario", {"core", "style", "input"}},
       {"render", kCheckout / "render", {"core", "style", "plot", "output"}},
       // The writers and encoders: frames from the renderer to files. The renderer never includes them.
-      {"video", kCheckout / "render/video", {"render", "style", "core", "output"}},
+      {"video", kCheckout / "render/video", {"render", "style", "plot", "core", "output"}},
       {"plot", kCheckout / "plot", {"output", "input"}},
       {"golden", kCheckout / "src/golden", {"core", "style", "scenario", "render", "output", "input"}},
       {"api", kCheckout / "src/api", {"core", "style", "scenario", "render", "video", "input", "output", "golden"}},
-      {"app", kCheckout / "src/app", {"core", "style", "scenario", "render", "video", "plot", "output", "input", "golden"}},
+      {"app",
+       kCheckout / "src/app",
+       {"core", "style", "scenario", "render", "video", "plot", "output", "input", "golden"}},
       // What only the tests use (particles_test_support): no room above may include it.
       {"support", kCheckout / "tests/support", {"core", "style", "render", "video", "output"}},
   };

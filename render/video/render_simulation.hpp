@@ -23,6 +23,8 @@
 #include "render/image.hpp"
 #include "render/png_io.hpp"
 #include "render/render_options.hpp"
+#include "style/style.hpp"
+#include "style/view.hpp"
 
 namespace particles::render {
 
@@ -40,8 +42,13 @@ struct RenderJob {
   // segments). Only for the formats that split (OutputFormat::splits). Nothing: every frame.
   // 0 ≤ first < end ≤ frameCount(duration, fps).
   std::optional<std::pair<long, long>> frames;
-  Camera camera;
+  Camera camera;  // the fixed view (the scenario's render.view centre and height)
   RenderOptions look;
+  // What the frames show beyond the geometry and how the camera moves (render/styled_run.hpp):
+  // plain by default. An automatic colour range or a camera that fits the run costs one pass over
+  // the whole render's frames before the first is drawn (a split render makes the same pass).
+  style::Style style;
+  style::ViewStyle view;
   GlRequest gl;        // which GL backend draws (render/gl_backend.hpp)
   // The threads the render may keep busy, the simulation's aside (System::setThreads): with 1,
   // llvmpipe rasterises and x264 encodes on the calling thread; with n > 1, llvmpipe starts n

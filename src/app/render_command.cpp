@@ -231,6 +231,8 @@ int renderCommand(const RenderCommandOptions& options) {
   job.frames = frameRange;
   job.camera = {s.render.viewCenter, s.render.viewHeight};
   job.look = look;
+  job.style = s.style;
+  job.view = s.render.view;
   job.gl = gl;
   // --threads (or PARTICLES_THREADS) is the whole command's cap: the simulation's (loadScenario),
   // llvmpipe's and the encoder's. Without one, the simulation takes the CPUs and llvmpipe and x264

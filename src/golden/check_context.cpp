@@ -83,9 +83,13 @@ std::string EntrySimulation::unreachable(const scenario::GoldenTime& time) const
   return {};
 }
 
-void EntrySimulation::advanceTo(const scenario::GoldenTime& time) {
+void EntrySimulation::advanceTo(const scenario::GoldenTime& time, render::StyledRun* styled) {
   if (const std::string why = unreachable(time); !why.empty()) throw std::invalid_argument(why);
-  if (time.seconds > scenario_.system.time()) stepper_.advanceTo(time.seconds);
+  if (styled) {
+    styled->advanceTo(stepper_, scenario_.system, time.seconds);
+  } else if (time.seconds > scenario_.system.time()) {
+    stepper_.advanceTo(time.seconds);
+  }
 }
 
 }  // namespace particles::golden

@@ -16,6 +16,7 @@
 #include "golden/check.hpp"
 #include "render/gl_backend.hpp"
 #include "scenario/golden_manifest.hpp"
+#include "render/styled_run.hpp"
 #include "scenario/scenario.hpp"
 
 namespace particles::golden {
@@ -92,7 +93,10 @@ class EntrySimulation {
   // Why the simulation cannot reach `time` (it is after the scenario's duration), or empty.
   std::string unreachable(const scenario::GoldenTime& time) const;
   // Steps to `time`. Throws std::invalid_argument with unreachable's message, SimulationError.
-  void advanceTo(const scenario::GoldenTime& time);
+  // With a styled run, every step feeds its trails and camera (render/styled_run.hpp).
+  void advanceTo(const scenario::GoldenTime& time, render::StyledRun* styled = nullptr);
+  // The system, for drawing a styled frame (which may evaluate its accelerations).
+  System& system() { return scenario_.system; }
 
  private:
   scenario::Scenario scenario_;

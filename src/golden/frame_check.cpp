@@ -3,7 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <new>
 #include <span>
 
@@ -13,6 +15,7 @@
 #include "render/image_compare.hpp"
 #include "render/png_io.hpp"
 #include "render/renderer.hpp"
+#include "render/styled_run.hpp"
 
 namespace particles::golden {
 
@@ -111,6 +114,13 @@ class FrameComparison {
   const render::PngOptions png_;
 };
 
+// The steps from the start to the entry's last time (the trails' bound, style/trail_history.hpp).
+long stepsToLastTime(const GoldenEntry& e, const scenario::Scenario& s) {
+  double last = 0.0;
+  for (const scenario::GoldenTime& t : e.times) last = std::max(last, t.seconds);
+  return long(std::ceil(last / s.simulation.dt)) + 1;
+}
+
 }  // namespace
 
 std::vector<FrameResult> checkFrames(CheckContext& run, const std::vector<scenario::GoldenCheck>& checks) {
@@ -140,9 +150,15 @@ std::vector<FrameResult> checkFrames(CheckContext& run, const std::vector<scenar
     const scenario::Scenario& s = simulation.scenario();
     const render::RenderOptions look = frameLookOf(m, e, o.overrides, {s.render.width, s.render.height});
     render::validate(look);
-    render::Renderer renderer(look, o.gl);
-    run.noteGl(renderer.gl());
     const render::Camera camera{s.render.viewCenter, s.render.viewHeight};
+    // Each frame is drawn as `particles render --at` draws it (the command reproduce gives): its
+    // style's automatic ranges and fitted camera are its own frame's (StyledRun::fitTo), its trails
+    // and followed camera the run's up to it.
+    render::StyledRun styled(s.style, s.render.view, camera, look, s.simulation.dt, stepsToLastTime(e, s));
+    render::Renderer renderer(styled.look(), o.gl);
+    run.noteGl(renderer.gl());
+    styled.start(s.system);
+    render::StyledFrameBuffers buffers;
     render::PngOptions png;
     png.alpha = look.transparentBackground;
     FrameComparison comparison(run, e, compareToleranceOf(m, e, o.overrides), png);
@@ -156,8 +172,8 @@ std::vector<FrameResult> checkFrames(CheckContext& run, const std::vector<scenar
         finish(r);
         continue;
       }
-      simulation.advanceTo(t);
-      comparison.compare(r, renderer.render(s.system.draw(), camera));
+      simulation.advanceTo(t, &styled);
+      comparison.compare(r, render::drawStyledFrame(simulation.system(), styled, renderer, buffers, true));
       finish(r);
     }
   } catch (const output::OutputError&) {

@@ -33,7 +33,8 @@ void CameraPath::observe(const Drawing& f) {
       // The rectangle's corners: the whole body stays in view.
       const double c = std::cos(b.angle), s = std::sin(b.angle);
       const Vec2 hx = 0.5 * b.size.x() * Vec2(c, s), hy = 0.5 * b.size.y() * Vec2(-s, c);
-      for (const Vec2& corner : std::array<Vec2, 4>{b.center - hx - hy, b.center + hx - hy, b.center + hx + hy, b.center - hx + hy}) {
+      for (const Vec2& corner :
+           std::array<Vec2, 4>{b.center - hx - hy, b.center + hx - hy, b.center + hx + hy, b.center - hx + hy}) {
         add(corner);
       }
     }

@@ -117,7 +117,8 @@ void springValues(const Drawing& f, SpringQuantity q, std::vector<double>& out) 
     if (a >= f.particles.size() || b >= f.particles.size()) {
       throw std::invalid_argument("a spring of the drawing's topology ends past its particles");
     }
-    out[byPosition + k] = value((f.particles[a] - f.particles[b]).norm(), t.rest[k], stiffnessKnown ? t.stiffness[k] : 0.0);
+    out[byPosition + k] =
+        value((f.particles[a] - f.particles[b]).norm(), t.rest[k], stiffnessKnown ? t.stiffness[k] : 0.0);
   }
 }
 
@@ -178,8 +179,7 @@ Range effectiveRange(const SpringStyle& springs) {
 
 bool StyleRanges::needed(const Style& s) {
   return (s.particles.colorBy && s.particles.range.automatic) ||
-         (!s.springs.color && effectiveRange(s.springs).automatic) ||
-         (s.bodies.colorBy && s.bodies.range.automatic);
+         (!s.springs.color && effectiveRange(s.springs).automatic) || (s.bodies.colorBy && s.bodies.range.automatic);
 }
 
 void StyleRanges::add(const Drawing& frame) {

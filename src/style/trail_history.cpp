@@ -16,8 +16,10 @@ TrailHistory::TrailHistory(const Style& style, double dt, long steps) {
     const double window = std::min(double(steps), std::ceil(trail.seconds / dt));
     const long long perPoint = (std::isfinite(window) ? (long long)(window) : (long long)(steps)) + 2;
     const long long points = (long long)(sel.particles.size() + sel.bodies.size());
-    if (points > 0 && perPoint > kMaxTrailSamples / points) samples = kMaxTrailSamples + 1;
-    else samples += points * perPoint;
+    if (points > 0 && perPoint > kMaxTrailSamples / points)
+      samples = kMaxTrailSamples + 1;
+    else
+      samples += points * perPoint;
     if (samples > kMaxTrailSamples) {
       throw TrailLimitError("style.select[" + std::to_string(k) + "].trail: the trails would keep more than " +
                             std::to_string(kMaxTrailSamples) +
