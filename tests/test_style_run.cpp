@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -341,4 +343,43 @@ TEST_CASE("styled render: the state after it is a plain render's, and a split re
     INFO(name);
     CHECK(bytesOf(dir / "threads" / name) == bytesOf(dir / "whole" / name));
   }
+}
+
+TEST_CASE("styled render on the command line: a trail of 10⁶ s on every particle exits 3 with the limit, bounded") {
+  particles::test::Scratch s;
+  // 10⁶ s of 0.01 s steps on the cloth's 625 particles: 6·10¹⁰ samples, refused before the run.
+  particles::test::Scratch::Usage usage;
+  const particles::test::Result r =
+      s.runBounded("render '" PARTICLES_SOURCE_DIR
+                   "/scenarios/cloth.yaml' -o cloth.mp4 --duration 1000000 "
+                   "--set 'style.select=[{particles: \"cloth[*][*]\", trail: {seconds: 1000000}}]'",
+                   usage);
+  CHECK(r.code == 3);
+  CHECK_MESSAGE(r.err.find("16000000 positions") != std::string::npos, r.err);
+  CHECK_MESSAGE(r.err.find("style.select[0].trail") != std::string::npos, r.err);
+  CHECK(usage.peakMiB < 512);
+  CHECK(s.files().empty());
+}
+
+TEST_CASE("styled render on the command line: --frames pieces equal the whole render with range: auto and follow") {
+  particles::test::Scratch s;
+  s.write("look.yaml",
+          "particles: {color_by: speed}\n"
+          "colorbar: {for: particles}\n"
+          "title: swing\n"
+          "select:\n"
+          "  - {particles: bob, trail: {seconds: 0.5}, arrow: velocity, label: bob}\n");
+  const std::string scene = s.write("swing.yaml", particles::test::kSwingScenario).string();
+  const std::string common = "render '" + scene + "' --style look.yaml --set 'render.view.follow=bob' ";
+  REQUIRE(s.run(common + "-o whole/").code == 0);
+  REQUIRE(s.run(common + "-o part/ --frames 4:7").code == 0);
+  for (int k = 4; k < 7; ++k) {
+    const std::string name = fmt::format("frame_{:06d}.png", k);
+    INFO(name);
+    CHECK(bytesOf(s.dir / "part" / name) == bytesOf(s.dir / "whole" / name));
+  }
+  // A frame drawn alone (--at) is its own output: its range is its own frame's, so it may differ
+  // from the video's frame in colour, but its trail and camera are the run's.
+  REQUIRE(s.run(common + "-o at.png --at 0.5").code == 0);
+  CHECK(std::filesystem::exists(s.dir / "at.png"));
 }
