@@ -6,9 +6,10 @@ page never shows a command that no longer works.
 
 Every line of every ```sh block of each PAGE (relative to SOURCE_DIR) is either a `particles`
 command, which is run here in order, in SCRATCH (a new folder holding copies of the inputs the
-pages name: scenarios/ and golden/), or one of the commands that other tests run (ELSEWHERE
-below, each with the test that runs it). Any other line fails the test, as does a command that
-exits otherwise than the page's comment says (0, unless the comment says "exit N here").
+pages name: scenarios/, golden/ and the style files of docs/gallery/), or one of the commands that
+other tests run (ELSEWHERE below, each with the test that runs it). Any other line fails the
+test, as does a command that exits otherwise than the page's comment says (0, unless the comment
+says "exit N here").
 
 Runs are shortened, never otherwise changed: a `render`, `run` or `stability` without --duration
 is given one just long enough for its --at and --frames (else half a second), and the copies of
@@ -27,6 +28,7 @@ import time
 ELSEWHERE = {
     "scripts/demo": "scripts/test, stage \"scripts/demo (the README's first command)\"",
     "scripts/test": "CI (.ci/run)",
+    "scripts/make-gallery": "ctest docs:gallery (tests/docs/gallery_test.py)",
     "scripts/deps python && python3 -m venv --system-site-packages .venv && .venv/bin/pip install --no-build-isolation .":
         "scripts/test, stage \"the Python module installed by pip into a venv\"",
     "cmake --install build --prefix ~/opt/particles":
@@ -109,6 +111,9 @@ def main():
     for folder in ("scenarios", "golden"):
         shutil.copytree(os.path.join(source, folder), os.path.join(scratch, folder),
                         ignore=shutil.ignore_patterns("*.md", "CMakeLists.txt"))
+    # The gallery's style files, without its pictures: the page's commands write them anew.
+    shutil.copytree(os.path.join(source, "docs", "gallery"), os.path.join(scratch, "docs", "gallery"),
+                    ignore=shutil.ignore_patterns("*.png"))
     for name, text in READERS_FILES.items():
         os.makedirs(os.path.dirname(os.path.join(scratch, name)), exist_ok=True)
         with open(os.path.join(scratch, name), "w", encoding="utf-8") as f:
