@@ -165,10 +165,9 @@ void readSets(const Value& v, GoldenEntry& entry, const std::string& file) {
       const Value key = v.child(it->first, v.path() + "." + path, it->first.Mark());
       const Value value = v.child(it->second, v.path() + "." + path, it->first.Mark());
       if (!it->first.IsScalar()) key.fail("expected a key path, got a list or map as key");
-      if (value.isNull() || value.isMap()) {
-        value.fail(fmt::format("expected a value for --set (a number, a name or a list), {}", value.found()));
-      }
-      add(path, detail::commandLineText(value.node()), key, value);
+      if (value.isNull())
+        value.fail(fmt::format("expected a value for --set (a number, a name, a list or a map), {}", value.found()));
+      add(path, detail::overrideValueText(value.node()), key, value);
     }
   } else if (v.isSequence()) {
     for (const Value& item : v.items()) {

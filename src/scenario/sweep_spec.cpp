@@ -214,7 +214,7 @@ void readOptions(const Value& v, SweepSpec& spec) {
       for (auto s = value.node().begin(); s != value.node().end(); ++s) {
         const Value setValue = value.child(s->second, path + "." + s->first.Scalar(), s->first.Mark());
         if (setValue.isNull() || setValue.isMap()) setValue.fail("expected a value for --set, got nothing or a map");
-        spec.sets.emplace_back(s->first.Scalar(), detail::commandLineText(s->second));
+        spec.sets.emplace_back(s->first.Scalar(), detail::overrideValueText(s->second));
         spec.setsAt.push_back(positionOf(setValue));
       }
       continue;

@@ -280,6 +280,21 @@ std::string commandLineText(const YAML::Node& node) {
   return out.c_str();
 }
 
+std::string overrideValueText(const YAML::Node& node) {
+  if (!node.IsScalar() || node.Tag() != "!") return commandLineText(node);  // "!": quoted in the file
+  const std::string& text = node.Scalar();
+  bool readsBack = false;
+  try {
+    const YAML::Node plain = YAML::Load(text);
+    readsBack = !text.empty() && plain.IsScalar() && plain.Scalar() == text;
+  } catch (const YAML::Exception&) {
+  }
+  if (readsBack) return text;
+  YAML::Emitter out;
+  out << YAML::DoubleQuoted << text;
+  return out.c_str();
+}
+
 std::string formatNumber(double x) {
   return fmt::format("{}", x);
 }

@@ -58,6 +58,10 @@ YAML::Node loadBoundedDocument(std::string_view text, const std::string& file, c
 // A YAML node as it goes on a command line (--set, a sweep's values): a scalar as written,
 // anything else in flow form.
 std::string commandLineText(const YAML::Node& node);
+// The text of a `--set` value that reads back as `node` (a manifest's or sweep's map of sets): as
+// commandLineText, but a scalar quoted in the file whose plain text YAML would read otherwise (a
+// colon or a # in it, brackets, nothing) keeps double quotes: "Pendulum: RK4", "#ff0000".
+std::string overrideValueText(const YAML::Node& node);
 
 // Where the tree came from: the file, the key paths that --set replaced (errors in those name
 // the option instead of a line of the file), and those a style file gave (`render --style`): their
