@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "render/errors.hpp"
@@ -42,27 +43,38 @@ constexpr double kTrailMinStepPx = 0.5;
 
 StyledRun::StyledRun(const style::Style& style, const style::ViewStyle& view, const Camera& camera,
                      const RenderOptions& look, double dt, long steps)
+    : StyledRun(style, view, camera, look, nullptr) {
+  if (StyleHistory::needed(style, view)) {
+    ownHistory_ = std::make_unique<StyleHistory>(style, view, camera, dt, steps);
+    history_ = ownHistory_.get();
+  }
+}
+
+StyledRun::StyledRun(const style::Style& style, const style::ViewStyle& view, const Camera& camera,
+                     const RenderOptions& look, const StyleHistory* history)
     : style_(style),
       look_(look),
       palette_(theme(look.themeName)),
       camera_(view, {camera.center, camera.height}, double(look.width) / double(look.height)),
+      unfitted_(camera_),
+      follows_(view.mode == style::ViewStyle::Mode::follow),
+      history_(history),
       detail_(style::drawDetailFor(style)),
-      fixed_(camera),
-      dt_(dt) {
+      fixed_(camera) {
   if (style.particles.radius) {
     const style::Length& r = *style.particles.radius;
     look_.particleRadius = {r.value, r.pixels ? Length::Unit::pixels : Length::Unit::world};
   }
   if (style.springs.width) look_.springWidthPx = pixelsOf(*style.springs.width, double(look.height) / camera.height);
-  try {
-    if (std::any_of(style.select.begin(), style.select.end(), [](const style::Selection& s) { return s.trail; })) {
-      trails_.emplace(style_, dt, steps);
-    }
-  } catch (const style::TrailLimitError& e) {
-    throw OutOfMemory(e.what());
-  }
   styled_ = !style.isPlain() || view.mode != style::ViewStyle::Mode::fixed;
   setScales(style::StyleRanges(style_));
+}
+
+StyleHistory* StyledRun::ownHistory(std::string_view call) {
+  if (history_ != ownHistory_.get()) {
+    throw std::logic_error(std::string(call) + ": this StyledRun draws from a history fed elsewhere");
+  }
+  return ownHistory_.get();
 }
 
 bool StyledRun::needsPass() const {
@@ -89,6 +101,7 @@ void StyledRun::runPass(System& system, Integrator integrator, double dt, const 
 
 void StyledRun::fitTo(const Drawing& frame) {
   if (!needsPass()) return;
+  camera_ = unfitted_;  // the frame's own box, not grown by the frames fitted before
   style::StyleRanges ranges(style_);
   ranges.add(frame);
   camera_.observe(frame);
@@ -103,23 +116,20 @@ void StyledRun::setScales(const style::StyleRanges& ranges) {
 }
 
 void StyledRun::start(const System& system) {
-  startTime_ = system.time();
-  camera_.start(system);
-  if (trails_) trails_->start(system);
+  if (StyleHistory* history = ownHistory("StyledRun::start")) history->start(system);
 }
 
 void StyledRun::advanceTo(Stepper& stepper, System& system, double t) {
-  if (!(t > system.time())) return;
-  const long target = stepper.stepsAt(t);
-  while (stepper.steps() < target) {
-    stepper.step();
-    camera_.afterStep(system, dt_);
-    if (trails_) trails_->afterStep(system);
+  if (StyleHistory* history = ownHistory("StyledRun::advanceTo")) {
+    history->advanceTo(stepper, system, t);
+  } else if (t > system.time()) {
+    stepper.advanceTo(t);
   }
 }
 
 Camera StyledRun::camera(double t) const {
-  const style::CameraPlacement c = camera_.at(t);
+  if (follows_ && history_ == nullptr) throw std::logic_error("a followed camera needs the run's history");
+  const style::CameraPlacement c = (follows_ ? history_->camera() : camera_).at(t);
   return {c.center, c.height};
 }
 
@@ -202,10 +212,11 @@ void StyledRun::resolveBodies(const Drawing& f, FrameLook& out) const {
 }
 
 void StyledRun::resolveTrails(const Drawing& f, const Camera& camera, FrameLook& out) const {
-  if (!trails_) return;
+  const style::TrailHistory* trails = history_ ? history_->trails() : nullptr;
+  if (!trails) return;
   const double ppu = pixelsPerUnit(camera, look_);
   const double now = f.time;
-  for (const style::TrailHistory::Trail& trail : trails_->trails()) {
+  for (const style::TrailHistory::Trail& trail : trails->trails()) {
     const style::Selection& sel = style_.select[trail.selection];
     Rgba color = palette_.particle;
     if (trail.style->color) {
@@ -227,8 +238,8 @@ void StyledRun::resolveTrails(const Drawing& f, const Camera& camera, FrameLook&
       if (!last && (samples[k].p - samples[kept].p).norm() * ppu < kTrailMinStepPx) continue;
       const double age = now - 0.5 * (samples[k].t + samples[kept].t);
       // Fading: linearly to nothing at the window's end; a whole-run trail from a quarter at the start.
-      double opacity =
-          std::isfinite(window) ? 1.0 - age / window : 0.25 + 0.75 * (1.0 - age / std::max(now - startTime_, 1e-12));
+      double opacity = std::isfinite(window) ? 1.0 - age / window
+                                             : 0.25 + 0.75 * (1.0 - age / std::max(now - history_->startTime(), 1e-12));
       opacity = std::clamp(opacity, 0.0, 1.0);
       Rgba c = color;
       c.a = (unsigned char)std::lround(color.a * opacity);

@@ -8,7 +8,9 @@
 //      (System::checkpoint), so that the run then steps the same bits as without the pass
 //      (runPass). A split render makes the whole render's pass: the same ranges and camera.
 //   2. The run: the state at its start and after every time step feeds the trails and the camera
-//      that follows (start, afterStep; advanceTo steps a Stepper so).
+//      that follows (render/style_history.hpp: start, advanceTo), in a history of the StyledRun's
+//      own or in one fed elsewhere (the library's Simulation keeps one from its start, and draws
+//      each frame with a StyledRun made for the Renderer's settings).
 //   3. Each frame: the camera at its time, the drawing with what the style colours by
 //      (drawFrame), each shape's colour and the trails and arrows resolved into a FrameLook
 //      (render/frame_look.hpp), and the text drawn over the image (colour bar, title, scale bar,
@@ -16,6 +18,7 @@
 // A plain style (Style::isPlain, a fixed camera) changes nothing: the frames are today's.
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -28,10 +31,10 @@
 #include "render/image.hpp"
 #include "render/render_options.hpp"
 #include "render/renderer.hpp"
+#include "render/style_history.hpp"
 #include "style/camera_path.hpp"
 #include "style/quantity.hpp"
 #include "style/style.hpp"
-#include "style/trail_history.hpp"
 #include "style/view.hpp"
 
 namespace particles::render {
@@ -39,10 +42,16 @@ namespace particles::render {
 class StyledRun {
  public:
   // `camera` is the scenario's fixed view; `look` the render's options (size, theme, radius);
-  // `dt` and `steps` the run's. Throws OutOfMemory when the trails would exceed their limit
-  // (style/trail_history.hpp) and std::invalid_argument for a style the options cannot draw.
+  // `dt` and `steps` the run's, whose history the StyledRun keeps (start, advanceTo). Throws
+  // OutOfMemory when the trails would exceed their limit (style/trail_history.hpp) and
+  // std::invalid_argument for a style the options cannot draw.
   StyledRun(const style::Style& style, const style::ViewStyle& view, const Camera& camera, const RenderOptions& look,
             double dt, long steps);
+  // The same, drawing from a history fed elsewhere, made for the same style and view, which must
+  // outlive this StyledRun; null where StyleHistory::needed says the style keeps nothing of the run
+  // (else std::logic_error). start and advanceTo are the history's owner's.
+  StyledRun(const style::Style& style, const style::ViewStyle& view, const Camera& camera, const RenderOptions& look,
+            const StyleHistory* history);
 
   // The render's options with the style's global radius and spring width.
   const RenderOptions& look() const { return look_; }
@@ -54,10 +63,11 @@ class StyledRun {
   void runPass(System& system, Integrator integrator, double dt, const std::vector<double>& times);
 
   // A one-frame output (`render --at`, a golden frame) is its own pass: the ranges and the fitted
-  // camera are its frame's, found from the frame itself (fitTo) without stepping twice.
+  // camera are its frame's, found from the frame itself (fitTo) without stepping twice; each call
+  // fits to its frame alone.
   void fitTo(const Drawing& frame);
 
-  // 2. The run.
+  // 2. The run, into the StyledRun's own history (std::logic_error for one that draws from another's).
   void start(const System& system);
   // Steps `stepper` to time t, feeding every step to the trails and the camera.
   void advanceTo(Stepper& stepper, System& system, double t);
@@ -82,16 +92,21 @@ class StyledRun {
   Rgba mapped(double t, const std::optional<style::Colormap>& map) const;
   std::optional<plot::ColorbarSpec> colorbar() const;
 
+  // The history start and advanceTo feed: the StyledRun's own, or none (std::logic_error for another's).
+  StyleHistory* ownHistory(std::string_view call);
+
   style::Style style_;
   RenderOptions look_;
   Palette palette_;
-  style::CameraPath camera_;
-  std::optional<style::TrailHistory> trails_;
+  // The camera's modes that need no history: fixed, keys and fit (fitted by the pass, or to the
+  // frame from `unfitted_`); follow is the history's.
+  style::CameraPath camera_, unfitted_;
+  bool follows_ = false;
+  std::unique_ptr<StyleHistory> ownHistory_;  // on the heap: history_ stays valid when this is moved
+  const StyleHistory* history_ = nullptr;     // ownHistory_'s, another's, or none
   DrawDetail detail_;
   style::ColorScale particleScale_, springScale_, bodyScale_;
   Camera fixed_;
-  double dt_;
-  double startTime_ = 0.0;
   bool styled_ = false;
   mutable std::vector<double> values_;  // scratch of resolve (one thread resolves at a time)
 };
