@@ -7,5 +7,6 @@
 #include <particles/renderer.hpp>
 #include <particles/scenario.hpp>
 #include <particles/simulation.hpp>
+#include <particles/style.hpp>
 #include <particles/version.hpp>
 #include <particles/video_writer.hpp>

@@ -63,8 +63,11 @@ class PARTICLES_API Renderer {
   Renderer& operator=(const Renderer&) = delete;
   ~Renderer();
 
-  /// The simulation's state now, seen through its scenario's view. Throws Error when the GL context
-  /// cannot be made (naming the failing call).
+  /// The simulation's state now, seen through its scenario's view and drawn with its style
+  /// (Scenario::setStyle), as `particles render --at` draws it: automatic colour ranges and a fitted
+  /// camera from this frame, trails and a followed camera from the simulation's steps since its
+  /// start. Throws Error when the GL context cannot be made (naming the failing call), or when the
+  /// style's trails would keep more positions than their limit (its message says which).
   Image render(const Simulation& simulation);
   /// What draws the frames, once one was drawn: "egl, software device: llvmpipe (…), OpenGL 4.5 …",
   /// or "none (the cpu raster)" where the frames are drawn without GL.

@@ -6,6 +6,7 @@
 /// @code
 /// particles::Scenario cloth = particles::Scenario::load("scenarios/cloth.yaml");
 /// cloth.set("dt", 0.005).set("forces[1].ks", "200");
+/// cloth.setStyle(particles::Style{.particles = {.colorBy = "speed"}});
 /// particles::Simulation sim(cloth);
 /// @endcode
 ///
@@ -17,6 +18,7 @@
 
 #include <particles/choices.hpp>
 #include <particles/export.hpp>
+#include <particles/style.hpp>
 
 namespace particles {
 
@@ -54,6 +56,23 @@ class PARTICLES_API Scenario {
   Scenario& set(std::string_view path, const char* value) { return set(path, std::string_view(value)); }
   /// A number, written so that it reads back as the same double.
   Scenario& set(std::string_view path, double value);
+
+  /// Merges `style` over the scenario's own `style` section, as `particles render --style FILE`
+  /// merges a style file (docs/scenarios.md, "Style files"): key by key, maps merged and any other
+  /// value (select included) replaced, before every set() value, whatever the order of the calls.
+  /// A later setStyle() replaces this one; an empty Style takes it away (the scenario's own section
+  /// again). Checked at once with the file's checks and messages: a bad name, colour, length, range
+  /// or reference throws ScenarioError whose file() is "style" and whose keyPath() names the field
+  /// (`style.particles.color_by`, `style.select[0].trail.width`), without a line or column (the
+  /// YAML was written here), and the scenario stays as it was. Simulations made afterwards draw it
+  /// (Renderer::render). Returns *this.
+  Scenario& setStyle(const Style& style);
+  /// The same from a style file's text (YAML: what goes under `style:` in a scenario, at most 64 MiB),
+  /// which can also take a scenario's key away with null (`color_by: ~`). Errors name "style" as
+  /// their file, with the text's line and column. An empty text takes the style away.
+  Scenario& setStyle(std::string_view yaml);
+  /// The same for text: setStyle("particles: {color_by: speed}") is YAML, not a Style.
+  Scenario& setStyle(const char* yaml) { return setStyle(std::string_view(yaml)); }
 
   /// What `particles check` prints for a valid scenario: its name, contents, integrator, dt,
   /// duration and steps. A Scenario is checked whole when it is made and at each set(), so this

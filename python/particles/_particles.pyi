@@ -3,7 +3,7 @@
 import enum
 import os
 from types import TracebackType
-from typing import Literal, Mapping, Optional, Sequence, Tuple, Type, Union
+from typing import Literal, Mapping, Optional, Sequence, Tuple, Type, TypedDict, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -14,6 +14,42 @@ PathLike = Union[str, os.PathLike[str]]
 # A str is YAML text as --set takes it; anything else is written as the YAML of that value.
 SettingValue = Union[str, int, float, bool, None, Sequence["SettingValue"], Mapping[str, "SettingValue"], np.generic,
                      npt.NDArray[np.generic]]
+# A scenario's `style` section (docs/scenarios.md, "Style") as a dict, key for key as YAML writes it:
+# names, colours ("orange", "#4682b4") and lengths ("3px", "0.02m", or a number of metres) as str;
+# None takes the scenario's key away (YAML's ~). C++'s particles::Style mirrors the same keys.
+ColormapName = Literal["viridis", "magma", "inferno", "plasma", "cividis", "coolwarm", "gray", "viridis_r", "magma_r",
+                       "inferno_r", "plasma_r", "cividis_r", "coolwarm_r", "gray_r"]
+# "auto", [lo, hi], or {"min": lo, "max": hi, "scale": "linear" or "log"} ({"scale": "log"}: automatic).
+StyleRange = Union[Literal["auto"], Sequence[float], Mapping[str, Union[float, Literal["linear", "log"]]]]
+Length = Union[str, float]
+ParticleStyle = TypedDict("ParticleStyle", {
+    "color_by": Optional[Literal["speed", "velocity_x", "velocity_y", "acceleration", "kinetic_energy", "height",
+                                 "mass"]],
+    "colormap": Optional[ColormapName], "range": Optional[StyleRange], "radius": Optional[Length],
+    "color": Optional[str]}, total=False)
+SpringStyle = TypedDict("SpringStyle", {
+    "color_by": Optional[Literal["strain", "tension", "energy"]], "colormap": Optional[ColormapName],
+    "range": Optional[StyleRange], "width": Optional[Length], "color": Optional[str]}, total=False)
+BodyStyle = TypedDict("BodyStyle", {
+    "color": Optional[str], "outline": Optional[str], "color_by": Optional[Literal["speed", "angular_speed"]],
+    "colormap": Optional[ColormapName], "range": Optional[StyleRange]}, total=False)
+ColorbarStyle = TypedDict("ColorbarStyle", {
+    "for": Optional[Literal["particles", "springs", "bodies"]], "label": Optional[str],
+    "position": Optional[Literal["right", "left", "top", "bottom"]]}, total=False)
+TrailStyle = TypedDict("TrailStyle", {"seconds": Union[float, Literal["all"], None], "width": Optional[Length],
+                                      "color": Optional[str]}, total=False)
+ArrowStyle = TypedDict("ArrowStyle", {"of": Literal["velocity", "force"], "scale": Optional[float],
+                                      "max": Optional[Length], "color": Optional[str]}, total=False)
+StyleSelection = TypedDict("StyleSelection", {
+    "particles": Union[str, Sequence[str]], "bodies": Union[str, Sequence[str]], "color": Optional[str],
+    "radius": Optional[Length], "trail": Optional[TrailStyle],
+    "arrow": Union[Literal["velocity", "force"], ArrowStyle, None], "label": Optional[str]}, total=False)
+StyleDict = TypedDict("StyleDict", {
+    "particles": Optional[ParticleStyle], "springs": Optional[SpringStyle], "bodies": Optional[BodyStyle],
+    "colorbar": Union[bool, ColorbarStyle, None], "title": Optional[str], "scale_bar": Optional[bool],
+    "select": Optional[Sequence[StyleSelection]]}, total=False)
+# A dict of the section's keys, a style file's text, or None (no style).
+Style = Union[StyleDict, Mapping[str, object], str, None]
 ParticleRef = Union[int, np.integer, str]
 Index = Union[int, np.integer]
 
@@ -41,10 +77,12 @@ def default_threads() -> int: ...
 
 class Scenario:
     @staticmethod
-    def load(path: PathLike, *, set: Optional[Mapping[str, SettingValue]] = None) -> Scenario: ...
+    def load(path: PathLike, *, set: Optional[Mapping[str, SettingValue]] = None, style: Style = None) -> Scenario: ...
     @staticmethod
-    def from_text(yaml: str, label: str = "<text>", *, set: Optional[Mapping[str, SettingValue]] = None) -> Scenario: ...
+    def from_text(yaml: str, label: str = "<text>", *, set: Optional[Mapping[str, SettingValue]] = None,
+                  style: Style = None) -> Scenario: ...
     def set(self, path: str, value: SettingValue) -> Scenario: ...
+    def set_style(self, style: Style) -> Scenario: ...
     def copy(self) -> Scenario: ...
     def __copy__(self) -> Scenario: ...
     def __deepcopy__(self, memo: object) -> Scenario: ...

@@ -2,8 +2,9 @@
 // The Python module particles._particles (pybind11), built on the public C++ API alone
 // (include/particles/): what Python sees of it is described in python/particles/_particles.pyi and
 // docs/api.md. One file per part: module.cpp (the module, errors, Scenario, the conversions below),
-// simulation.cpp (Simulation and its numpy views), rendering.cpp (Renderer, frames, VideoWriter),
-// golden.cpp (golden checks).
+// yaml_text.cpp (Python values as YAML: set()'s values, style dicts), style.cpp (a Scenario's
+// style), simulation.cpp (Simulation and its numpy views), rendering.cpp (Renderer, frames,
+// VideoWriter), golden.cpp (golden checks).
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -54,6 +55,21 @@ long long wholeNumber(const py::handle& value, const char* call, const char* wha
 int wholeInt(const py::handle& value, const char* call, const char* what);
 // The name of a value's type, for messages.
 std::string typeName(const py::handle& value);
+
+// A value Python gives as YAML, written as the text the library reads, exactly: at the top a str
+// is YAML text as written (`"[50, 2]"`), inside a list or dict a str is a string (double-quoted);
+// bool, int (or anything with __index__), float (its repr, the shortest text that reads back as the
+// same double), None (`null`; at the top, nothing), lists and tuples, dicts and other mappings with
+// str keys, and numpy's scalars and arrays (as their .item() and .tolist(), which widen exactly).
+// ArgumentError "CALL: … the value of PATH …" for anything else, a float that is not finite, a lone
+// surrogate, or nesting deeper than 64.
+std::string yamlText(const py::handle& value, std::string_view call, std::string_view path);
+
+// Scenario.set_style's and the style= of load() and from_text(): a dict (the style section's keys,
+// as yamlText writes it), a style file's text (str), or None or an empty dict or str (no style),
+// given to Scenario::setStyle. A dict's errors name "style" and the key path without a line or
+// column, as the C++ Style's do; `call` names the Python call in ArgumentError.
+void setStyleOf(Scenario& scenario, const py::handle& style, const char* call);
 // A str as a message quotes it: at most 80 characters of it, with its size in bytes when cut.
 std::string quoted(const std::string& value);
 

@@ -52,113 +52,8 @@ py::str decoded(std::string_view bytes, const char* errors) {
   return py::reinterpret_steal<py::str>(str);
 }
 
-// The deepest a Scenario.set value's lists and dicts may nest: a list that holds itself is
-// refused instead of recursing until the stack runs out.
-constexpr int kMostNesting = 64;
-
-// A str as a YAML double-quoted scalar: `"` and `\` escaped, control characters as \xNN or \uNNNN,
-// everything else as its UTF-8.
-void appendQuoted(std::string& out, const py::handle& str, std::string_view path) {
-  Py_ssize_t size = 0;
-  const char* utf8 = PyUnicode_AsUTF8AndSize(str.ptr(), &size);
-  if (utf8 == nullptr) {
-    PyErr_Clear();
-    throw ArgumentError("Scenario.set: a text in the value of " + std::string(path) +
-                        " is not valid Unicode (a lone surrogate)");
-  }
-  out += '"';
-  for (const char c : std::string_view(utf8, size_t(size))) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (byte < 0x20 || byte == 0x7F) {
-      const char* const hex = "0123456789abcdef";
-      out += "\\x";
-      out += hex[byte >> 4];
-      out += hex[byte & 0xF];
-    } else {
-      out += c;
-    }
-  }
-  out += '"';
-}
-
-// A value Python gives Scenario.set as the YAML text --set would take, exactly: at the top a str
-// is YAML text as written (`"[50, 2]"`), inside a list or dict a str is a string; bool, int (or
-// anything with __index__), float (its repr, the shortest text that reads back as the same
-// double), None, lists and tuples, dicts and other mappings, and numpy's scalars and arrays (as
-// their .item() and .tolist(), which widen exactly). ArgumentError for anything else.
-void appendYaml(std::string& out, const py::handle& value, std::string_view path, int depth) {
-  if (depth > kMostNesting) {
-    throw ArgumentError("Scenario.set: the value of " + std::string(path) + " nests more than " +
-                        std::to_string(kMostNesting) + " lists or dicts deep");
-  }
-  static const py::handle numpyGeneric = py::object(py::module_::import("numpy").attr("generic")).release();
-  static const py::handle numpyArray = py::object(py::module_::import("numpy").attr("ndarray")).release();
-  static const py::handle mapping = py::object(py::module_::import("collections.abc").attr("Mapping")).release();
-  if (value.is_none()) {
-    out += depth == 0 ? "" : "null";  // at the top: no value, which the loader refuses by name
-  } else if (py::isinstance<py::bool_>(value)) {
-    out += value.ptr() == Py_True ? "true" : "false";
-  } else if (py::isinstance<Integrator>(value)) {  // particles.Integrator.rk4: its name
-    out += name(value.cast<Integrator>());
-  } else if (py::isinstance(value, numpyGeneric)) {
-    appendYaml(out, value.attr("item")(), path, depth);
-  } else if (py::isinstance(value, numpyArray)) {
-    appendYaml(out, value.attr("tolist")(), path, depth);
-  } else if (py::isinstance<py::float_>(value)) {
-    const double number = PyFloat_AsDouble(value.ptr());
-    if (!std::isfinite(number)) {
-      throw ArgumentError("Scenario.set: " + std::string(path) + " must be finite, got " +
-                          py::repr(value).cast<std::string>());
-    }
-    out += py::repr(value).cast<std::string>();
-  } else if (PyIndex_Check(value.ptr())) {
-    out += py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()))).cast<std::string>();
-  } else if (py::isinstance<py::str>(value)) {
-    if (depth == 0) {
-      out += value.cast<std::string>();
-    } else {
-      appendQuoted(out, value, path);
-    }
-  } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
-    out += '[';
-    bool first = true;
-    for (const py::handle item : value) {
-      if (!first) out += ", ";
-      first = false;
-      appendYaml(out, item, path, depth + 1);
-    }
-    out += ']';
-  } else if (py::isinstance(value, mapping)) {
-    out += '{';
-    bool first = true;
-    for (const py::handle item : value.attr("items")()) {
-      const py::tuple pair = py::reinterpret_borrow<py::tuple>(item);
-      if (!py::isinstance<py::str>(pair[0])) {
-        throw ArgumentError("Scenario.set: the keys of a dict in the value of " + std::string(path) + " are str, not " +
-                            typeName(pair[0]));
-      }
-      if (!first) out += ", ";
-      first = false;
-      appendQuoted(out, pair[0], path);
-      out += ": ";
-      appendYaml(out, pair[1], path, depth + 1);
-    }
-    out += '}';
-  } else {
-    throw ArgumentError("Scenario.set: the value of " + std::string(path) +
-                        " must be a str, int, float, bool, None, a list, tuple or dict of those, or a numpy scalar or "
-                        "array; not " +
-                        typeName(value));
-  }
-}
-
 std::string settingText(std::string_view path, const py::handle& value) {
-  std::string out;
-  appendYaml(out, value, path, 0);
-  return out;
+  return yamlText(value, "Scenario.set", path);
 }
 
 // set='s key paths and values, applied in order; any mapping (a dict, MappingProxyType).
@@ -395,27 +290,29 @@ change simulations made before.
 )doc")
       .def_static(
           "load",
-          [](const std::filesystem::path& path, const py::object& set) {
+          [](const std::filesystem::path& path, const py::object& set, const py::object& style) {
             // Reading may wait on a pipe's writer: the other Python threads go on meanwhile.
             Scenario scenario = withoutGil([&] { return Scenario::load(path.string()); });
+            setStyleOf(scenario, style, "Scenario.load");
             setAll(scenario, set);
             return ScenarioObject(std::move(scenario));
           },
-          "path"_a, py::kw_only(), "set"_a = py::none(),
+          "path"_a, py::kw_only(), "set"_a = py::none(), "style"_a = py::none(),
           R"doc(Loads a scenario file (YAML). `set` is a mapping of key path → value, applied in
 order as `--set KEY=VALUE` would be: key paths like "forces[2].ks", or the shorthands
-"integrator", "dt", "duration" and "implicit_solver". Raises ScenarioError naming the file, line,
-column and key. A FIFO with no writer is refused at once.)doc")
+"integrator", "dt", "duration" and "implicit_solver". `style` is set_style()'s. Raises
+ScenarioError naming the file, line, column and key. A FIFO with no writer is refused at once.)doc")
       .def_static(
           "from_text",
-          [](std::string_view yaml, const std::string& label, const py::object& set) {
+          [](std::string_view yaml, const std::string& label, const py::object& set, const py::object& style) {
             Scenario scenario = withoutGil([&] { return Scenario::fromText(yaml, label); });
+            setStyleOf(scenario, style, "Scenario.from_text");
             setAll(scenario, set);
             return ScenarioObject(std::move(scenario));
           },
-          "yaml"_a, "label"_a = "<text>", py::kw_only(), "set"_a = py::none(),
+          "yaml"_a, "label"_a = "<text>", py::kw_only(), "set"_a = py::none(), "style"_a = py::none(),
           "A scenario from YAML text (at most 64 MiB, as a file); `label` stands for the file name in messages. "
-          "`set` as in load().")
+          "`set` and `style` as in load().")
       .def(
           "set",
           [](py::object self, std::string_view path, const py::handle& value) {
@@ -428,6 +325,22 @@ calls chain. The value: a str is YAML text as --set takes it ("[50, 2]"); a bool
 (exactly: it reads back as the same double), None, list, tuple, dict or numpy scalar or array is
 written as the YAML of that value. Checked at once: a bad key or value raises ScenarioError and
 leaves the scenario as it was.)doc")
+      .def(
+          "set_style",
+          [](py::object self, const py::handle& style) {
+            setStyleOf(scenarioOf(self.cast<ScenarioObject&>()), style, "Scenario.set_style");
+            return self;
+          },
+          "style"_a,
+          R"doc(Merges a style over the scenario's own `style` section, as `particles render --style
+FILE` merges a style file, and returns the scenario. `style` is a dict of the section's keys, as
+YAML writes them ({"particles": {"color_by": "speed", "range": [0, 2]}, "colorbar": {"for":
+"particles"}, "select": [{"particles": "bob", "trail": {"seconds": 2}}]}; None in it takes the
+scenario's key away, as `~`), or a style file's text (str); None or an empty one takes the style
+away. A later call replaces this one; it is merged before every set() value. Checked at once with
+the file's checks: a bad key or value raises ScenarioError (file "style", its key_path the dict's
+key, without a line or column for a dict) and leaves the scenario as it was. Simulations made
+afterwards draw it.)doc")
       .def(
           "copy", [](const ScenarioObject& s) { return ScenarioObject(scenarioOf(s)); }, "An independent copy.")
       .def("__copy__", [](const ScenarioObject& s) { return ScenarioObject(scenarioOf(s)); })

@@ -160,7 +160,9 @@ gpu: a hardware EGL device instead of llvmpipe. Bad values raise ArgumentError.)
             const std::shared_ptr<Simulation> simulation = handle.get("render");
             return frameOf(withoutGil([&] { return renderer.render(*simulation); }));
           },
-          "simulation"_a, "The simulation's state now, drawn: a Frame (h, w, 4) uint8.")
+          "simulation"_a,
+          "The simulation's state now, drawn through its scenario's view and style as `particles render --at` draws "
+          "it: a Frame (h, w, 4) uint8.")
       .def_property_readonly(
           "gl_description", [](Object<Renderer>& renderer) { return text(rendererOf(renderer).glDescription()); },
           "The GL backend, device and renderer that drew the last frame ('' before the first; "
@@ -189,9 +191,10 @@ void bindSimulationRender(py::module_& module) {
       },
       py::name("render"), py::is_method(simulation), py::kw_only(), "size"_a = py::none(), "theme"_a = "dark",
       "msaa"_a = 4, "background"_a = "theme", "raster"_a = "auto", "gl"_a = "auto", "gpu"_a = false,
-      R"doc(The state now, drawn as `particles render --at` draws it: a Frame, an (h, w, 4)
-uint8 RGBA numpy array that a notebook shows. The options are Renderer's; the renderer is kept for
-the next call with the same ones.)doc");
+      R"doc(The state now, drawn as `particles render --at` draws it, through the scenario's view
+and style (Scenario.set_style; trails and a followed camera from the simulation's start): a Frame,
+an (h, w, 4) uint8 RGBA numpy array that a notebook shows. The options are Renderer's; the renderer
+is kept for the next call with the same ones.)doc");
 }
 
 // VideoWriter(path, fps=…, crf=…, …): the keyword arguments checked, then the C++ writer opened.

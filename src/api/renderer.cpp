@@ -18,6 +18,7 @@
 #include "render/gl_backend.hpp"
 #include "render/png_io.hpp"
 #include "render/renderer.hpp"
+#include "render/styled_run.hpp"
 
 namespace particles {
 
@@ -31,6 +32,14 @@ void readLook(render::RenderOptions& look, std::string_view flag, std::string_vi
     throw ArgumentError(
         fmt::format("Renderer: {} (as {}) takes {}, not {}", setting, flag, row.expected, input::quotedValue(text)));
   }
+}
+
+// Whether a renderer made with `made` draws frames of `wanted`: the settings are the Renderer's, and
+// the size, particle radius and spring width what a style makes of them (StyledRun::look).
+bool drawsAs(const render::RenderOptions& made, const render::RenderOptions& wanted) {
+  return made.width == wanted.width && made.height == wanted.height &&
+         made.particleRadius.value == wanted.particleRadius.value &&
+         made.particleRadius.unit == wanted.particleRadius.unit && made.springWidthPx == wanted.springWidthPx;
 }
 
 }  // namespace
@@ -49,7 +58,7 @@ struct Renderer::Impl {
     if (renderer && madeAtFork != forkCount()) (void)renderer.release();
   }
   ~Impl() { forgetInheritedRenderer(); }
-  Drawing drawing;  // the frame's, its storage reused from frame to frame (System::draw)
+  render::StyledFrameBuffers buffers;         // the frame's, its storage reused from frame to frame
   std::atomic<bool> busy{false};              // a frame is being drawn (ExclusiveUse)
 };
 
@@ -87,24 +96,28 @@ Image Renderer::render(const Simulation& simulation) {
     Simulation::Impl& sim = *simulation.impl_;
     ExclusiveUse drawing(impl_->busy, "Renderer::render", "Renderer");
     ExclusiveUse use(sim.busy, "Renderer::render");
-    const scenario::RenderSettings& view = sim.scenario.render;
+    if (!sim.historyError.empty()) throw Error(fmt::format("Renderer::render: {}", sim.historyError));
+    const scenario::Scenario& s = sim.scenario;
     if (!impl_->sizeGiven) {
-      impl_->look.width = view.width;
-      impl_->look.height = view.height;
+      impl_->look.width = s.render.width;
+      impl_->look.height = s.render.height;
     }
+    render::validate(impl_->look);
+    // As `particles render --at` draws its one frame (render/styled_run.hpp): the style's automatic
+    // ranges and fitted camera are the frame's own, its trails and followed camera the simulation's
+    // history since its start.
+    render::StyledRun styled(s.style, s.render.view, render::Camera{s.render.viewCenter, s.render.viewHeight},
+                             impl_->look, sim.history.get());
     impl_->forgetInheritedRenderer();
-    if (!impl_->renderer || impl_->renderer->options().width != impl_->look.width ||
-        impl_->renderer->options().height != impl_->look.height) {
+    if (!impl_->renderer || !drawsAs(impl_->renderer->options(), styled.look())) {
       impl_->renderer.reset();
-      render::validate(impl_->look);
-      impl_->renderer = std::make_unique<render::Renderer>(impl_->look, impl_->gl);
+      impl_->renderer = std::make_unique<render::Renderer>(styled.look(), impl_->gl);
       impl_->madeAtFork = forkCount();
     }
     // A large frame's shapes are built on the simulation's threads, idle while it is drawn (it is
     // this call's: `use` above).
-    sim.system().draw(impl_->drawing, SpringDetail::topology);  // springs by index: every path draws them
-    const render::Image& frame = impl_->renderer->render(
-        impl_->drawing, render::Camera{view.viewCenter, view.viewHeight}, sim.system().pool());
+    const render::Image& frame =
+        render::drawStyledFrame(sim.system(), styled, *impl_->renderer, impl_->buffers, true, sim.system().pool());
     Image image{frame.width, frame.height, frame.rgba};
     // A program may draw each frame on another thread (a Python thread pool): EGL binds a context
     // to one thread at a time.

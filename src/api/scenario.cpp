@@ -3,17 +3,31 @@
 
 #include <fmt/format.h>
 
+#include <optional>
 #include <utility>
 
 #include "api/guarded_call.hpp"
 #include "input/printable_text.hpp"
 #include "input/text_file.hpp"
 #include "api/scenario_impl.hpp"
+#include "api/style_yaml.hpp"
 #include "scenario/summary.hpp"
 
 namespace particles {
 
 namespace {
+
+// What a style given to setStyle() is called in messages, as a style file is by its path.
+constexpr const char* kStyleLabel = "style";
+
+// The limit of a file (input/text_file.hpp): text from memory is parsed the same way.
+void checkTextSize(std::string_view text, const std::string& label, std::string_view what) {
+  if (text.size() > input::kDefaultMaxInputMiB * 1024 * 1024) {
+    throw ScenarioError(label, 0, 0, "",
+                        fmt::format("the text is {} bytes, more than {}'s limit of {} MiB", text.size(), what,
+                                    input::kDefaultMaxInputMiB));
+  }
+}
 
 // set()'s shorthands, the command line's --integrator, --dt, --duration and --implicit-solver.
 std::string keyPathOf(std::string_view path) {
@@ -25,7 +39,9 @@ std::string keyPathOf(std::string_view path) {
 
 }  // namespace
 
-scenario::Scenario Scenario::Impl::load() const { return scenario::loadScenarioText(text, file, overrides); }
+scenario::Scenario Scenario::Impl::load() const {
+  return scenario::loadScenarioText(text, file, overrides, {}, style ? &*style : nullptr);
+}
 
 Scenario::Scenario(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Scenario::Scenario(const Scenario& other) : impl_(other.impl_ ? std::make_unique<Impl>(*other.impl_) : nullptr) {}
@@ -52,12 +68,7 @@ Scenario Scenario::load(const std::string& path) {
 
 Scenario Scenario::fromText(std::string_view yaml, const std::string& label) {
   return api::guardedCall("Scenario::fromText", [&] {
-    // The limit of a file (input/text_file.hpp): text from memory is parsed the same way.
-    if (yaml.size() > input::kDefaultMaxInputMiB * 1024 * 1024) {
-      throw ScenarioError(label, 0, 0, "",
-                          fmt::format("the text is {} bytes, more than a scenario's limit of {} MiB", yaml.size(),
-                                      input::kDefaultMaxInputMiB));
-    }
+    checkTextSize(yaml, label, "a scenario");
     return Scenario(Impl::loadedFrom(std::string(yaml), label));
   });
 }
@@ -73,6 +84,50 @@ Scenario& Scenario::set(std::string_view path, std::string_view value) {
     } catch (...) {
       impl_->overrides.pop_back();
       throw;
+    }
+    return *this;
+  });
+}
+
+namespace {
+
+// Replaces the scenario's style file with `style` (none: takes it away) and loads it again; on an
+// error the scenario stays as it was.
+void replaceStyle(Scenario::Impl& impl, std::optional<scenario::StyleFile> style) {
+  std::swap(impl.style, style);
+  try {
+    impl.loaded = std::make_shared<const scenario::Scenario>(impl.load());
+  } catch (...) {
+    std::swap(impl.style, style);
+    throw;
+  }
+}
+
+}  // namespace
+
+Scenario& Scenario::setStyle(std::string_view yaml) {
+  return api::guardedCall("Scenario::setStyle", [&]() -> Scenario& {
+    if (!impl_) throw ArgumentError("Scenario::setStyle: this Scenario was moved from");
+    checkTextSize(yaml, kStyleLabel, "a style");
+    replaceStyle(*impl_,
+                 yaml.empty() ? std::nullopt : std::optional<scenario::StyleFile>({std::string(yaml), kStyleLabel}));
+    return *this;
+  });
+}
+
+Scenario& Scenario::setStyle(const Style& style) {
+  return api::guardedCall("Scenario::setStyle", [&]() -> Scenario& {
+    if (!impl_) throw ArgumentError("Scenario::setStyle: this Scenario was moved from");
+    if (api::isEmpty(style)) {
+      replaceStyle(*impl_, std::nullopt);
+      return *this;
+    }
+    try {
+      replaceStyle(*impl_, scenario::StyleFile{api::styleYaml(style), kStyleLabel});
+    } catch (const ScenarioError& e) {
+      // A line and column of YAML the caller never saw would only mislead: the key path names the field.
+      if (e.file() != kStyleLabel) throw;
+      throw ScenarioError(e.file(), 0, 0, e.keyPath(), e.message(), e.origin());
     }
     return *this;
   });

@@ -1,9 +1,10 @@
 #pragma once
-// What a particles::Scenario holds (include/particles/scenario.hpp): the scenario's text and the
-// values set on it, which a Simulation loads again into its own System, and the scenario as last
-// loaded, for its settings. Shared by scenario.cpp and simulation.cpp.
+// What a particles::Scenario holds (include/particles/scenario.hpp): the scenario's text, the
+// style and values set on it, which a Simulation loads again into its own System, and the scenario
+// as last loaded, for its settings. Shared by scenario.cpp and simulation.cpp.
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ struct Scenario::Impl {
   std::string text;   // the YAML as read
   std::string file;   // the path or label, for messages
   std::vector<scenario::Override> overrides;  // set()'s values, in order
+  // setStyle()'s, as a style file (`render --style FILE`): merged before the overrides.
+  std::optional<scenario::StyleFile> style;
   // Loaded from text with overrides; never changed once made, so copies of a Scenario share it.
   std::shared_ptr<const scenario::Scenario> loaded;
 

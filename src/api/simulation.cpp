@@ -113,10 +113,10 @@ class StopCheck {
 };
 
 // Takes steps until `target` steps were taken since the start; false when told to stop first.
-bool stepTo(Stepper& stepper, long target, StopCheck& check) {
-  while (stepper.steps() < target) {
+bool stepTo(Simulation::Impl& impl, long target, StopCheck& check) {
+  while (impl.stepper.steps() < target) {
     if (!check.keepGoing()) return false;
-    stepper.step();
+    impl.step();
   }
   return true;
 }
@@ -132,7 +132,7 @@ bool Simulation::step(long n, const KeepGoing& keepGoing) {
       throw ArgumentError(fmt::format("Simulation::step: {} steps is more than {} at once", n, scenario::kMaxSteps));
     }
     ExclusiveUse use(impl.busy, "Simulation::step");
-    const bool all = stepTo(impl.stepper, impl.stepper.steps() + n, check);
+    const bool all = stepTo(impl, impl.stepper.steps() + n, check);
     impl.clockAtSteps();
     return all;
   });
@@ -150,7 +150,7 @@ bool stepToTime(Simulation::Impl& impl, std::string_view call, double target, St
     throw ArgumentError(fmt::format("Simulation::{}: {} s is more than {} steps of dt = {} s ahead", call,
                                     target - impl.system().time(), scenario::kMaxSteps, dt));
   }
-  return stepTo(impl.stepper, impl.stepper.stepsAt(target), check);
+  return stepTo(impl, impl.stepper.stepsAt(target), check);
 }
 
 }  // namespace

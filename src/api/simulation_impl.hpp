@@ -1,12 +1,13 @@
 #pragma once
 // What a particles::Simulation holds (include/particles/simulation.hpp): its own loaded scenario
-// (the System it steps), the stepper, and the names of --trace. Shared by simulation.cpp and
-// renderer.cpp.
+// (the System it steps), the stepper, what its style keeps of the run, and the names of --trace.
+// Shared by simulation.cpp and renderer.cpp.
 
 #include <fmt/format.h>
 
 #include <atomic>
 #include <cmath>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -16,6 +17,8 @@
 #include <particles/simulation.hpp>
 
 #include "core/solver.hpp"
+#include "render/errors.hpp"
+#include "render/style_history.hpp"
 #include "scenario/scenario.hpp"
 
 namespace particles {
@@ -24,6 +27,12 @@ struct Simulation::Impl {
   scenario::Scenario scenario;
   Stepper stepper;
   std::atomic<bool> busy{false};
+  // The trails and the followed camera of the scenario's style, fed every step from the start, so
+  // that Renderer::render draws what `particles render --at` draws; none where the style keeps
+  // nothing of the run. Their memory is bounded for the scenario's duration: when it would exceed
+  // the trails' limit, historyError says why, and rendering (not stepping) fails with it.
+  std::unique_ptr<render::StyleHistory> history;
+  std::string historyError;
   // advance()'s clock: the time asked for so far, which the steps reach to within a step. A
   // Neumaier sum (the running total and the rounding it lost), so that a million calls of
   // advance(1 / fps) stay within a few ulps of frames / fps, where render takes its frame times.
@@ -34,7 +43,23 @@ struct Simulation::Impl {
   explicit Impl(scenario::Scenario loaded)
       : scenario(std::move(loaded)),
         stepper(scenario.system, scenario.simulation.integrator, scenario.simulation.dt),
-        clock(scenario.system.time()) {}
+        clock(scenario.system.time()) {
+    if (!render::StyleHistory::needed(scenario.style, scenario.render.view)) return;
+    try {
+      history = std::make_unique<render::StyleHistory>(
+          scenario.style, scenario.render.view, render::Camera{scenario.render.viewCenter, scenario.render.viewHeight},
+          scenario.simulation.dt, scenario.simulation.steps());
+      history->start(system());
+    } catch (const render::OutOfMemory& e) {
+      historyError = e.what();
+    }
+  }
+
+  // One step of dt, fed to the style's history.
+  void step() {
+    stepper.step();
+    if (history) history->afterStep(system());
+  }
 
   // The clock set to where the steps are (after step(), advanceTo(), a stop part-way).
   void clockAtSteps() {
