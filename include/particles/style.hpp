@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include <particles/export.hpp>
+
 namespace particles {
 
 /// Whether a colormap spans its values linearly or by their log₁₀ (`scale` of a range).
