@@ -18,6 +18,15 @@ namespace particles::plot {
 
 // The Debian package fonts-dejavu-core puts it here (scripts/deps installs it).
 inline const std::filesystem::path kDejaVuSans = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+// Where a release (scripts/release) keeps its own copy, relative to the folder of the program, the
+// library or the Python module that draws: the archive's bin/ and lib/ are beside its share/, the
+// wheel's module beside it.
+inline constexpr const char* kBundledFontFolders[] = {"../share/particles/fonts", "share/particles/fonts"};
+
+// The font a figure or frame is drawn with unless told otherwise: a release's own DejaVu Sans,
+// found from where the code that draws was loaded, else kDejaVuSans. A release's own copy comes
+// first so that it draws the same bytes on any machine, whatever font that machine has.
+const std::filesystem::path& defaultFontFile();
 
 enum class AxisScale {
   Linear,  // "nice" ticks in steps of 1, 2 or 5 × 10^k; the range is widened to whole steps
@@ -87,7 +96,7 @@ struct Figure {
   // chosen for the default size.
   int widthPx = 1200;
   int heightPx = 800;
-  std::filesystem::path fontFile = kDejaVuSans;
+  std::filesystem::path fontFile = defaultFontFile();
 };
 
 // SVG (vector, for web pages), PNG (pixels, for screens), PDF (vector, for LaTeX; its page is the

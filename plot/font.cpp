@@ -4,11 +4,14 @@
 #include <ft2build.h>
 #include FT_FREETYPE_H
 
+#include <dlfcn.h>
+
 #include <memory>
 #include <string>
 #include <system_error>
 
 #include "plot/errors.hpp"
+#include "plot/figure.hpp"
 
 namespace particles::plot {
 
@@ -38,7 +41,37 @@ std::string freeTypeMessage(FT_Error error) {
   return s ? std::string(s) : "FreeType error " + std::to_string(error);
 }
 
+// The folder of the file this code was loaded from: the program, libparticles.so or the Python
+// module, whichever holds plot/ (each links it in). For the program, glibc names the file as it was
+// started (argv[0], perhaps relative or found on PATH): the kernel's /proc/self/exe says where it is.
+std::filesystem::path loadedFromFolder() {
+  Dl_info info{};
+  static const int kAnchor = 0;
+  std::filesystem::path file = "/proc/self/exe";
+  if (::dladdr(&kAnchor, &info) != 0 && info.dli_fname != nullptr && info.dli_fname[0] == '/') {
+    file = info.dli_fname;
+  }
+  std::error_code ec;
+  file = std::filesystem::canonical(file, ec);
+  return ec ? std::filesystem::path() : file.parent_path();
+}
+
 }  // namespace
+
+const std::filesystem::path& defaultFontFile() {
+  static const std::filesystem::path file = [] {
+    const std::filesystem::path folder = loadedFromFolder();
+    if (!folder.empty()) {
+      for (const char* bundled : kBundledFontFolders) {
+        std::error_code ec;
+        const auto candidate = folder / bundled / kDejaVuSans.filename();
+        if (std::filesystem::is_regular_file(candidate, ec)) return candidate.lexically_normal();
+      }
+    }
+    return kDejaVuSans;
+  }();
+  return file;
+}
 
 FontFace::FontFace(const std::filesystem::path& file) {
   std::error_code ec;

@@ -54,7 +54,7 @@ struct FrameAnnotations {
   std::optional<ScaleBarSpec> scaleBar;
   std::vector<TextAt> labels;
   bool darkTheme = true;  // light text on dark panels, or dark on light
-  std::filesystem::path fontFile = kDejaVuSans;
+  std::filesystem::path fontFile = defaultFontFile();
 };
 
 // Draws `annotations` onto an 8-bit RGBA image (row-major, top row first, straight alpha). Where

@@ -15,7 +15,7 @@ namespace particles::plot {
 struct OverlayStyle {
   double sizePx = 14;               // text height
   bool darkBackground = true;       // light text on a dark panel, or dark on light
-  std::filesystem::path fontFile = kDejaVuSans;
+  std::filesystem::path fontFile = defaultFontFile();
 };
 
 // Draws `lines` onto an 8-bit RGBA image (row-major, top row first, alpha left opaque). Throws

@@ -29,8 +29,14 @@ ELSEWHERE = {
     "scripts/demo": "scripts/test, stage \"scripts/demo (the README's first command)\"",
     "scripts/test": "CI (.ci/run)",
     "scripts/make-gallery": "ctest docs:gallery (tests/docs/gallery_test.py)",
-    "scripts/deps python && python3 -m venv --system-site-packages .venv && .venv/bin/pip install --no-build-isolation .":
+    "scripts/deps python && /usr/bin/python3 -m venv --system-site-packages .venv && .venv/bin/pip install --no-build-isolation .":
         "scripts/test, stage \"the Python module installed by pip into a venv\"",
+    "tar -xJf particles-0.1.0-linux-x86_64.tar.xz && particles-0.1.0-linux-x86_64/bin/particles --version":
+        "scripts/release-check (.ci/run's release stage), on bare Debian 12 and 13 roots",
+    "python3 -m pip install particles-0.1.0-cp311-cp311-manylinux_2_36_x86_64.whl":
+        "scripts/release-check (.ci/run's release stage), into a venv of a bare Debian 12 root",
+    "sudo apt install ./particles_0.1.0-1~deb12_amd64.deb":
+        "scripts/release-check (.ci/run's release stage), on a bare Debian 12 root",
     "cmake --install build --prefix ~/opt/particles":
         "ctest package:install-and-build (tests/package/package_test.sh)",
     "cmake -S examples/cpp -B example-build -DCMAKE_PREFIX_PATH=~/opt/particles && cmake --build example-build":
