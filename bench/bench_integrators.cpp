@@ -226,7 +226,8 @@ void BM_CgPreconditioner(benchmark::State& state, const char* scene, int n, CgPr
       Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg;
       cg.setTolerance(1e-6);
       cg.compute(a);
-      benchmark::DoNotOptimize(cg.solve(b).eval());
+      Eigen::VectorXd x = cg.solve(b);  // a variable: DoNotOptimize takes no const temporary since 1.9
+      benchmark::DoNotOptimize(x);
       iterations += cg.iterations();
     } else {
       Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper,
@@ -234,7 +235,8 @@ void BM_CgPreconditioner(benchmark::State& state, const char* scene, int n, CgPr
           cg;
       cg.setTolerance(1e-6);
       cg.compute(a);
-      benchmark::DoNotOptimize(cg.solve(b).eval());
+      Eigen::VectorXd x = cg.solve(b);  // a variable: DoNotOptimize takes no const temporary since 1.9
+      benchmark::DoNotOptimize(x);
       iterations += cg.iterations();
     }
   }

@@ -72,7 +72,9 @@ int fpsFor(const render::OutputFormat& format, int fps) {
 
 VideoWriter::VideoWriter(const std::string& path, const VideoSettings& settings) {
   impl_ = api::guardedCall("VideoWriter", [&] {
-    const render::OutputFormat& format = render::outputFormatOf(path);
+    // A copy (views and numbers): GCC 14's -Wdangling-reference takes a reference returned by a
+    // call given a temporary (the std::filesystem::path made from `path`) to be one into it.
+    const render::OutputFormat format = render::outputFormatOf(path);
     if (format.oneFrameAt || format.kind == render::OutputKind::pngSequence) {
       throw ArgumentError(
           fmt::format("VideoWriter: {} is not a video: give a .mp4, .webm or .gif path "
