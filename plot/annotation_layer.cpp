@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "plot/errors.hpp"
+#include "plot/show_text.hpp"
 
 namespace particles::plot {
 
@@ -70,11 +71,11 @@ void Typesetter::show(cairo_t* cr, const Label& label, double x, double baseline
   cairo_set_font_face(cr, face_);
   cairo_set_font_size(cr, sizePx);
   cairo_move_to(cr, x, baseline);
-  cairo_show_text(cr, label.text.c_str());
+  showText(cr, label.text.c_str());
   if (!label.superscript.empty()) {
     cairo_set_font_size(cr, 0.7 * sizePx);
     cairo_rel_move_to(cr, 0, -0.45 * sizePx);
-    cairo_show_text(cr, label.superscript.c_str());
+    showText(cr, label.superscript.c_str());
   }
   checkCairo(cairo_status(cr), kWhat, "cairo_show_text");
 }

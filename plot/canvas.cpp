@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "plot/show_text.hpp"
+
 namespace particles::plot {
 
 namespace {
@@ -65,11 +67,11 @@ void Canvas::text(const Label& label, double x, double y, double sizePx, HAlign 
   setColour(cr_, colour);
   cairo_set_font_size(cr_, sizePx);
   cairo_move_to(cr_, dx, dy);
-  cairo_show_text(cr_, label.text.c_str());
+  showText(cr_, label.text.c_str());
   if (!label.superscript.empty()) {
     cairo_set_font_size(cr_, sizePx * kSuperscriptScale);
     cairo_rel_move_to(cr_, 0, -kSuperscriptRise * sizePx);
-    cairo_show_text(cr_, label.superscript.c_str());
+    showText(cr_, label.superscript.c_str());
   }
   cairo_restore(cr_);
 }

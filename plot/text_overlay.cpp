@@ -8,6 +8,7 @@
 #include "plot/cairo_ptr.hpp"
 #include "plot/errors.hpp"
 #include "plot/font.hpp"
+#include "plot/show_text.hpp"
 
 namespace particles::plot {
 
@@ -49,7 +50,7 @@ void drawTextOverlay(std::uint8_t* rgba, int width, int height, const std::vecto
     cairo_set_font_size(cr.get(), style.sizePx);
     for (size_t i = 0; i < lines.size(); ++i) {
       cairo_move_to(cr.get(), pad, pad + style.sizePx * 0.8 + double(i) * lineHeight);
-      cairo_show_text(cr.get(), lines[i].c_str());
+      showText(cr.get(), lines[i].c_str());
     }
     checkCairo(cairo_status(cr.get()), "text overlay", "cairo_show_text");
   }
