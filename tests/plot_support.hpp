@@ -83,34 +83,50 @@ inline std::vector<XmlElement> parseXml(const std::vector<std::uint8_t>& bytes) 
     auto* s = static_cast<State*>(data);
     if (!s->open.empty()) s->elements[s->open.back()].text.append(text, static_cast<std::size_t>(length));
   });
+  // expat 2.9 deprecates the line number of the platform's size for a 64-bit one it adds.
+#if XML_MAJOR_VERSION > 2 || (XML_MAJOR_VERSION == 2 && XML_MINOR_VERSION >= 9)
+  const auto line = [&] { return XML_GetCurrentLineNumber64(parser); };
+#else
+  const auto line = [&] { return XML_GetCurrentLineNumber(parser); };
+#endif
   const bool ok = XML_Parse(parser, reinterpret_cast<const char*>(bytes.data()), static_cast<int>(bytes.size()), 1) ==
                   XML_STATUS_OK;
-  const std::string error = ok ? ""
-                               : std::string(XML_ErrorString(XML_GetErrorCode(parser))) + " at line " +
-                                     std::to_string(XML_GetCurrentLineNumber(parser));
+  const std::string error =
+      ok ? "" : std::string(XML_ErrorString(XML_GetErrorCode(parser))) + " at line " + std::to_string(line());
   XML_ParserFree(parser);
   if (!ok) throw std::runtime_error("SVG is not well-formed XML: " + error);
   return state.elements;
 }
 
-// The value of `property` in a CSS style attribute ("fill:none;stroke:rgb(…);…"), or "".
+// The value of `property` ("fill", "stroke", "stroke-width") an element sets itself, or "". cairo
+// 1.16 writes a CSS style attribute (style="fill:none;stroke:rgb(…);…", spaces allowed around its
+// parts), 1.18 presentation attributes (fill="none" stroke="rgb(…)"): the same meaning to SVG.
 inline std::string styleProperty(const XmlElement& e, const std::string& property) {
-  const auto it = e.attributes.find("style");
-  if (it == e.attributes.end()) return "";
-  const std::string& style = it->second;
-  const std::string key = property + ":";
-  std::size_t pos = 0;
-  while (pos < style.size()) {
-    std::size_t end = style.find(';', pos);
-    if (end == std::string::npos) end = style.size();
-    if (style.compare(pos, key.size(), key) == 0) return style.substr(pos + key.size(), end - pos - key.size());
-    pos = end + 1;
+  const auto trimmed = [](const std::string& t) {
+    const std::size_t a = t.find_first_not_of(' '), b = t.find_last_not_of(' ');
+    return a == std::string::npos ? std::string() : t.substr(a, b - a + 1);
+  };
+  if (const auto it = e.attributes.find("style"); it != e.attributes.end()) {
+    const std::string& style = it->second;
+    std::size_t pos = 0;
+    while (pos < style.size()) {
+      std::size_t end = style.find(';', pos);
+      if (end == std::string::npos) end = style.size();
+      const std::string declaration = style.substr(pos, end - pos);
+      const std::size_t colon = declaration.find(':');
+      if (colon != std::string::npos && trimmed(declaration.substr(0, colon)) == property) {
+        return trimmed(declaration.substr(colon + 1));
+      }
+      pos = end + 1;
+    }
   }
-  return "";
+  const auto attribute = e.attributes.find(property);
+  return attribute == e.attributes.end() ? "" : trimmed(attribute->second);
 }
 
-// Whether a CSS colour as cairo writes it, "rgb(12.156863%,46.666667%,70.588235%)" or
-// "rgb(31,119,180)" or "#1f77b4", is `c` (to within a step of 8 bits).
+// Whether a CSS colour as cairo writes it, "rgb(12.156863%,46.666667%,70.588235%)" (1.16),
+// "rgb(12.156863%, 46.666667%, 70.588235%)" (1.18), "rgb(31,119,180)" or "#1f77b4", is `c` (to
+// within a step of 8 bits).
 inline bool sameColour(const std::string& css, plot::Rgb c) {
   double v[3];
   if (css.size() == 7 && css[0] == '#') {

@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "cli_support.hpp"
+#include "plot/palette.hpp"
+#include "plot_support.hpp"
 #include "render/png_io.hpp"
 #include "render_support.hpp"
 #include "support/video_probe.hpp"
@@ -202,8 +204,11 @@ TEST_CASE("cli plot --scenario and stability --reference: titles, mouse bands, r
   CHECK(svg.find("<title>Energy and constraint error: soft_body, rk4, dt = 0.1 s</title>") != std::string::npos);
   // Both mouse drags (12–22 s and 32–42 s) as bands: the second lies past the data's 30 s, so only
   // the first is drawn, in each of the two panels (energy, penetration).
-  size_t bands = 0;
-  for (size_t at = svg.find("fill:rgb(99%,92%,78%)"); at != std::string::npos; at = svg.find("fill:rgb(99%,92%,78%)", at + 1)) ++bands;
+  const auto elements = particles::test::parseXml(std::vector<std::uint8_t>(svg.begin(), svg.end()));
+  const auto bands = std::count_if(elements.begin(), elements.end(), [](const particles::test::XmlElement& e) {
+    return e.name == "path" &&
+           particles::test::sameColour(particles::test::styleProperty(e, "fill"), particles::plot::kBand);
+  });
   CHECK(bands == 2);
   r = s.run("plot man.csv -o man.pdf --quiet");  // no scenario: the CSV's name in the title
   REQUIRE_MESSAGE(r.code == 0, r.err);
