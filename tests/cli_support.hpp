@@ -145,9 +145,9 @@ struct Scratch {
     // The peak is the program's own high-water mark (VmHWM, kB), read while the child runs it: not
     // wait4's ru_maxrss, in which Linux keeps the child's memory from before exec, a copy of this
     // test process's (fork), and that was 397 MiB after the test cases before this one in the
-    // same process. VmHWM only grows, so the last reading is the peak but for the last 5 ms. Read
-    // no more often: each reading is three system calls, and polled every millisecond on a loaded
-    // machine the ASan build's 2000-segment concat came within 4 s of its guard.
+    // same process. VmHWM only grows, so the last reading is the peak but for the last 5 ms. The
+    // sanitizers' guard is longer: the ASan build's 2000-segment concat takes 50 to 56 s on a
+    // loaded 2-core machine, half of it the program's system time.
     const fs::path program = fs::canonical(exe);
     const std::string proc = "/proc/" + std::to_string(pid);
     double peakKiB = 0;
