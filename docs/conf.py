@@ -3,6 +3,7 @@
 # (Breathe), and the Python reference from the module's docstrings (autodoc), with the furo theme.
 # scripts/docs passes where the built pieces are in the environment.
 import os
+import re
 import sys
 
 project = "particles"
@@ -67,10 +68,29 @@ autodoc_typehints = "signature"
 # a page opened from a folder may not load) and its style sheet importing normalize.css from the web
 # server's /javascript/ (Debian's packaged copy): as built, a site opened from disk or published on
 # GitHub Pages showed a script error and missed normalize.css. After the build, the site gets its
-# own bundle and its own copy; a furo that bundles them itself is left as it is.
+# own bundle and its own copy; a furo that bundles them itself is left as it is. Debian 12's furo
+# (2022.12) imports gumshoe's default export and loads furo.js as a plain script; Debian 13's
+# (2024.08) imports it as a namespace, which is no constructor ("Gumshoe is not a constructor": the
+# UMD file exports nothing to a module), and has the pages load furo.js as a module, which Chromium
+# refuses from a file:// page: bundled, it is a plain script on every page, as on Debian 12.
 NORMALIZE_CSS = "/usr/share/javascript/normalize.css/normalize.css"
 DEBIAN_NORMALIZE_IMPORT = "@import url(/javascript/normalize.css/normalize.css);"
-GUMSHOE_IMPORT = 'import Gumshoe from "./gumshoe-patched.js";'
+GUMSHOE_IMPORTS = ('import Gumshoe from "./gumshoe-patched.js";', 'import * as Gumshoe from "./gumshoe-patched.js";')
+FURO_MODULE_TAG = re.compile(r'(<script\b[^>]*?)\s+type="module"([^>]*\bsrc="[^"]*_static/scripts/furo\.js[^"]*"[^>]*>)')
+
+
+def load_furo_as_plain_script(outdir):
+    for folder, _, files in os.walk(outdir):
+        for name in files:
+            if not name.endswith(".html"):
+                continue
+            page = os.path.join(folder, name)
+            with open(page, encoding="utf-8") as f:
+                text = f.read()
+            plain = FURO_MODULE_TAG.sub(r"\1\2", text)
+            if plain != text:
+                with open(page, "w", encoding="utf-8") as f:
+                    f.write(plain)
 
 
 def bundle_debian_furo(app, exception):
@@ -93,12 +113,14 @@ def bundle_debian_furo(app, exception):
     if os.path.exists(furo_js):
         with open(furo_js, encoding="utf-8") as f:
             js = f.read()
-        if GUMSHOE_IMPORT in js:
+        imports = [line for line in GUMSHOE_IMPORTS if line in js]
+        if imports:
             # gumshoe-patched.js is UMD: as a plain script it defines window.Gumshoe.
             with open(os.path.join(scripts, "gumshoe-patched.js"), encoding="utf-8") as f:
                 gumshoe = f.read()
             with open(furo_js, "w", encoding="utf-8") as f:
-                f.write(gumshoe + "\n" + js.replace(GUMSHOE_IMPORT, ""))
+                f.write(gumshoe + "\n" + js.replace(imports[0], ""))
+            load_furo_as_plain_script(app.outdir)
 
 
 def setup(app):

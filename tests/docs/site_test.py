@@ -12,25 +12,17 @@ and, on the pages' HTML files:
     include/particles/ (its XML), and shows no HTML entity as text; the Python reference has a
     section for every public name of `import particles` and `particles.golden`.
 
-The pages are served over HTTP from 127.0.0.1, as GitHub or GitLab Pages serve the site, not opened
-as file:// URLs: the furo theme of Debian 13 (2024.08, unbundled) loads its script as a JavaScript
-module, which Chromium refuses from a file:// page (an error in the console, where Debian 12's
-furo 2022 had a plain script).
-
 usage: site_test.py SITE_FOLDER DOXYGEN_XML_FOLDER PYTHON_PATH
 Debian's chromium, chromium-driver and python3-selenium (scripts/deps test). Exit 0 when every
 check passes, 1 with one line per failed check.
 """
-import functools
 import html
-import http.server
 import os
 import pathlib
 import re
 import subprocess
 import sys
 import tempfile
-import threading
 import urllib.parse
 import xml.etree.ElementTree as ElementTree
 
@@ -49,40 +41,17 @@ def ids_of(page):
     return {html.unescape(m) for m in re.findall(r'\s(?:id|name)="([^"]+)"', text)}
 
 
-class QuietHandler(http.server.SimpleHTTPRequestHandler):
-    def do_GET(self):
-        # Chromium asks an HTTP site for /favicon.ico on its own, and logs a 404 as a console
-        # error; the site has no icon, and no page asks for one.
-        if self.path == "/favicon.ico":
-            self.send_response(204)
-            self.end_headers()
-            return
-        super().do_GET()
-
-    def log_message(self, *args):  # one line per request would bury the checks
-        pass
-
-
-def serve(site):
-    """An HTTP server of the folder `site` on a free port of 127.0.0.1, answering in a thread of its
-    own; its address ends in '/'."""
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0),
-                                             functools.partial(QuietHandler, directory=str(site)))
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    return server, f"http://127.0.0.1:{server.server_address[1]}/"
-
-
-def check_links(driver, site, base, which):
+def check_links(driver, site, which):
     from selenium.webdriver.common.by import By
 
     hrefs = [a.get_attribute("href") for a in driver.find_elements(By.TAG_NAME, "a")]
     hrefs = [h for h in hrefs if h]
-    inside = [h for h in hrefs if h.startswith(base)]
+    inside = [h for h in hrefs if h.startswith("file://")]
     check(len(inside) > 0, f"{which}: the page links within the site ({len(inside)} links)")
     broken = []
     for href in inside:
         parts = urllib.parse.urlsplit(href)
-        target = site / urllib.parse.unquote(parts.path).lstrip("/")
+        target = pathlib.Path(urllib.parse.unquote(parts.path))
         if target.suffix == ".md":
             broken.append(f"{href} (a markdown source)")
         elif site.resolve() not in target.resolve().parents:
@@ -95,9 +64,9 @@ def check_links(driver, site, base, which):
           + (": " + "; ".join(sorted(set(broken))[:20]) if broken else ""))
 
 
-def check_page(driver, site, base, page):
+def check_page(driver, site, page):
     driver.get_log("browser")  # what earlier pages logged
-    driver.get(base + page)
+    driver.get(pathlib.Path(site / page).resolve().as_uri())
     if page == "index.html":  # leads to docs/index.html
         wait_for(lambda: driver.current_url.endswith("docs/index.html"), seconds=10)
         check(driver.current_url.endswith("docs/index.html"),
@@ -110,7 +79,7 @@ def check_page(driver, site, base, page):
     check(not broken, f"{page}: every picture loaded ({len(state)})" + (f"; not: {broken}" if broken else ""))
     if page in ("docs/index.html", "docs/gallery.html"):
         check(len(state) > 0, f"{page}: has its pictures ({len(state)})")
-    check_links(driver, site, base, page)
+    check_links(driver, site, page)
     check_console(driver, page)
 
 
@@ -169,16 +138,14 @@ def main():
     from selenium import webdriver
 
     check_references(site, xml_folder, python_path)
-    server, base = serve(site)
     with tempfile.TemporaryDirectory() as profile:
         driver = start_browser(webdriver, profile, javascript=True)
         try:
             for page in PAGES:
                 if check((site / page).is_file(), f"{page}: exists"):
-                    check_page(driver, site, base, page)
+                    check_page(driver, site, page)
         finally:
             driver.quit()
-            server.shutdown()
     return finish("site_test.py", site)
 
 
