@@ -210,12 +210,15 @@ TEST_CASE("concat opens one segment at a time: 2000 segments join in bounded mem
   Scratch s;
   s.write("s.yaml", kSwingScenario);
   REQUIRE(s.run("render s.yaml -o part.mp4 --frames 0:2 --size 64x48 --quiet").code == 0);
+  // The memory bound is what needs 2000 segments (every one open at once would be 780 MiB); under
+  // ASan, which checks no bound, 200 segments walk the same loop in a tenth of the time.
+  const int segments = kSanitized ? 200 : 2000;
   std::string args = "concat";
-  for (int i = 0; i < 2000; ++i) args += " part.mp4";
+  for (int i = 0; i < segments; ++i) args += " part.mp4";
   Scratch::Usage usage;
   const Result r = s.runBounded(args + " -o joined.mp4", usage);
   REQUIRE_MESSAGE(r.code == 0, r.err);
-  CHECK(r.out == "2000 segments, 4000 frames, 400 s → joined.mp4\n");
-  if (!kSanitized) CHECK(usage.peakMiB < kMaxPeakMiB);  // every segment open at once: 780 MiB
-  CHECK(particles::test::probeVideo(s.dir / "joined.mp4").frames == 4000);
+  CHECK(r.out == fmt::format("{} segments, {} frames, {} s → joined.mp4\n", segments, 2 * segments, segments / 5));
+  if (!kSanitized) CHECK(usage.peakMiB < kMaxPeakMiB);
+  CHECK(particles::test::probeVideo(s.dir / "joined.mp4").frames == 2 * segments);
 }
