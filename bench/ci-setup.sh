@@ -47,34 +47,20 @@ mkdir -p "$out"
 out="$(cd "$out" && pwd)"
 archive="$(cd "$(dirname "$archive")" && pwd)/$(basename "$archive")"
 
-mounted=()
-cleanup() {
-  local i
-  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do umount -l "${mounted[i]}" || true; done
-}
-trap cleanup EXIT
+# shellcheck source=../scripts/lib/debian-root
+. "$repo/scripts/lib/debian-root"
+trap debian_root_leave EXIT
 
-# A new root at $1, as bench/fresh-machine.sh makes one: name resolution, localhost, this network's
-# CAs, and /proc, /sys, /dev mounted.
+# A new root at $1, as bench/fresh-machine.sh makes one, ready to enter (scripts/lib/debian-root).
 new_root() {
-  local root="$1" m
+  local root="$1"
   if [ -n "${BASE_ROOT:-}" ]; then
     cp -a "$BASE_ROOT" "$root"
   else
     debootstrap --variant=minbase --include=ca-certificates,git,sudo bookworm "$root" \
       http://deb.debian.org/debian >"$root.debootstrap.log"
   fi
-  cp /etc/resolv.conf "$root/etc/resolv.conf"
-  [ -e "$root/etc/hosts" ] || printf '127.0.0.1\tlocalhost\n::1\tlocalhost ip6-localhost ip6-loopback\n' >"$root/etc/hosts"
-  if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
-    cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
-    chroot "$root" update-ca-certificates >/dev/null
-  fi
-  for m in proc sys dev dev/pts; do
-    mount --bind "/$m" "$root/$m"
-    mounted+=("$root/$m")
-  done
-  mkdir -p "$root/dev/shm" && mount -t tmpfs tmpfs "$root/dev/shm" && mounted+=("$root/dev/shm")
+  debian_root_enter "$root"
 }
 
 # Runs bash -c "$3" in root $1 from the checkout /root/work as phase $2, output to $log; prints

@@ -42,27 +42,11 @@ else
   debootstrap --variant=minbase --include=ca-certificates,git,sudo "$release" "$root" \
     http://deb.debian.org/debian >"$out/debootstrap.log"
 fi
-cp /etc/resolv.conf "$root/etc/resolv.conf"
-# debootstrap writes no /etc/hosts, which every installed or container machine has: without it
-# "localhost" does not resolve (Selenium reaches chromedriver by that name).
-[ -e "$root/etc/hosts" ] || printf '127.0.0.1\tlocalhost\n::1\tlocalhost ip6-localhost ip6-loopback\n' >"$root/etc/hosts"
-# The CAs this machine adds to Debian's (a network's proxy, say): a machine of the same network
-# has them too, and without them nothing reaches https:// (npm's registry).
-if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
-  cp /usr/local/share/ca-certificates/*.crt "$root/usr/local/share/ca-certificates/"
-  chroot "$root" update-ca-certificates >/dev/null
-fi
-mounted=()
-cleanup() {
-  local m
-  for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do umount -l "${mounted[i]}" || true; done
-}
-trap cleanup EXIT
-for m in proc sys dev dev/pts; do
-  mount --bind "/$m" "$root/$m"
-  mounted+=("$root/$m")
-done
-mkdir -p "$root/dev/shm" && mount -t tmpfs tmpfs "$root/dev/shm" && mounted+=("$root/dev/shm")
+# Name resolution, localhost, this network's CAs, /proc /sys /dev mounted: scripts/lib/debian-root.
+# shellcheck source=../scripts/lib/debian-root
+. "$repo/scripts/lib/debian-root"
+trap debian_root_leave EXIT
+debian_root_enter "$root"
 
 rev="${REV:-HEAD}"
 git -C "$repo" rev-parse --verify --quiet "$rev^{commit}" >/dev/null || { echo "no commit $rev" >&2; exit 2; }
