@@ -125,8 +125,7 @@ struct Scratch {
 
   // Runs `particles ARGS` as run() does, under guards that turn a hang or runaway memory into a
   // failed test instead of a stuck CI machine: address space capped at 2 GiB and a wall-clock
-  // guard of 60 s (180 s under the sanitizers) after which the process is killed (code −1); no
-  // address-space cap under ASan.
+  // guard of 60 s after which the process is killed (code −1); no address-space cap under ASan.
   // Reports what the run used. `addressSpace` sets another cap, in bytes.
   Result runBounded(const std::string& args, Usage& usage, rlim_t addressSpace = rlim_t(2) << 30) const {
     const fs::path exe = fs::read_symlink("/proc/self/exe").parent_path() / "particles";
@@ -145,9 +144,7 @@ struct Scratch {
     // The peak is the program's own high-water mark (VmHWM, kB), read while the child runs it: not
     // wait4's ru_maxrss, in which Linux keeps the child's memory from before exec, a copy of this
     // test process's (fork), and that was 397 MiB after the test cases before this one in the
-    // same process. VmHWM only grows, so the last reading is the peak but for the last 5 ms. The
-    // sanitizers' guard is longer: the ASan build's 2000-segment concat takes 50 to 56 s on a
-    // loaded 2-core machine, half of it the program's system time.
+    // same process. VmHWM only grows, so the last reading is the peak but for the last 5 ms.
     const fs::path program = fs::canonical(exe);
     const std::string proc = "/proc/" + std::to_string(pid);
     double peakKiB = 0;
@@ -161,7 +158,7 @@ struct Scratch {
     };
     const auto start = std::chrono::steady_clock::now();
     for (readPeak(); ::wait4(pid, &status, WNOHANG, &used) == 0; readPeak()) {
-      if (std::chrono::steady_clock::now() - start > std::chrono::seconds(kSanitized ? 180 : 60)) {
+      if (std::chrono::steady_clock::now() - start > std::chrono::seconds(60)) {
         ::kill(pid, SIGKILL);
         ::wait4(pid, &status, 0, &used);
         break;
