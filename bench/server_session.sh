@@ -8,8 +8,9 @@
 # Usage (from the checkout, whose scenarios and golden/ it uses):
 #   PARTICLES=bundle/particles PARTICLES_BENCH=bundle/particles_bench bench/server_session.sh [BUDGET_S]
 # with the programs and their libraries carried as ../shared/device/README.md says (bundle both
-# programs, and libOSMesa.so.8 as a third: the program opens it only when used, so ldd does not
-# list it; unpack its .xz into the libraries' folder). BUDGET_S (default 450): sections that would start later than their share of it are
+# programs, and libOSMesa.so.8 and libavfilter.so.8 too: the program opens OSMesa and FFmpeg only
+# when used, so ldd does not list them; libavfilter's own libraries are FFmpeg's others; unpack the
+# two .xz into the libraries' folder). BUDGET_S (default 450): sections that would start later than their share of it are
 # skipped and say so. Writes only beneath its own temporary folder.
 set -uo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

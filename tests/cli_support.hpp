@@ -245,6 +245,15 @@ inline bool contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
+// Whether the loader's own account of a run (LD_DEBUG=libs, on stderr) says it started `library`
+// ("calling init: PATH"): which libraries a command loads, and which it does not.
+inline bool loaderStarted(const std::string& loaderLog, const std::string& library) {
+  for (const std::string& line : lines(loaderLog)) {
+    if (contains(line, "calling init: ") && contains(line, library)) return true;
+  }
+  return false;
+}
+
 // The most memory a command of the CLI tests may peak at (getrusage), where no sanitizer runs.
 inline constexpr double kMaxPeakMiB = 200.0;
 

@@ -164,8 +164,8 @@ TEST_CASE("compare tells sizes apart from the PNG headers, and running out of me
 TEST_CASE("a simulation that runs out of memory is exit 3, not 'simulation failed'") {
   if (kSanitized) return particles::test::skipTest("no address-space cap under AddressSanitizer");
   Scratch s;
-  // A million particles and two million springs: ~580 MiB to run, over a 640 MiB cap with the
-  // program's ~420 MiB of libraries.
+  // A million particles and two million springs: ~565 MiB to run, over a 384 MiB cap in which the
+  // program itself starts (under 128 MiB).
   s.write("big.yaml",
           "name: big\n"
           "simulation: {integrator: rk4, dt: 0.01, duration: 0.01}\n"
@@ -175,7 +175,7 @@ TEST_CASE("a simulation that runs out of memory is exit 3, not 'simulation faile
           "forces:\n"
           "  - {type: gravity}\n");
   Scratch::Usage usage;
-  const Result r = s.runBounded("run big.yaml", usage, rlim_t(640) << 20);
+  const Result r = s.runBounded("run big.yaml", usage, rlim_t(384) << 20);
   checkOutOfMemory(r);
 }
 

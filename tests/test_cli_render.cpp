@@ -63,6 +63,49 @@ int x264Threads(const std::string& mp4) {
 
 // A thread count the user gives caps x264; without one x264 picks its own (about 1.5 per
 // CPU, at least 1), which encodes faster than one per CPU.
+TEST_CASE("cli render: FFmpeg's libraries are loaded for a video alone, and one that cannot be is exit 3 naming it") {
+  Scratch s;
+  s.write("s.yaml", kSwingScenario);
+  // Checking a scenario and rendering PNG frames start no FFmpeg library, nor x264.
+  for (const char* args : {"check s.yaml", "render s.yaml -o frame.png --at 0.5 --quiet",
+                           "render s.yaml -o frames/ --frames 0:2 --quiet"}) {
+    CAPTURE(args);
+    const Result r = s.run(args, "LD_DEBUG=libs");
+    REQUIRE_MESSAGE(r.code == 0, r.err);
+    CHECK_MESSAGE(loaderStarted(r.err, "libc.so"), r.err);  // the log is there
+    for (const char* library : {"libavutil", "libavcodec", "libavformat", "libavfilter", "libx264"}) {
+      CAPTURE(library);
+      CHECK(!loaderStarted(r.err, library));
+    }
+  }
+  Result r = s.run("render s.yaml -o video.mp4 --duration 0.1 --quiet", "LD_DEBUG=libs");
+  REQUIRE_MESSAGE(r.code == 0, r.err);
+  for (const char* library : {"libavutil", "libavcodec", "libavformat", "libx264"}) {
+    CAPTURE(library);
+    CHECK(loaderStarted(r.err, library));
+  }
+  // A library that cannot be opened (here an empty file found first) is an error naming it and
+  // Debian's packages, exit 3 and no output; PNG frames do not notice.
+  fs::create_directory(s.dir / "lib");
+  s.write("lib/" PARTICLES_LIBAVCODEC_SONAME, "");
+  for (const char* video : {"broken.mp4", "broken.webm", "broken.gif"}) {
+    CAPTURE(video);
+    r = s.run(std::string("render s.yaml -o ") + video + " --duration 0.1", "LD_LIBRARY_PATH=lib");
+    CHECK(r.code == 3);
+    CHECK_MESSAGE(r.err.starts_with("error: FFmpeg's library " PARTICLES_LIBAVCODEC_SONAME " could not be loaded ("),
+                  r.err);
+    CHECK_MESSAGE(contains(r.err, "MP4, WebM and GIF need FFmpeg's libraries (Debian: libavutil"), r.err);
+    CHECK_MESSAGE(contains(r.err, "PNG frames do not"), r.err);
+  }
+  r = s.run("concat -o joined.mp4 video.mp4 video.mp4", "LD_LIBRARY_PATH=lib");
+  CHECK(r.code == 3);
+  CHECK_MESSAGE(contains(r.err, "FFmpeg's library " PARTICLES_LIBAVCODEC_SONAME " could not be loaded ("), r.err);
+  r = s.run("render s.yaml -o still.png --at 0.5", "LD_LIBRARY_PATH=lib");
+  CHECK_MESSAGE(r.code == 0, r.err);
+  std::vector<std::string> expected = {"frame.png", "frames", "lib", "still.png", "video.mp4"};
+  CHECK(outputs(s) == expected);
+}
+
 TEST_CASE("cli render: --threads and PARTICLES_THREADS cap x264's threads, without them x264 chooses") {
   Scratch s;
   s.write("s.yaml", kSwing);

@@ -255,6 +255,7 @@ TEST_CASE("GL backends: a GPU request draws on hardware, or fails saying there i
 // --- the command line ---------------------------------------------------------------------------
 
 using particles::test::lines;
+using particles::test::loaderStarted;
 using particles::test::Result;
 using particles::test::Scratch;
 using particles::test::slurp;
@@ -348,17 +349,8 @@ TEST_CASE("cli render --gpu: without a GPU, a clear error, exit 3 and no output"
   }
 }
 
-// The loader's own account of what it starts (LD_DEBUG=libs: "calling init: PATH"), which Mesa's
-// driver, LLVM and OSMesa appear in only when a GL context is made.
-namespace {
-bool loaderStarted(const std::string& loaderLog, const std::string& library) {
-  for (const std::string& line : lines(loaderLog)) {
-    if (contains(line, "calling init: ") && contains(line, library)) return true;
-  }
-  return false;
-}
-}  // namespace
-
+// Mesa's driver, LLVM and OSMesa are in the loader's account of a run (loaderStarted) only when a
+// GL context is made.
 TEST_CASE("cli render: the cpu path loads no GL driver, LLVM or OSMesa, and a GL path loads its own") {
   Scratch s;
   s.write("s.yaml", particles::test::kSwingScenario);

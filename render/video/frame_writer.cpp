@@ -32,7 +32,7 @@ long frameCount(double duration, int fps) {
 }
 
 void setLibavVerbose(bool verbose) {
-  av_log_set_level(verbose ? AV_LOG_INFO : AV_LOG_ERROR);
+  libav::setLogLevel(verbose ? AV_LOG_INFO : AV_LOG_ERROR);
 }
 
 }  // namespace particles::render

@@ -30,19 +30,19 @@ constexpr AVRational kCentiseconds{1, 100};
 
 // When frame i starts, cs: round(100·i / fps).
 long startCs(long index, int fps) {
-  return long(av_rescale_rnd(index, 100, fps, AV_ROUND_NEAR_INF));
+  return long(libav::ffmpeg().av_rescale_rnd(index, 100, fps, AV_ROUND_NEAR_INF));
 }
 
 AVFilterContext* addFilter(AVFilterGraph* graph, const char* filter, const std::string& args, const char* name) {
   AVFilterContext* context = nullptr;
-  check(avfilter_graph_create_filter(&context, avfilter_get_by_name(filter), name,
-                                     args.empty() ? nullptr : args.c_str(), nullptr, graph),
+  check(libav::ffmpeg().avfilter_graph_create_filter(&context, libav::ffmpeg().avfilter_get_by_name(filter), name,
+                                                     args.empty() ? nullptr : args.c_str(), nullptr, graph),
         std::string("avfilter_graph_create_filter(") + filter + (args.empty() ? "" : "=" + args) + ")");
   return context;
 }
 
 void link(AVFilterContext* from, AVFilterContext* to, unsigned toPad = 0) {
-  check(avfilter_link(from, 0, to, toPad),
+  check(libav::ffmpeg().avfilter_link(from, 0, to, toPad),
         std::string("avfilter_link(") + from->filter->name + " → " + to->filter->name + ")");
 }
 
@@ -54,12 +54,12 @@ std::string sourceArgs(int width, int height, int format, int fps) {
 
 // A frame of the image's size holding a copy of its RGBA rows.
 libav::FramePtr rgbaFrame(const Image& image, long pts) {
-  libav::FramePtr frame(av_frame_alloc());
+  libav::FramePtr frame(libav::ffmpeg().av_frame_alloc());
   if (!frame) throw OutputError("av_frame_alloc: out of memory");
   frame->format = AV_PIX_FMT_RGBA;
   frame->width = image.width;
   frame->height = image.height;
-  check(av_frame_get_buffer(frame.get(), 0), "av_frame_get_buffer");
+  check(libav::ffmpeg().av_frame_get_buffer(frame.get(), 0), "av_frame_get_buffer");
   for (int y = 0; y < image.height; ++y) {
     std::memcpy(frame->data[0] + std::ptrdiff_t(y) * frame->linesize[0], image.pixel(0, y), image.stride());
   }
@@ -69,18 +69,19 @@ libav::FramePtr rgbaFrame(const Image& image, long pts) {
 
 // Hands `frame` to a buffer source (nullptr: the end of its input).
 void push(AVFilterContext* source, libav::FramePtr frame) {
-  check(av_buffersrc_add_frame_flags(source, frame.get(), 0), frame ? "av_buffersrc_add_frame" : "av_buffersrc_close");
+  check(libav::ffmpeg().av_buffersrc_add_frame_flags(source, frame.get(), 0),
+        frame ? "av_buffersrc_add_frame" : "av_buffersrc_close");
 }
 
 // Every frame the sink has ready, to `take`; stops when it needs more input or has ended.
 template <class Take>
 void drain(AVFilterContext* sink, AVFrame* scratch, Take&& take) {
   for (;;) {
-    const int ret = av_buffersink_get_frame(sink, scratch);
+    const int ret = libav::ffmpeg().av_buffersink_get_frame(sink, scratch);
     if (ret == AVERROR(EAGAIN) || ret == AVERROR_EOF) return;
     check(ret, "av_buffersink_get_frame");
     take(scratch);
-    av_frame_unref(scratch);
+    libav::ffmpeg().av_frame_unref(scratch);
   }
 }
 
@@ -119,7 +120,7 @@ struct GifWriter::Passes {
     push(paletteIn, nullptr);
     libav::FramePtr result;
     drain(paletteOut, scratch.get(), [&](AVFrame* f) {
-      result.reset(av_frame_clone(f));
+      result.reset(libav::ffmpeg().av_frame_clone(f));
       if (!result) throw OutputError("av_frame_clone: out of memory");
     });
     if (!result) throw OutputError("palettegen gave no palette");
@@ -143,7 +144,7 @@ struct GifWriter::Passes {
     const long lastDelay = startCs(frames, fps) - startCs(frames - 1, fps);
     gif->open({{"final_delay", std::to_string(lastDelay)}, {"loop", "0"}});
 
-    libav::FilterGraphPtr graph(avfilter_graph_alloc());
+    libav::FilterGraphPtr graph(libav::ffmpeg().avfilter_graph_alloc());
     if (!graph) throw OutputError("avfilter_graph_alloc: out of memory");
     AVFilterContext* in = addFilter(graph.get(), "buffer", sourceArgs(width, height, AV_PIX_FMT_RGBA, fps), "frames");
     AVFilterContext* paletteIn =
@@ -153,17 +154,17 @@ struct GifWriter::Passes {
     link(in, use, 0);
     link(paletteIn, use, 1);
     link(use, out);
-    check(avfilter_graph_config(graph.get(), nullptr), "avfilter_graph_config(paletteuse)");
+    check(libav::ffmpeg().avfilter_graph_config(graph.get(), nullptr), "avfilter_graph_config(paletteuse)");
 
-    libav::FramePtr paletteFrame(av_frame_clone(colours.get()));
+    libav::FramePtr paletteFrame(libav::ffmpeg().av_frame_clone(colours.get()));
     if (!paletteFrame) throw OutputError("av_frame_clone: out of memory");
     paletteFrame->pts = 0;
     push(paletteIn, std::move(paletteFrame));
     push(paletteIn, nullptr);  // paletteuse keeps the last palette for every later frame
 
-    const AVRational frameTime = av_buffersink_get_time_base(out);
+    const AVRational frameTime = libav::ffmpeg().av_buffersink_get_time_base(out);
     auto encode = [&](AVFrame* f) {
-      f->pts = av_rescale_q_rnd(f->pts, frameTime, kCentiseconds, AV_ROUND_NEAR_INF);
+      f->pts = libav::ffmpeg().av_rescale_q_rnd(f->pts, frameTime, kCentiseconds, AV_ROUND_NEAR_INF);
       gif->send(f);
     };
     Image image(width, height);
@@ -213,10 +214,10 @@ GifWriter::GifWriter(const std::filesystem::path& path, const FrameWriterOptions
   // "file:": a colon in a named temporary is not a protocol (render/video/yuv_video_writer.cpp).
   p->url = "file:" + out_.reopenablePath().string();
   p->name = path.string();
-  p->scratch.reset(av_frame_alloc());
+  p->scratch.reset(libav::ffmpeg().av_frame_alloc());
   if (!p->scratch) throw OutputError("av_frame_alloc: out of memory");
 
-  p->paletteGraph.reset(avfilter_graph_alloc());
+  p->paletteGraph.reset(libav::ffmpeg().avfilter_graph_alloc());
   if (!p->paletteGraph) throw OutputError("avfilter_graph_alloc: out of memory");
   AVFilterGraph* graph = p->paletteGraph.get();
   p->paletteIn = addFilter(graph, "buffer", sourceArgs(p->width, p->height, AV_PIX_FMT_RGBA, p->fps), "frames");
@@ -224,7 +225,7 @@ GifWriter::GifWriter(const std::filesystem::path& path, const FrameWriterOptions
   p->paletteOut = addFilter(graph, "buffersink", "", "palette");
   link(p->paletteIn, gen);
   link(gen, p->paletteOut);
-  check(avfilter_graph_config(graph, nullptr), "avfilter_graph_config(palettegen)");
+  check(libav::ffmpeg().avfilter_graph_config(graph, nullptr), "avfilter_graph_config(palettegen)");
 
   p->slots.resize(FramePipeline::slotCount(options.queueFrames));
   passes_ = std::move(p);

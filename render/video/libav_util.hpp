@@ -2,25 +2,18 @@
 // Internal to render/: ownership of libav* objects (one deleter each, as FFmpeg's examples free
 // them) and libav error codes as text.
 
-extern "C" {
-#include <libavcodec/avcodec.h>
-#include <libavfilter/avfilter.h>
-#include <libavformat/avformat.h>
-#include <libavutil/error.h>
-#include <libswscale/swscale.h>
-}
-
 #include <memory>
 #include <string>
 
 #include "render/errors.hpp"
+#include "render/video/libav_library.hpp"
 
 namespace particles::render::libav {
 
 // "avcodec_open2(libx264): Invalid argument" from a call name and a negative AVERROR code.
 inline std::string describe(const std::string& call, int err) {
   char buf[AV_ERROR_MAX_STRING_SIZE] = {};
-  av_strerror(err, buf, sizeof buf);
+  ffmpeg().av_strerror(err, buf, sizeof buf);
   return call + ": " + buf;
 }
 
@@ -30,39 +23,35 @@ inline void check(int err, const std::string& call) {
 }
 
 struct CodecContextDeleter {
-  void operator()(AVCodecContext* c) const { avcodec_free_context(&c); }
+  void operator()(AVCodecContext* c) const { ffmpeg().avcodec_free_context(&c); }
 };
 struct FrameDeleter {
-  void operator()(AVFrame* f) const { av_frame_free(&f); }
+  void operator()(AVFrame* f) const { ffmpeg().av_frame_free(&f); }
 };
 struct PacketDeleter {
-  void operator()(AVPacket* p) const { av_packet_free(&p); }
-};
-struct SwsDeleter {
-  void operator()(SwsContext* s) const { sws_freeContext(s); }
+  void operator()(AVPacket* p) const { ffmpeg().av_packet_free(&p); }
 };
 struct FilterGraphDeleter {
-  void operator()(AVFilterGraph* g) const { avfilter_graph_free(&g); }
+  void operator()(AVFilterGraph* g) const { ffmpeg().avfilter_graph_free(&g); }
 };
 // An output context: closes its file (if one is open) and frees it.
 struct OutputFormatDeleter {
   void operator()(AVFormatContext* s) const {
-    if (s->pb && !(s->oformat->flags & AVFMT_NOFILE)) avio_closep(&s->pb);
-    avformat_free_context(s);
+    if (s->pb && !(s->oformat->flags & AVFMT_NOFILE)) ffmpeg().avio_closep(&s->pb);
+    ffmpeg().avformat_free_context(s);
   }
 };
 struct CodecParametersDeleter {
-  void operator()(AVCodecParameters* p) const { avcodec_parameters_free(&p); }
+  void operator()(AVCodecParameters* p) const { ffmpeg().avcodec_parameters_free(&p); }
 };
 // An input context from avformat_open_input.
 struct InputFormatDeleter {
-  void operator()(AVFormatContext* s) const { avformat_close_input(&s); }
+  void operator()(AVFormatContext* s) const { ffmpeg().avformat_close_input(&s); }
 };
 
 using CodecContextPtr = std::unique_ptr<AVCodecContext, CodecContextDeleter>;
 using FramePtr = std::unique_ptr<AVFrame, FrameDeleter>;
 using PacketPtr = std::unique_ptr<AVPacket, PacketDeleter>;
-using SwsPtr = std::unique_ptr<SwsContext, SwsDeleter>;
 using FilterGraphPtr = std::unique_ptr<AVFilterGraph, FilterGraphDeleter>;
 using OutputFormatPtr = std::unique_ptr<AVFormatContext, OutputFormatDeleter>;
 using InputFormatPtr = std::unique_ptr<AVFormatContext, InputFormatDeleter>;

@@ -38,11 +38,11 @@ Segment openSegment(const std::filesystem::path& path) {
   s.path = path;
   AVFormatContext* fmt = nullptr;
   const std::string url = "file:" + path.string();
-  if (const int err = avformat_open_input(&fmt, url.c_str(), nullptr, nullptr); err < 0) {
+  if (const int err = libav::ffmpeg().avformat_open_input(&fmt, url.c_str(), nullptr, nullptr); err < 0) {
     throw std::invalid_argument(libav::describe("cannot open " + path.string(), err));
   }
   s.format.reset(fmt);
-  if (const int err = avformat_find_stream_info(fmt, nullptr); err < 0) {
+  if (const int err = libav::ffmpeg().avformat_find_stream_info(fmt, nullptr); err < 0) {
     refuse(path, libav::describe("not a video (truncated, or not an MP4?)", err));
   }
   int videos = 0;
@@ -59,15 +59,16 @@ Segment openSegment(const std::filesystem::path& path) {
   if (par->width <= 0 || par->height <= 0 || par->format == AV_PIX_FMT_NONE) {
     refuse(path, "truncated or damaged: none of its pictures decodes");
   }
-  const AVCodec* codec = avcodec_find_decoder(par->codec_id);
+  const AVCodec* codec = libav::ffmpeg().avcodec_find_decoder(par->codec_id);
   if (!codec)
-    refuse(path, fmt::format("no decoder for its codec {} in this libavcodec", avcodec_get_name(par->codec_id)));
-  s.decoder.reset(avcodec_alloc_context3(codec));
+    refuse(path, fmt::format("no decoder for its codec {} in this libavcodec",
+                             libav::ffmpeg().avcodec_get_name(par->codec_id)));
+  s.decoder.reset(libav::ffmpeg().avcodec_alloc_context3(codec));
   if (!s.decoder) throw OutputError("avcodec_alloc_context3: out of memory");
-  check(avcodec_parameters_to_context(s.decoder.get(), par), "avcodec_parameters_to_context");
+  check(libav::ffmpeg().avcodec_parameters_to_context(s.decoder.get(), par), "avcodec_parameters_to_context");
   // A damaged packet is an error, not a picture concealed from its neighbours.
   s.decoder->err_recognition |= AV_EF_EXPLODE;
-  if (const int err = avcodec_open2(s.decoder.get(), codec, nullptr); err < 0) {
+  if (const int err = libav::ffmpeg().avcodec_open2(s.decoder.get(), codec, nullptr); err < 0) {
     refuse(path, libav::describe(std::string("avcodec_open2(") + codec->name + ")", err));
   }
   return s;
@@ -76,7 +77,7 @@ Segment openSegment(const std::filesystem::path& path) {
 // What every segment must share with the first for the copy to be one stream.
 struct StreamShape {
   std::filesystem::path path;  // the first segment
-  libav::CodecParametersPtr par{avcodec_parameters_alloc()};
+  libav::CodecParametersPtr par{libav::ffmpeg().avcodec_parameters_alloc()};
   AVRational frameRate{0, 1}, timeBase{0, 1};
 };
 
@@ -84,7 +85,7 @@ StreamShape shapeOf(const Segment& s) {
   StreamShape shape;
   shape.path = s.path;
   if (!shape.par) throw OutputError("avcodec_parameters_alloc: out of memory");
-  check(avcodec_parameters_copy(shape.par.get(), s.video->codecpar), "avcodec_parameters_copy");
+  check(libav::ffmpeg().avcodec_parameters_copy(shape.par.get(), s.video->codecpar), "avcodec_parameters_copy");
   shape.frameRate = s.video->avg_frame_rate;
   shape.timeBase = s.video->time_base;
   return shape;
@@ -99,7 +100,8 @@ std::string difference(const StreamShape& first, const Segment& s) {
   const AVCodecParameters* a = first.par.get();
   const AVCodecParameters* b = s.video->codecpar;
   if (a->codec_id != b->codec_id) {
-    return fmt::format("codec {}, not {}", avcodec_get_name(b->codec_id), avcodec_get_name(a->codec_id));
+    return fmt::format("codec {}, not {}", libav::ffmpeg().avcodec_get_name(b->codec_id),
+                       libav::ffmpeg().avcodec_get_name(a->codec_id));
   }
   if (a->width != b->width || a->height != b->height) {
     return fmt::format("{}×{}, not {}×{}", b->width, b->height, a->width, a->height);
@@ -124,30 +126,31 @@ class JoinedVideo {
   JoinedVideo(const std::filesystem::path& output, const StreamShape& shape) : output_(output), out_(output) {
     const std::string temp = "file:" + out_.reopenablePath().string();
     AVFormatContext* raw = nullptr;
-    check(avformat_alloc_output_context2(&raw, nullptr, "mp4", temp.c_str()), "avformat_alloc_output_context2(mp4)");
+    check(libav::ffmpeg().avformat_alloc_output_context2(&raw, nullptr, "mp4", temp.c_str()),
+          "avformat_alloc_output_context2(mp4)");
     format_.reset(raw);
-    stream_ = avformat_new_stream(raw, nullptr);
+    stream_ = libav::ffmpeg().avformat_new_stream(raw, nullptr);
     if (!stream_) throw OutputError("avformat_new_stream: out of memory");
-    check(avcodec_parameters_copy(stream_->codecpar, shape.par.get()), "avcodec_parameters_copy");
+    check(libav::ffmpeg().avcodec_parameters_copy(stream_->codecpar, shape.par.get()), "avcodec_parameters_copy");
     stream_->codecpar->codec_tag = 0;  // the muxer picks the tag for its container
     stream_->time_base = shape.timeBase;
     stream_->avg_frame_rate = shape.frameRate;
 
     AVDictionary* fileOptions = nullptr;
-    check(av_dict_set(&fileOptions, "truncate", "0", 0), "av_dict_set(truncate)");
-    const int openResult = avio_open2(&raw->pb, temp.c_str(), AVIO_FLAG_WRITE, nullptr, &fileOptions);
-    av_dict_free(&fileOptions);
+    check(libav::ffmpeg().av_dict_set(&fileOptions, "truncate", "0", 0), "av_dict_set(truncate)");
+    const int openResult = libav::ffmpeg().avio_open2(&raw->pb, temp.c_str(), AVIO_FLAG_WRITE, nullptr, &fileOptions);
+    libav::ffmpeg().av_dict_free(&fileOptions);
     check(openResult, "avio_open2(" + output.string() + ")");
     AVDictionary* muxOptions = nullptr;
-    check(av_dict_set(&muxOptions, "movflags", "+faststart", 0), "av_dict_set(movflags)");
-    const int headerResult = avformat_write_header(raw, &muxOptions);
-    av_dict_free(&muxOptions);
+    check(libav::ffmpeg().av_dict_set(&muxOptions, "movflags", "+faststart", 0), "av_dict_set(movflags)");
+    const int headerResult = libav::ffmpeg().avformat_write_header(raw, &muxOptions);
+    libav::ffmpeg().av_dict_free(&muxOptions);
     check(headerResult, "avformat_write_header(" + output.string() + ")");
   }
 
   // Writes a packet of `s`, its timestamps moved on by the segments before.
   void write(const Segment& s, AVPacket* packet) {
-    av_packet_rescale_ts(packet, s.video->time_base, stream_->time_base);
+    libav::ffmpeg().av_packet_rescale_ts(packet, s.video->time_base, stream_->time_base);
     if (packet->pts != AV_NOPTS_VALUE) {
       packet->pts += offset_;
       segmentEnd_ = std::max(segmentEnd_, packet->pts + packet->duration);
@@ -160,7 +163,8 @@ class JoinedVideo {
     }
     packet->stream_index = stream_->index;
     packet->pos = -1;
-    check(av_interleaved_write_frame(format_.get(), packet), "av_interleaved_write_frame(" + output_.string() + ")");
+    check(libav::ffmpeg().av_interleaved_write_frame(format_.get(), packet),
+          "av_interleaved_write_frame(" + output_.string() + ")");
   }
 
   // The next segment starts where this one's last frame ends.
@@ -168,8 +172,8 @@ class JoinedVideo {
 
   // Writes the index and publishes the file; returns the video's duration in seconds.
   double finish() {
-    check(av_write_trailer(format_.get()), "av_write_trailer(" + output_.string() + ")");
-    check(avio_closep(&format_->pb), "avio_closep(" + output_.string() + ")");
+    check(libav::ffmpeg().av_write_trailer(format_.get()), "av_write_trailer(" + output_.string() + ")");
+    check(libav::ffmpeg().avio_closep(&format_->pb), "avio_closep(" + output_.string() + ")");
     out_.commit();
     return double(offset_) * av_q2d(stream_->time_base);
   }
@@ -190,13 +194,13 @@ void decode(const Segment& s, const AVPacket* packet, long frame, AVFrame* pictu
   const auto fail = [&](int err) {
     refuse(s.path, libav::describe(fmt::format("truncated or damaged: frame {} does not decode", frame), err));
   };
-  if (const int err = avcodec_send_packet(s.decoder.get(), packet); err < 0) fail(err);
+  if (const int err = libav::ffmpeg().avcodec_send_packet(s.decoder.get(), packet); err < 0) fail(err);
   for (;;) {
-    const int err = avcodec_receive_frame(s.decoder.get(), picture);
+    const int err = libav::ffmpeg().avcodec_receive_frame(s.decoder.get(), picture);
     if (err == AVERROR(EAGAIN) || err == AVERROR_EOF) return;
     if (err < 0) fail(err);
     ++pictures;
-    av_frame_unref(picture);
+    libav::ffmpeg().av_frame_unref(picture);
   }
 }
 
@@ -204,17 +208,17 @@ void decode(const Segment& s, const AVPacket* packet, long frame, AVFrame* pictu
 // decode whole, every packet without error and as many pictures as the segment's index lists.
 // Returns the packets copied.
 long copySegment(Segment& s, JoinedVideo& joined) {
-  const libav::PacketPtr packet(av_packet_alloc());
-  const libav::FramePtr picture(av_frame_alloc());
+  const libav::PacketPtr packet(libav::ffmpeg().av_packet_alloc());
+  const libav::FramePtr picture(libav::ffmpeg().av_frame_alloc());
   if (!packet || !picture) throw OutputError("av_packet_alloc/av_frame_alloc: out of memory");
   long packets = 0, pictures = 0;
   for (;;) {
-    const int err = av_read_frame(s.format.get(), packet.get());
+    const int err = libav::ffmpeg().av_read_frame(s.format.get(), packet.get());
     if (err == AVERROR_EOF) break;
     if (err < 0)
       refuse(s.path, libav::describe(fmt::format("truncated or damaged: reading frame {}", packets + 1), err));
     if (packet->stream_index != s.video->index) {
-      av_packet_unref(packet.get());
+      libav::ffmpeg().av_packet_unref(packet.get());
       continue;
     }
     // libavformat marks a packet the file ends inside of.

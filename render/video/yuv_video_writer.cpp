@@ -26,7 +26,7 @@ struct YuvVideoWriter::Encoder {
   // reference to the slot's buffer, make_writable gives the slot a fresh one.
   void fill(const Image& image, size_t slot) {
     AVFrame* f = frames[slot].get();
-    check(av_frame_make_writable(f), "av_frame_make_writable");
+    check(libav::ffmpeg().av_frame_make_writable(f), "av_frame_make_writable");
     const Yuv420Planes planes{f->data[0], f->data[1], f->data[2], f->linesize[0], f->linesize[1], f->linesize[2]};
     if (alpha) {
       rgbaToYuva420(image, planes, f->data[3], f->linesize[3]);

@@ -5,7 +5,10 @@
 
 extern "C" {
 #include <libavutil/pixdesc.h>
+#include <libswscale/swscale.h>
 }
+
+#include <memory>
 
 namespace particles::test {
 
@@ -16,10 +19,15 @@ namespace libav = render::libav;
 
 namespace {
 
+struct SwsDeleter {
+  void operator()(SwsContext* s) const { sws_freeContext(s); }
+};
+
 Image toRgba(const AVFrame* f) {
   Image image(f->width, f->height);
-  libav::SwsPtr sws(sws_getContext(f->width, f->height, AVPixelFormat(f->format), f->width, f->height, AV_PIX_FMT_RGBA,
-                                   SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT, nullptr, nullptr, nullptr));
+  std::unique_ptr<SwsContext, SwsDeleter> sws(
+      sws_getContext(f->width, f->height, AVPixelFormat(f->format), f->width, f->height, AV_PIX_FMT_RGBA,
+                     SWS_BICUBIC | SWS_ACCURATE_RND | SWS_FULL_CHR_H_INT, nullptr, nullptr, nullptr));
   if (!sws) throw OutputError("sws_getContext(→ RGBA): unsupported conversion");
   const int space = f->colorspace == AVCOL_SPC_BT709 ? SWS_CS_ITU709 : SWS_CS_DEFAULT;
   const int fullRange = f->color_range == AVCOL_RANGE_JPEG ? 1 : 0;
