@@ -61,8 +61,6 @@ int x264Threads(const std::string& mp4) {
 
 }  // namespace
 
-// A thread count the user gives caps x264; without one x264 picks its own (about 1.5 per
-// CPU, at least 1), which encodes faster than one per CPU.
 TEST_CASE("cli render: FFmpeg's libraries are loaded for a video alone, and one that cannot be is exit 3 naming it") {
   Scratch s;
   s.write("s.yaml", kSwingScenario);
@@ -106,6 +104,8 @@ TEST_CASE("cli render: FFmpeg's libraries are loaded for a video alone, and one 
   CHECK(outputs(s) == expected);
 }
 
+// A thread count the user gives caps x264; without one x264 picks its own (about 1.5 per
+// CPU, at least 1), which encodes faster than one per CPU.
 TEST_CASE("cli render: --threads and PARTICLES_THREADS cap x264's threads, without them x264 chooses") {
   Scratch s;
   s.write("s.yaml", kSwing);

@@ -49,7 +49,7 @@ struct Library {
   std::string error;  // why the libraries could not be opened; empty when they were
 };
 
-Library open() {
+Library openLibraries() {
   Library library;
   const LibraryName names;
   struct Handles {
@@ -86,7 +86,7 @@ Library open() {
 
 const Library& opening() {
   static const Library library = [] {
-    Library result = open();
+    Library result = openLibraries();
     if (result.error.empty()) {
       const std::lock_guard lock(logLevelMutex());
       result.functions.av_log_set_level(requestedLogLevel);
