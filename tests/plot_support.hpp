@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -181,13 +182,17 @@ inline std::vector<PathPoint> pathPoints(const XmlElement& path) {
   const auto it = path.attributes.find("d");
   if (it == path.attributes.end()) return {};
   const std::string& d = it->second;
+  // Each number is read in place (strtod from its first character): a copy of the rest of the path
+  // per number would make a dense series' path of ~100,000 numbers quadratic in its length.
   std::vector<double> numbers;
   for (std::size_t i = 0; i < d.size();) {
     const char c = d[i];
     if (c == '-' || c == '.' || (c >= '0' && c <= '9')) {
-      std::size_t used = 0;
-      numbers.push_back(std::stod(d.substr(i), &used));
-      i += used;
+      char* end = nullptr;
+      const double value = std::strtod(d.c_str() + i, &end);
+      if (end == d.c_str() + i) throw std::invalid_argument("an SVG path's d holds no number at " + d.substr(i, 20));
+      numbers.push_back(value);
+      i = std::size_t(end - d.c_str());
     } else {
       ++i;
     }

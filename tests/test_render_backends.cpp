@@ -51,10 +51,11 @@ std::string thrownMessage(F&& f) {
   return "";
 }
 
-// Every sample count, opaque and with a transparent background.
+// Every sample count (particles::test::sampleCountsToCompare), opaque and with a transparent
+// background.
 std::vector<std::pair<int, bool>> sampleCountsOpaqueAndTransparent() {
   std::vector<std::pair<int, bool>> cases;
-  for (int msaa : kSampleCounts) {
+  for (int msaa : particles::test::sampleCountsToCompare()) {
     for (bool transparent : {false, true}) cases.emplace_back(msaa, transparent);
   }
   return cases;

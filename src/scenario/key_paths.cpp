@@ -5,6 +5,7 @@
 #include <charconv>
 
 #include "input/printable_text.hpp"
+#include "scenario/yaml_reader.hpp"
 
 namespace particles::scenario {
 
