@@ -26,7 +26,7 @@
 namespace particles::test {
 
 // The sample counts a comparison of pixels draws at: all of render::kSampleCounts, but under a
-// sanitizer the fewest, the default and the most (1, 4 and 16). There every buffer llvmpipe
+// sanitizer the fewest, the default and the most (1, 4 and 16 today). There every buffer llvmpipe
 // allocates for a frame comes from the sanitizer's allocator, which made the comparisons that draw
 // the demos at every count the costliest cases of the sanitizer stage; the counts between run the
 // same code with other numbers, and the plain build compares them all.
@@ -131,12 +131,12 @@ inline DemoFrame demoFrame(const std::string& name, double at, const std::vector
 }
 
 // The three demos at a moment each (springs strained, bodies, contacts, the cursor) at 1280×720,
-// at every sample count (sampleCountsToCompare), drawn by the triangle path from the springs by position and by `path`:
-// from the springs by index with `byIndex`, else by position. Checks that the two are within the
-// golden tolerance (a difference over 16 in at most `tieShare` of the pixels, the manifest's 0.02 %
-// unless a path decides ties otherwise; at 1 sample 0.15 %, where an edge along pixel centres ties
-// a whole row), and that at most `roundingShare` of the pixels (0.15 % at 1 sample) differ by more
-// than `rounding`.
+// at every sample count (sampleCountsToCompare), drawn by the triangle path from the springs by
+// position and by `path`: from the springs by index with `byIndex`, else by position. Checks that
+// the two are within the golden tolerance (a difference over 16 in at most `tieShare` of the
+// pixels, the manifest's 0.02 % unless a path decides ties otherwise; at 1 sample 0.15 %, where an
+// edge along pixel centres ties a whole row), and that at most `roundingShare` of the pixels
+// (0.15 % at 1 sample) differ by more than `rounding`.
 inline void checkDemoFramesOnPath(render::Raster path, bool byIndex, int rounding, double roundingShare,
                                   double tieShare = 0.0002) {
   for (const auto& [name, at] : {std::pair<std::string, double>{"cloth", 2.5}, {"soft_body", 20.0}, {"rigid_chain", 3.0}}) {
