@@ -18,6 +18,7 @@
 #include "plot_support.hpp"
 #include "render/png_io.hpp"
 #include "render_support.hpp"
+#include "support/library_names.hpp"
 #include "support/video_probe.hpp"
 
 using namespace particles::test;
@@ -84,20 +85,20 @@ TEST_CASE("cli render: FFmpeg's libraries are loaded for a video alone, and one 
   }
   // A library that cannot be opened (here an empty file found first) is an error naming it and
   // Debian's packages, exit 3 and no output; PNG frames do not notice.
+  const std::string soname(libavcodecSoname());
   fs::create_directory(s.dir / "lib");
-  s.write("lib/" PARTICLES_LIBAVCODEC_SONAME, "");
+  s.write("lib/" + soname, "");
   for (const char* video : {"broken.mp4", "broken.webm", "broken.gif"}) {
     CAPTURE(video);
     r = s.run(std::string("render s.yaml -o ") + video + " --duration 0.1", "LD_LIBRARY_PATH=lib");
     CHECK(r.code == 3);
-    CHECK_MESSAGE(r.err.starts_with("error: FFmpeg's library " PARTICLES_LIBAVCODEC_SONAME " could not be loaded ("),
-                  r.err);
+    CHECK_MESSAGE(r.err.starts_with("error: FFmpeg's library " + soname + " could not be loaded ("), r.err);
     CHECK_MESSAGE(contains(r.err, "MP4, WebM and GIF need FFmpeg's libraries (Debian: libavutil"), r.err);
     CHECK_MESSAGE(contains(r.err, "PNG frames do not"), r.err);
   }
   r = s.run("concat -o joined.mp4 video.mp4 video.mp4", "LD_LIBRARY_PATH=lib");
   CHECK(r.code == 3);
-  CHECK_MESSAGE(contains(r.err, "FFmpeg's library " PARTICLES_LIBAVCODEC_SONAME " could not be loaded ("), r.err);
+  CHECK_MESSAGE(contains(r.err, "FFmpeg's library " + soname + " could not be loaded ("), r.err);
   r = s.run("render s.yaml -o still.png --at 0.5", "LD_LIBRARY_PATH=lib");
   CHECK_MESSAGE(r.code == 0, r.err);
   std::vector<std::string> expected = {"frame.png", "frames", "lib", "still.png", "video.mp4"};
