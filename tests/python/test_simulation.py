@@ -230,8 +230,8 @@ def test_two_threads_step_their_own_simulations_at_once_to_the_serial_bits():
 
 def test_ctrl_c_stops_a_long_advance_at_a_whole_step():
     sim = particles.Simulation(particles.Scenario.load(scenario_path("cloth"), set={"dt": 0.001}), threads=1)
-    # Python's own SIGINT handler, as an interactive session has: a process that a shell started in
-    # the background inherits SIGINT ignored, and then interrupt_main does nothing.
+    # Python's own SIGINT handler, as an interactive interpreter has: a process that a shell
+    # started in the background inherits SIGINT ignored, and then interrupt_main does nothing.
     previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     try:
         timer = threading.Timer(0.3, _thread.interrupt_main)
