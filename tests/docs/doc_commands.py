@@ -12,9 +12,9 @@ test, as does a command that exits otherwise than the page's comment says (0, un
 says "exit N here").
 
 Runs are shortened, never otherwise changed: a `render`, `run` or `stability` without --duration
-is given one just long enough for its --at and --frames (else half a second), and the copies of
-the sweep files have their studies' `duration` set to half a second. Commands are run as argument lists, never through a shell; `> FILE` sends stdout
-to FILE.
+is given one just long enough for its --at and --frames (else 0.1 s, six frames of the demos),
+and the copies of the sweep files have their studies' `duration` set to 0.1 s. Commands are run as
+argument lists, never through a shell; `> FILE` sends stdout to FILE.
 """
 import os
 import re
@@ -90,7 +90,7 @@ def commands(block_start, lines):
 
 def duration_for(argv):
     """The --duration that keeps a shortened render's --at and --frames valid: in simulated seconds."""
-    needed = 0.5
+    needed = 0.1
     if "--at" in argv:
         needed = max(needed, float(argv[argv.index("--at") + 1]) + 0.1)
     if "--frames" in argv:
@@ -124,14 +124,14 @@ def main():
         os.makedirs(os.path.dirname(os.path.join(scratch, name)), exist_ok=True)
         with open(os.path.join(scratch, name), "w", encoding="utf-8") as f:
             f.write(text)
-    # The sweeps' studies shortened in the copy: 0.5 simulated seconds instead of 3.
+    # The sweeps' studies shortened in the copy: 0.1 simulated seconds instead of 3.
     for folder, _, files in os.walk(os.path.join(scratch, "scenarios", "sweeps")):
         for name in files:
             path = os.path.join(folder, name)
             with open(path, encoding="utf-8") as f:
                 text = f.read()
             with open(path, "w", encoding="utf-8") as f:
-                f.write(re.sub(r"(?m)^(\s*duration:\s*)[0-9.]+", r"\g<1>0.5", text))
+                f.write(re.sub(r"(?m)^(\s*duration:\s*)[0-9.]+", r"\g<1>0.1", text))
     failures, ran, elsewhere = [], 0, 0
     for page in pages:
         with open(os.path.join(source, page), encoding="utf-8") as f:
