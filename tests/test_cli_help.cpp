@@ -28,7 +28,7 @@ namespace {
 
 std::string helpOf(const std::string& command) {
   particles::app::Cli cli;
-  return cli.app.get_subcommand(command)->help();
+  return cli.command(command).help();
 }
 
 // The groups of the first match of `pattern` in `help`; fails the test when there is none.
@@ -125,7 +125,7 @@ TEST_CASE("cli help: every command that reads files states the default --max-inp
     CLI::App program;
     const auto bound = add(program);  // holds the options the command's are bound to
     const std::string name(bound->name());
-    CLI::App* command = program.get_subcommand(name);
+    CLI::App* command = &bound->addOptions();
     // A command of subcommands (golden: check, update, report) has its options on each of them.
     std::vector<CLI::App*> leaves = command->get_subcommands({});
     if (leaves.empty()) leaves = {command};

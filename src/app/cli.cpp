@@ -29,18 +29,27 @@ Cli::Cli() {
 }
 
 void Cli::parse(const std::vector<std::string>& args) {
-  requireKnownCommand(args);
+  if (BoundCommand* command = namedCommand(args)) command->addOptions();
   app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 takes them last first
 }
 
-void Cli::requireKnownCommand(const std::vector<std::string>& args) const {
+CLI::App& Cli::command(std::string_view name) {
+  for (const auto& command : commands_) {
+    if (command->name() == name) return command->addOptions();
+  }
+  throw std::logic_error(fmt::format("Cli::command: no command {}", name));
+}
+
+BoundCommand* Cli::namedCommand(const std::vector<std::string>& args) const {
   // The program's own options (--help, --version) take no value, so the first word that is not an
   // option is the command.
   const auto word = std::find_if(args.begin(), args.end(), [](const std::string& a) { return !a.starts_with('-'); });
-  if (word == args.end()) return;
+  if (word == args.end()) return nullptr;
   std::vector<std::string> names;
-  for (const auto& command : commands_) names.emplace_back(command->name());
-  if (std::find(names.begin(), names.end(), *word) != names.end()) return;
+  for (const auto& command : commands_) {
+    if (command->name() == *word) return command.get();
+    names.emplace_back(command->name());
+  }
   const std::string nearest = input::closestName(*word, names);
   throw CLI::ParseError(
       fmt::format("unknown command {}{}; the commands are {}", input::quotedValue(*word),

@@ -53,6 +53,9 @@ class BoundCommand {
  public:
   virtual ~BoundCommand() = default;
   virtual std::string_view name() const = 0;
+  // Adds the command's options (once; again does nothing). Cli adds only the named command's: each
+  // command has dozens, and the program parses one command line per start, a sweep one per job.
+  virtual CLI::App& addOptions() = 0;
   virtual bool parsed() const = 0;
   virtual int run() const = 0;
   virtual CommandFiles files() const = 0;
@@ -65,15 +68,20 @@ class BoundCommand {
 template <class Options>
 class BoundCommandOf final : public BoundCommand {
  public:
-  // Adds the command to `app`. The options live here, where CLI11 writes them: not copyable.
+  // Adds the command to `app`, without its options (addOptions). The options live here, where
+  // CLI11 writes them: not copyable.
   BoundCommandOf(CLI::App& app, const CommandDescriptor<Options>& descriptor) : descriptor_(descriptor) {
     command_ = app.add_subcommand(std::string(descriptor.name), std::string(descriptor.summary));
-    descriptor.addOptions(*command_, options_);
   }
   BoundCommandOf(const BoundCommandOf&) = delete;
   BoundCommandOf& operator=(const BoundCommandOf&) = delete;
 
   std::string_view name() const override { return descriptor_.name; }
+  CLI::App& addOptions() override {
+    if (!optionsAdded_) descriptor_.addOptions(*command_, options_);
+    optionsAdded_ = true;
+    return *command_;
+  }
   bool parsed() const override { return command_->parsed(); }
   int run() const override { return descriptor_.run(options_); }
   CommandFiles files() const override { return descriptor_.files ? descriptor_.files(options_) : CommandFiles{}; }
@@ -91,9 +99,11 @@ class BoundCommandOf final : public BoundCommand {
   const CommandDescriptor<Options>& descriptor_;
   Options options_;
   CLI::App* command_ = nullptr;
+  bool optionsAdded_ = false;
 };
 
-// Adds the command `descriptor` describes to `app`: what a row of kCommands holds.
+// Adds the command `descriptor` describes to `app`, its options not yet (BoundCommand::addOptions):
+// what a row of kCommands holds.
 using AddCommand = std::unique_ptr<BoundCommand> (*)(CLI::App& app);
 template <const auto& descriptor>
 std::unique_ptr<BoundCommand> addCommand(CLI::App& app) {

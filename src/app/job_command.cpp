@@ -122,7 +122,7 @@ int runJobCommand(const RunJobOptions& o) {
   };
   std::unique_ptr<Cli> cli = parsed(args);
   if (o.threads > 0) {
-    const CLI::Option* threads = cli->app.get_subcommand(command)->get_option_no_throw("--threads");
+    const CLI::Option* threads = cli->command(command).get_option_no_throw("--threads");
     if (threads != nullptr && threads->count() == 0) {
       std::vector<std::string> withThreads = args;
       withThreads.insert(withThreads.end(), {"--threads", std::to_string(o.threads)});
