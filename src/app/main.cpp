@@ -1,11 +1,13 @@
-// The `particles` program (docs/physics.md §12): parses the command line (cli.hpp) and runs it.
+// The `particles` program (docs/physics.md §12): parses the command line and runs it (program.hpp).
 #include <malloc.h>
 
 #include <cstdio>
 #include <new>
+#include <string>
+#include <vector>
 
-#include "app/cli.hpp"
 #include "app/exit_codes.hpp"
+#include "app/program.hpp"
 
 namespace {
 
@@ -26,15 +28,7 @@ void keepHeapBetweenFrames() {
 int main(int argc, char** argv) {
   keepHeapBetweenFrames();
   try {
-    auto cli = std::make_unique<particles::app::Cli>();
-    const std::vector<std::string> args(argv + 1, argv + argc);
-    try {
-      cli->parse(args);
-    } catch (const CLI::ParseError& e) {
-      const int code = cli->app.exit(e);  // prints help, the version or the error
-      return code == 0 ? particles::app::kOk : particles::app::kBadInput;
-    }
-    return cli->dispatch(args);
+    return particles::app::runProgram(std::vector<std::string>(argv + 1, argv + argc));
   } catch (const std::bad_alloc&) {
     // Memory ran out before a command ran (or after it reported): the options themselves, under a
     // tight cap (`ulimit -v`). The same code and words as runReportingErrors', allocating nothing.
