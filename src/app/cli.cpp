@@ -40,7 +40,7 @@ CLI::App& Cli::command(std::string_view name) {
   throw std::logic_error(fmt::format("Cli::command: no command {}", name));
 }
 
-BoundCommand* Cli::namedCommand(const std::vector<std::string>& args) const {
+BoundCommand* Cli::namedCommand(const std::vector<std::string>& args) {
   // The program's own options (--help, --version) take no value, so the first word that is not an
   // option is the command.
   const auto word = std::find_if(args.begin(), args.end(), [](const std::string& a) { return !a.starts_with('-'); });

@@ -45,7 +45,7 @@ class Cli {
  private:
   // The command the first word that is not an option names; nullptr when every word is an option.
   // Throws CLI::ParseError when that word is no command's name.
-  BoundCommand* namedCommand(const std::vector<std::string>& args) const;
+  BoundCommand* namedCommand(const std::vector<std::string>& args);
   // The command the parse named; nullptr before a parse.
   const BoundCommand* parsedCommand() const;
 
